@@ -1,0 +1,337 @@
+#include "numerics/integrate.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+namespace ajx::numerics {
+
+void StepView::at(double t, Vec& out) const { s_.dense(f_, (t - t0_) / h_, out); }
+
+std::string to_string(IntegrateStatus s) {
+  switch (s) {
+    case IntegrateStatus::Reached:
+      return "reached";
+    case IntegrateStatus::Event:
+      return "event";
+    case IntegrateStatus::StepUnderflow:
+      return "step underflow";
+    case IntegrateStatus::NonFinite:
+      return "non-finite state";
+    case IntegrateStatus::MaxSteps:
+      return "max steps";
+    case IntegrateStatus::Stopped:
+      return "stopped";
+  }
+  return "unknown";
+}
+
+namespace {
+
+// PI step-size control (Gustafsson; Hairer & Wanner, Solving ODEs II, IV.2, as in dopri5.f):
+// after an accepted step, h_new = h * clamp(safety * err^-alpha * err_old^beta, facmin,
+// facmax), alpha = 1/p - 0.75 beta, err_old = max(previous accepted err, 1e-4); facmax is 1
+// right after a rejection. After a rejection, h_new = h * max(facmin, safety * err^-alpha).
+constexpr double kSafety = 0.9;
+constexpr double kFacMin = 0.2;
+constexpr double kFacMax = 10.0;
+constexpr double kBeta = 0.04;
+constexpr double kErrOldMin = 1e-4;
+
+// RMS of v_i / (atol + rtol |y_i|).
+double scaled_rms(const Vec& v, const Vec& y, const Tolerances& tol) {
+  double s = 0.0;
+  for (Eigen::Index i = 0; i < v.size(); ++i) {
+    const double r = v[i] / (tol.atol + tol.rtol * std::abs(y[i]));
+    s += r * r;
+  }
+  return std::sqrt(s / static_cast<double>(v.size()));
+}
+
+// Starting step of Hairer, Norsett & Wanner, Solving ODEs I, II.4 (HINIT of dopri5.f), in the
+// RMS norm: h0 = 0.01 ||y0|| / ||f0||; one explicit Euler step gives a second-derivative
+// estimate d2 = ||f(t0 + h0, y0 + h0 f0) - f0|| / h0; then
+// h = min(100 h0, (0.01 / max(d2, ||f0||))^(1/p), h_max).
+double initial_step(const System& f, Stepper& stepper, double t0, const Vec& y0, double dir,
+                    const IntegrateOptions& opt) {
+  const auto n = y0.size();
+  Vec f0(n), y1(n), f1(n);
+  f(t0, y0, f0);
+  const double dnf = scaled_rms(f0, y0, opt.tol);
+  const double dny = scaled_rms(y0, y0, opt.tol);
+  double h = (dnf <= 1e-5 || dny <= 1e-5) ? 1e-6 : 0.01 * dny / dnf;
+  h = std::min(h, opt.h_max);
+  y1 = y0 + (dir * h) * f0;
+  f(t0 + dir * h, y1, f1);
+  stepper.count_rhs_evals(2);
+  f1 -= f0;
+  const double der2 = scaled_rms(f1, y0, opt.tol) / h;
+  const double der12 = std::max(std::abs(der2), dnf);
+  const double h1 =
+      der12 <= 1e-15 ? std::max(1e-6, h * 1e-3) : std::pow(0.01 / der12, 1.0 / stepper.order());
+  h = std::min({100.0 * h, h1, opt.h_max});
+  // A non-finite derivative is left to the step loop (it rejects and shrinks).
+  if (!(h > 0.0) || !std::isfinite(h)) h = std::min(1e-6, opt.h_max);
+  return h;
+}
+
+// Sign-change test for one event over [ta, tb] along the integration, ga != 0:
+// a root when g goes from ga to gb = 0 or to the opposite sign; "rising" is - to +.
+bool crosses(double ga, double gb, int direction) {
+  const bool rising = ga < 0.0 && gb >= 0.0;
+  const bool falling = ga > 0.0 && gb <= 0.0;
+  if (direction > 0) return rising;
+  if (direction < 0) return falling;
+  return rising || falling;
+}
+
+// Root of G on the bracket [ta, tb] (ga != 0, gb = 0 or of the other sign), by the Illinois
+// variant of regula falsi (Dowell & Jarratt 1971) with a bisection fallback, until the
+// bracket is narrower than tol or has no double inside. Returns the end on the far side of the
+// crossing (where G has already changed sign, or G = 0), so that restarting from the returned
+// state does not see the same crossing again.
+template <class G>
+double locate_root(G&& g, double ta, double ga, double tb, double gb, double tol) {
+  if (gb == 0.0) return tb;
+  int side = 0;  // which end was moved last: -1 the b end, +1 the a end
+  for (int iter = 0; iter < 300; ++iter) {
+    if (std::abs(tb - ta) <= tol) break;
+    double tm = tb - gb * (tb - ta) / (gb - ga);
+    const bool inside = (tm - ta) * (tb - tm) > 0.0;
+    if (!inside || iter >= 100) tm = 0.5 * (ta + tb);  // safeguard; pure bisection late
+    if (tm == ta || tm == tb) break;                   // no double left inside
+    const double gm = g(tm);
+    if (gm == 0.0) return tm;
+    if ((gm < 0.0) == (gb < 0.0)) {  // root in [ta, tm]
+      tb = tm;
+      gb = gm;
+      if (side == -1) ga *= 0.5;  // Illinois: the a end was kept twice
+      side = -1;
+    } else {  // root in [tm, tb]
+      ta = tm;
+      ga = gm;
+      if (side == +1) gb *= 0.5;
+      side = +1;
+    }
+  }
+  return tb;
+}
+
+}  // namespace
+
+IntegrateResult integrate(const System& f, Stepper& stepper, double t0, Vec& y, double t_end,
+                          std::span<const Event> events, const StepObserver& observe,
+                          const PostStep& post_step, const IntegrateOptions& opt) {
+  if (!std::isfinite(t0) || !std::isfinite(t_end))
+    throw std::invalid_argument("integrate: non-finite t0 or t_end");
+  if (y.size() == 0) throw std::invalid_argument("integrate: empty state");
+
+  IntegrateResult res;
+  res.t = t0;
+  // A new integration may come with a different f (mode switch): no stage is reused.
+  stepper.reset();
+  if (!y.allFinite()) {
+    res.status = IntegrateStatus::NonFinite;
+    return res;
+  }
+  if (t_end == t0) {
+    res.h_next = opt.h_init > 0.0 ? opt.h_init : (stepper.adaptive() ? 0.0 : opt.h_fixed);
+    return res;
+  }
+  const double dir = t_end > t0 ? 1.0 : -1.0;
+  const auto n = y.size();
+  Vec y_new(n), y_ev(n);
+
+  // Event bookkeeping: g at the start of the current step (g0) and at its end (g1).
+  // Rule for g0 == 0 exactly (a start on the surface, or a restart at a located root): the
+  // zero itself is never a crossing. The sign g takes just after the start is probed on the
+  // dense output at ta = t + dir * delta (delta = max(event_tol, 1e-6 |h|), at most |h|/2);
+  // only a sign change between ta and the step end counts. If g is still exactly 0 at ta the
+  // event cannot fire in this step. A step end where g = 0 exactly after a nonzero start is
+  // a root (at the step end). Two crossings inside one step cancel and are not seen.
+  const std::size_t m = events.size();
+  // g values: on the stack for up to kSmall events (the usual case), else on the heap, once.
+  constexpr std::size_t kSmall = 16;
+  std::array<double, 2 * kSmall> g_small;
+  std::vector<double> g_heap(m > kSmall ? 2 * m : 0);
+  double* g0 = m > kSmall ? g_heap.data() : g_small.data();
+  double* g1 = g0 + m;
+  for (std::size_t i = 0; i < m; ++i) g0[i] = events[i].g(t0, y);
+
+  double t = t0;
+
+  // Events, observer and post-step hook after an accepted step [t, t1] of size hs whose end
+  // state is y_new. Returns true when the integration ends here (res filled).
+  auto after_step = [&](double t1, double hs) -> bool {
+    if (m > 0) {
+      auto g_at = [&](std::size_t i, double tq) {
+        stepper.dense(f, (tq - t) / hs, y_ev);
+        return events[i].g(tq, y_ev);
+      };
+      int best = -1;
+      double t_best = t1;
+      for (std::size_t i = 0; i < m; ++i) g1[i] = events[i].g(t1, y_new);
+      for (std::size_t i = 0; i < m; ++i) {
+        double ta = t, ga = g0[i];
+        if (ga == 0.0) {
+          const double delta =
+              std::min(0.5 * std::abs(hs), std::max(opt.event_tol, 1e-6 * std::abs(hs)));
+          ta = t + dir * delta;
+          ga = g_at(i, ta);
+          if (ga == 0.0) continue;
+        }
+        if (!crosses(ga, g1[i], events[i].direction)) continue;
+        double tb = t1, gb = g1[i];
+        if (best >= 0) {
+          // An earlier root is known: this event matters only if it crosses before t_best.
+          if (dir * (t_best - ta) <= 0.0) continue;
+          const double gbest = g_at(i, t_best);
+          if (!crosses(ga, gbest, events[i].direction)) continue;
+          tb = t_best;
+          gb = gbest;
+        }
+        const double root =
+            locate_root([&](double tq) { return g_at(i, tq); }, ta, ga, tb, gb, opt.event_tol);
+        if (best < 0 || dir * (root - t_best) < 0.0) {
+          best = static_cast<int>(i);
+          t_best = root;
+        }
+      }
+      if (best >= 0) {
+        if (t_best == t1) {
+          y = y_new;
+        } else {
+          stepper.dense(f, (t_best - t) / hs, y_ev);
+          y = y_ev;
+        }
+        res.t = t_best;
+        res.status = IntegrateStatus::Event;
+        res.event_index = best;
+        // The observer sees the truncated step; its return value cannot stop more.
+        if (observe) observe(StepView(stepper, f, t, t_best, hs));
+        return true;
+      }
+    }
+    // The observer runs before the projection; a stop still completes the step (post-step
+    // hook included) so that the returned state is a regular one.
+    const bool stop = observe && !observe(StepView(stepper, f, t, t1, hs));
+    y = y_new;
+    res.t = t1;
+    if (post_step && post_step(t1, y)) {
+      stepper.reset();
+      for (std::size_t i = 0; i < m; ++i) g0[i] = events[i].g(t1, y);
+    } else {
+      std::swap(g0, g1);
+    }
+    if (stop) {
+      res.status = IntegrateStatus::Stopped;
+      return true;
+    }
+    return false;
+  };
+
+  if (!stepper.adaptive()) {
+    // Fixed step on the grid t0 + k h (no drift from repeated additions); the last step is
+    // shortened (or stretched by < 1e-9 h, to avoid a sliver step) to land on t_end.
+    const double hf = opt.h_init > 0.0 ? opt.h_init : opt.h_fixed;
+    if (!(hf > 0.0)) throw std::invalid_argument("integrate: fixed step must be > 0");
+    res.h_next = hf;
+    for (long k = 1;; ++k) {
+      if (res.steps >= opt.max_steps) {
+        res.status = IntegrateStatus::MaxSteps;
+        return res;
+      }
+      double t1 = t0 + dir * static_cast<double>(k) * hf;
+      const bool last = dir * (t_end - t1) <= 1e-9 * hf;
+      if (last) t1 = t_end;
+      if (t1 == t) {
+        res.status = IntegrateStatus::StepUnderflow;
+        return res;
+      }
+      const double hs = t1 - t;
+      stepper.attempt(f, t, y, hs, y_new, opt.tol);
+      if (!y_new.allFinite()) {
+        res.status = IntegrateStatus::NonFinite;  // y, res.t: the last good state
+        return res;
+      }
+      stepper.accept(f);
+      ++res.steps;
+      if (after_step(t1, hs)) return res;
+      t = t1;
+      if (last) {
+        res.status = IntegrateStatus::Reached;
+        return res;
+      }
+    }
+  }
+
+  const double alpha = 1.0 / stepper.order() - 0.75 * kBeta;
+  double h = opt.h_init > 0.0 ? opt.h_init : initial_step(f, stepper, t0, y, dir, opt);
+  h = std::min(h, opt.h_max);
+  double err_old = kErrOldMin;
+  bool rejected_last = false;
+  bool nonfinite_last = false;
+  while (true) {
+    if (res.steps + res.rejected >= opt.max_steps) {
+      res.status = IntegrateStatus::MaxSteps;
+      break;
+    }
+    if (h < opt.h_min) {
+      res.status = nonfinite_last ? IntegrateStatus::NonFinite : IntegrateStatus::StepUnderflow;
+      break;
+    }
+    // Land exactly on t_end, stretching the step by up to 1% rather than leaving a sliver.
+    double hs = dir * h;
+    bool last = false;
+    if (dir * (t + 1.01 * hs - t_end) >= 0.0) {
+      hs = t_end - t;
+      last = true;
+    }
+    const double t1 = last ? t_end : t + hs;
+    if (t1 == t) {  // h below the resolution of t: no progress possible
+      res.status = IntegrateStatus::StepUnderflow;
+      break;
+    }
+    const double err = stepper.attempt(f, t, y, hs, y_new, opt.tol);
+    if (!std::isfinite(err) || !y_new.allFinite()) {
+      // Treated as a failed step (an overflow from a too-large step can be cured by a
+      // smaller one); if h underflows this way the status is NonFinite.
+      ++res.rejected;
+      rejected_last = true;
+      nonfinite_last = true;
+      h = std::abs(hs) * kFacMin;
+      continue;
+    }
+    nonfinite_last = false;
+    if (err <= 1.0) {
+      stepper.accept(f);
+      ++res.steps;
+      double fac = kSafety * std::pow(err, -alpha) * std::pow(err_old, kBeta);
+      fac = std::clamp(fac, kFacMin, rejected_last ? 1.0 : kFacMax);  // err = 0: facmax
+      err_old = std::max(err, kErrOldMin);
+      rejected_last = false;
+      double h_next = std::abs(hs) * fac;
+      if (last && std::abs(hs) < h) h_next = std::max(h_next, h);  // cut short only by t_end
+      h_next = std::min(h_next, opt.h_max);
+      res.h_next = h_next;
+      if (after_step(t1, hs)) return res;
+      t = t1;
+      h = h_next;
+      if (last) {
+        res.status = IntegrateStatus::Reached;
+        break;
+      }
+    } else {
+      ++res.rejected;
+      rejected_last = true;
+      h = std::abs(hs) * std::max(kFacMin, kSafety * std::pow(err, -alpha));
+    }
+  }
+  res.t = t;
+  if (res.h_next == 0.0) res.h_next = h;
+  return res;
+}
+
+}  // namespace ajx::numerics
