@@ -1,0 +1,508 @@
+#include "io/hdf5_file.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdint>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <filesystem>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+using ajx::io::AppendableTable;
+using ajx::io::Dataset;
+using ajx::io::Dims;
+using ajx::io::DType;
+using ajx::io::File;
+using ajx::io::Group;
+using ajx::io::Hdf5Error;
+using ajx::io::TableOptions;
+
+namespace {
+
+// A fresh directory per test, removed afterwards.
+class Hdf5FileTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() /
+           (std::string("ajx_hdf5_test_") + std::to_string(::getpid()) + "_" + info->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    std::error_code ec;
+    fs::permissions(dir_, fs::perms::owner_all, fs::perm_options::add, ec);
+    fs::remove_all(dir_, ec);
+  }
+  fs::path file(const std::string& name) const { return dir_ / name; }
+
+  fs::path dir_;
+};
+
+template <class Fn>
+std::string error_message(Fn&& fn) {
+  try {
+    fn();
+  } catch (const Hdf5Error& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "expected Hdf5Error";
+  return {};
+}
+
+bool h5dump_available() { return std::system("command -v h5dump >/dev/null 2>&1") == 0; }
+
+}  // namespace
+
+TEST_F(Hdf5FileTest, AttributesOfEveryTypeRoundTrip) {
+  const fs::path p = file("attrs.h5");
+  const std::string toml = "[run]\nname = \"x\"\n# ünïcode\ndt = 1e-3\n";
+  {
+    File f = File::create(p);
+    f.set_attribute("title", "astrojax run");
+    f.set_attribute("config_toml", std::string_view(toml));
+    f.set_attribute("empty", "");
+    f.set_attribute("g", 9.81);
+    f.set_attribute("seed", std::int64_t{-1234567890123});
+    f.set_attribute("small_int", 7);  // int goes through the int64 overload
+    f.set_attribute("vec", std::vector<double>{1.0, -2.5, 3e-300});
+    f.set_attribute("empty_vec", std::vector<double>{});
+    f.set_attribute("g", 9.80665);  // replaces
+    Group g = f.create_group("params/drive");
+    g.set_attribute("units", "m");
+    g.set_attribute("omega", 12.5);
+  }
+  File f = File::open_read(p);
+  EXPECT_EQ(f.read_string_attribute("title"), "astrojax run");
+  EXPECT_EQ(f.read_string_attribute("config_toml"), toml);
+  EXPECT_EQ(f.read_string_attribute("empty"), "");
+  EXPECT_EQ(f.read_double_attribute("g"), 9.80665);
+  EXPECT_EQ(f.read_int64_attribute("seed"), -1234567890123);
+  EXPECT_EQ(f.read_int64_attribute("small_int"), 7);
+  EXPECT_EQ(f.read_doubles_attribute("vec"), (std::vector<double>{1.0, -2.5, 3e-300}));
+  EXPECT_TRUE(f.read_doubles_attribute("empty_vec").empty());
+  EXPECT_TRUE(f.has_attribute("title"));
+  EXPECT_FALSE(f.has_attribute("nope"));
+  // Numeric conversion on read.
+  EXPECT_EQ(f.read_double_attribute("small_int"), 7.0);
+
+  Group g = f.open_group("params/drive");
+  EXPECT_EQ(g.path(), "/params/drive");
+  EXPECT_EQ(g.read_string_attribute("units"), "m");
+  EXPECT_EQ(g.read_double_attribute("omega"), 12.5);
+
+  // Wrong kinds / missing attributes are errors naming the attribute.
+  std::string msg = error_message([&] { (void)g.read_double_attribute("missing"); });
+  EXPECT_NE(msg.find("H5Aopen"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("/params/drive@missing"), std::string::npos) << msg;
+  EXPECT_NE(msg.find(p.string()), std::string::npos) << msg;
+  msg = error_message([&] { (void)f.read_string_attribute("g"); });
+  EXPECT_NE(msg.find("not a string"), std::string::npos) << msg;
+  msg = error_message([&] { (void)f.read_double_attribute("vec"); });
+  EXPECT_NE(msg.find("expected a single one"), std::string::npos) << msg;
+}
+
+TEST_F(Hdf5FileTest, GroupsNestedAndExists) {
+  File f = File::create(file("groups.h5"));
+  EXPECT_TRUE(f.exists("/"));
+  EXPECT_FALSE(f.exists("a"));
+  Group b = f.create_group("a/b");
+  EXPECT_EQ(b.path(), "/a/b");
+  EXPECT_TRUE(f.exists("a"));
+  EXPECT_TRUE(f.exists("a/b"));
+  EXPECT_TRUE(f.exists("/a/b"));
+  EXPECT_FALSE(f.exists("a/b/c"));
+  EXPECT_FALSE(f.exists("x/y/z"));
+  Group c = b.create_group("c");
+  EXPECT_EQ(c.path(), "/a/b/c");
+  EXPECT_TRUE(b.exists("c"));
+  EXPECT_TRUE(f.exists("a/b/c"));
+
+  // A dataset is a link too, but one cannot descend into it.
+  b.write_dataset("d", std::vector<double>{1, 2});
+  EXPECT_TRUE(f.exists("a/b/d"));
+  EXPECT_FALSE(f.exists("a/b/d/e"));
+
+  // create fails on an existing group; require opens it.
+  std::string msg = error_message([&] { f.create_group("a/b"); });
+  EXPECT_NE(msg.find("H5Gcreate2"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("'/a/b'"), std::string::npos) << msg;
+  Group again = f.require_group("a/b");
+  EXPECT_EQ(again.path(), "/a/b");
+  Group fresh = f.require_group("new/one");
+  EXPECT_TRUE(f.exists("new/one"));
+  msg = error_message([&] { (void)f.open_group("missing/group"); });
+  EXPECT_NE(msg.find("H5Gopen2"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("/missing/group"), std::string::npos) << msg;
+}
+
+TEST_F(Hdf5FileTest, WholeDatasetsRoundTrip) {
+  const fs::path p = file("datasets.h5");
+  const std::vector<double> m = {1.0, 2.0, 3.0, 4.0, 5.0, 6.0};  // 2 x 3
+  const std::vector<std::int64_t> i64 = {std::numeric_limits<std::int64_t>::min(), 0,
+                                         std::numeric_limits<std::int64_t>::max()};
+  const std::vector<std::int32_t> i32 = {-7, 8, 9, 10};  // 2 x 2
+  const std::string text(100000, 'x');
+  {
+    File f = File::create(p);
+    Dataset d = f.write_dataset("results/matrix", m, {2, 3});
+    EXPECT_EQ(d.path(), "/results/matrix");
+    d.set_attribute("units", "m/s");
+    d.set_attribute("description", "velocity of bob 1");
+    d.set_attribute("scale", std::vector<double>{0.5, 2.0});
+    f.write_dataset("results/i64", i64);
+    f.write_dataset("results/i32", i32, {2, 2});
+    f.write_dataset("results/scalar", std::vector<double>{42.0}, {});
+    f.write_dataset("results/empty", std::vector<double>{}, {0, 3});
+    f.write_string_dataset("config/toml", text);
+    f.write_string_dataset("config/short", "a = 1\n");
+    f.flush();
+  }
+  File f = File::open_read(p);
+  auto a = f.read_doubles("results/matrix");
+  EXPECT_EQ(a.dims, (Dims{2, 3}));
+  EXPECT_EQ(a.data, m);
+  EXPECT_EQ(a.rows(), 2u);
+  EXPECT_EQ(a.cols(), 3u);
+  EXPECT_EQ(a(1, 2), 6.0);
+
+  Dataset d = f.open_dataset("results/matrix");
+  EXPECT_EQ(d.dims(), (Dims{2, 3}));
+  EXPECT_EQ(d.read_string_attribute("units"), "m/s");
+  EXPECT_EQ(d.read_string_attribute("description"), "velocity of bob 1");
+  EXPECT_EQ(d.read_doubles_attribute("scale"), (std::vector<double>{0.5, 2.0}));
+
+  auto b = f.read_int64s("results/i64");
+  EXPECT_EQ(b.dims, (Dims{3}));
+  EXPECT_EQ(b.data, i64);
+  auto c = f.read_int32s("results/i32");
+  EXPECT_EQ(c.dims, (Dims{2, 2}));
+  EXPECT_EQ(c.data, i32);
+  auto c_as_double = f.read_doubles("results/i32");  // converted by HDF5
+  EXPECT_EQ(c_as_double.data, (std::vector<double>{-7, 8, 9, 10}));
+  auto s = f.read_doubles("results/scalar");
+  EXPECT_TRUE(s.dims.empty());
+  EXPECT_EQ(s.data, (std::vector<double>{42.0}));
+  auto e = f.read_doubles("results/empty");
+  EXPECT_EQ(e.dims, (Dims{0, 3}));
+  EXPECT_TRUE(e.data.empty());
+  EXPECT_EQ(e.cols(), 3u);
+  EXPECT_EQ(f.read_string_dataset("config/toml"), text);
+  EXPECT_EQ(f.read_string_dataset("config/short"), "a = 1\n");
+}
+
+TEST_F(Hdf5FileTest, DatasetArgumentAndDuplicateErrors) {
+  const fs::path p = file("errors.h5");
+  File f = File::create(p);
+  EXPECT_THROW(f.write_dataset("bad", std::vector<double>{1, 2, 3}, {2, 2}), std::invalid_argument);
+  f.write_dataset("trajectory/r1", std::vector<double>{1, 2, 3}, {1, 3});
+  std::string msg = error_message([&] { f.write_dataset("trajectory/r1", std::vector<double>{1}); });
+  EXPECT_NE(msg.find("H5Dcreate2 failed for '/trajectory/r1' in " + p.string()), std::string::npos) << msg;
+  msg = error_message([&] { (void)f.read_doubles("trajectory/nope"); });
+  EXPECT_NE(msg.find("H5Dopen2 failed for '/trajectory/nope'"), std::string::npos) << msg;
+  msg = error_message([&] { (void)f.read_string_dataset("trajectory/r1"); });
+  EXPECT_NE(msg.find("not a string"), std::string::npos) << msg;
+}
+
+TEST_F(Hdf5FileTest, AppendableTableGrowsAcrossManyAppends) {
+  const fs::path p = file("table.h5");
+  constexpr std::size_t kRows = 5000;
+  {
+    File f = File::create(p);
+    Group traj = f.create_group("trajectory");
+    auto r1 = AppendableTable::create(traj, "r1", 3, DType::Float64, TableOptions{.chunk_rows = 64, .deflate = 4});
+    r1.set_attribute("units", "m");
+    auto mode = AppendableTable::create(traj, "mode", 1, DType::Int8, {.chunk_rows = 100, .flat = true});
+    auto idx = AppendableTable::create(traj, "idx", 2, DType::Int32, {.chunk_rows = 7});
+    auto big = AppendableTable::create(traj, "big", 1, DType::Int64, {.chunk_rows = 16, .flat = true});
+    EXPECT_EQ(r1.path(), "/trajectory/r1");
+    for (std::size_t i = 0; i < kRows; ++i) {
+      const double x = static_cast<double>(i);
+      r1.append_row(std::array<double, 3>{x, 2 * x, -x});
+      mode.append_row(std::array<std::int8_t, 1>{static_cast<std::int8_t>(i % 3)});
+    }
+    // Blocks of rows, including an empty block.
+    std::vector<std::int32_t> block;
+    for (std::int32_t i = 0; i < 100; ++i) {
+      block.push_back(i);
+      block.push_back(-i);
+    }
+    idx.append_rows(block);
+    idx.append_rows(std::span<const std::int32_t>{});
+    idx.append_rows(std::span<const std::int32_t>(block).first(10));
+    big.append_row(std::array<std::int64_t, 1>{std::int64_t{1} << 40});
+    EXPECT_EQ(r1.rows(), kRows);
+    EXPECT_EQ(r1.cols(), 3u);
+    EXPECT_EQ(idx.rows(), 105u);
+    EXPECT_EQ(mode.dtype(), DType::Int8);
+
+    // Readable mid-stream once flushed.
+    r1.flush();
+    EXPECT_EQ(r1.pending_rows(), 0u);
+    EXPECT_EQ(r1.dims(), (Dims{kRows, 3}));
+
+    // Wrong widths are argument errors and change nothing.
+    EXPECT_THROW(r1.append_row(std::array<double, 2>{1, 2}), std::invalid_argument);
+    EXPECT_THROW(r1.append_rows(std::array<double, 4>{1, 2, 3, 4}), std::invalid_argument);
+    EXPECT_EQ(r1.rows(), kRows);
+
+    EXPECT_THROW(AppendableTable::create(traj, "bad", 0, DType::Float64), std::invalid_argument);
+    EXPECT_THROW(AppendableTable::create(traj, "bad", 2, DType::Float64, {.flat = true}), std::invalid_argument);
+    std::string msg = error_message([&] { AppendableTable::create(traj, "r1", 3, DType::Float64); });
+    EXPECT_NE(msg.find("H5Dcreate2 failed for '/trajectory/r1'"), std::string::npos) << msg;
+  }
+  {
+    File f = File::open_read(p);
+    auto r1 = f.read_doubles("trajectory/r1");
+    ASSERT_EQ(r1.dims, (Dims{kRows, 3}));
+    for (std::size_t i = 0; i < kRows; ++i) {
+      const double x = static_cast<double>(i);
+      ASSERT_EQ(r1(i, 0), x);
+      ASSERT_EQ(r1(i, 1), 2 * x);
+      ASSERT_EQ(r1(i, 2), -x);
+    }
+    EXPECT_EQ(f.open_dataset("trajectory/r1").read_string_attribute("units"), "m");
+    auto mode = f.read_int32s("trajectory/mode");
+    ASSERT_EQ(mode.dims, (Dims{kRows}));
+    for (std::size_t i = 0; i < kRows; ++i) ASSERT_EQ(mode.data[i], static_cast<std::int32_t>(i % 3));
+    auto idx = f.read_int32s("trajectory/idx");
+    ASSERT_EQ(idx.dims, (Dims{105, 2}));
+    EXPECT_EQ(idx(99, 0), 99);
+    EXPECT_EQ(idx(99, 1), -99);
+    EXPECT_EQ(idx(104, 0), 4);
+    EXPECT_EQ(f.read_int64s("trajectory/big").data, (std::vector<std::int64_t>{std::int64_t{1} << 40}));
+  }
+  {
+    // Reopen read-write and continue appending.
+    File f = File::open_rw(p);
+    Group traj = f.open_group("trajectory");
+    auto r1 = AppendableTable::open(traj, "r1");
+    EXPECT_EQ(r1.rows(), kRows);
+    EXPECT_EQ(r1.cols(), 3u);
+    EXPECT_EQ(r1.dtype(), DType::Float64);
+    r1.append_rows(std::vector<double>{1, 1, 1, 2, 2, 2});
+    auto mode = AppendableTable::open(traj, "mode");
+    EXPECT_EQ(mode.dtype(), DType::Int8);
+    EXPECT_EQ(mode.cols(), 1u);
+    mode.append_row(std::array<double, 1>{2.0});  // converted to int8 on write
+    std::string msg = error_message([&] { f.write_dataset("fixed", std::vector<double>{1}); AppendableTable::open(f, "fixed"); });
+    EXPECT_NE(msg.find("not extendible"), std::string::npos) << msg;
+  }
+  File f = File::open_read(p);
+  auto r1 = f.read_doubles("trajectory/r1");
+  ASSERT_EQ(r1.dims, (Dims{kRows + 2, 3}));
+  EXPECT_EQ(r1(kRows + 1, 2), 2.0);
+  EXPECT_EQ(f.read_int32s("trajectory/mode").data.back(), 2);
+  EXPECT_EQ(f.read_int32s("trajectory/mode").dims, (Dims{kRows + 1}));
+}
+
+TEST_F(Hdf5FileTest, BufferedRowsReachTheFileOnFlushCloseCommitAndDestruction) {
+  const fs::path p = file("buffered.h5");
+  AppendableTable outlives;  // destroyed after its File: harmless
+  {
+    File f = File::create(p);
+    auto t = AppendableTable::create(f, "t", 2, DType::Float64, {.chunk_rows = 8, .buffer_rows = 100});
+    auto through = AppendableTable::create(f, "through", 2, DType::Float64, {.buffer_rows = 0});
+    for (int i = 0; i < 10; ++i) {
+      t.append_row(std::array<double, 2>{1.0 * i, 0.5});
+      through.append_row(std::array<double, 2>{1.0 * i, 0.5});
+    }
+    EXPECT_EQ(t.rows(), 10u);
+    EXPECT_EQ(t.pending_rows(), 10u);
+    EXPECT_EQ(f.open_dataset("t").dims(), (Dims{0, 2}));  // not written yet
+    EXPECT_EQ(through.pending_rows(), 0u);
+    EXPECT_EQ(f.open_dataset("through").dims(), (Dims{10, 2}));  // written through
+    f.flush();  // flushes the file's tables
+    EXPECT_EQ(t.pending_rows(), 0u);
+    EXPECT_EQ(f.open_dataset("t").dims(), (Dims{10, 2}));
+
+    // Reaching buffer_rows writes; a block larger than the buffer goes straight through.
+    for (int i = 10; i < 110; ++i) t.append_row(std::array<double, 2>{1.0 * i, 0.5});
+    EXPECT_EQ(t.pending_rows(), 0u);
+    EXPECT_EQ(f.open_dataset("t").dims(), (Dims{110, 2}));
+    std::vector<double> block(2 * 250, 7.0);
+    t.append_rows(block);
+    EXPECT_EQ(t.pending_rows(), 0u);
+    EXPECT_EQ(t.rows(), 360u);
+
+    // Mixed element types in one buffer: each run is written with its own conversion.
+    t.append_row(std::array<std::int32_t, 2>{-1, -2});
+    t.append_row(std::array<double, 2>{3.5, 4.5});
+    t.append_row(std::array<std::int8_t, 2>{5, 6});
+    EXPECT_EQ(t.rows(), 363u);
+
+    // Moved tables stay known to the file.
+    AppendableTable moved = std::move(t);
+    moved.append_row(std::array<double, 2>{8.0, 9.0});
+    outlives = AppendableTable::create(f, "outlives", 1, DType::Int32, {.flat = true});
+    outlives.append_row(std::array<std::int32_t, 1>{42});
+    f.close();  // writes pending rows of every live table
+    EXPECT_THROW(outlives.append_row(std::array<std::int32_t, 1>{43}), Hdf5Error);
+  }
+  {
+    File f = File::open_read(p);
+    auto t = f.read_doubles("t");
+    ASSERT_EQ(t.dims, (Dims{364, 2}));
+    EXPECT_EQ(t(109, 0), 109.0);
+    EXPECT_EQ(t(359, 1), 7.0);
+    EXPECT_EQ(t(360, 0), -1.0);
+    EXPECT_EQ(t(361, 1), 4.5);
+    EXPECT_EQ(t(362, 0), 5.0);
+    EXPECT_EQ(t(363, 1), 9.0);
+    EXPECT_EQ(f.read_int32s("outlives").data, (std::vector<std::int32_t>{42}));
+  }
+  // Destruction of the File (no explicit close) writes pending rows too, whatever the order.
+  {
+    File f = File::open_rw(p);
+    auto t = AppendableTable::open(f, "t");
+    t.append_row(std::array<double, 2>{10.0, 11.0});
+    auto f2 = std::move(f);
+  }
+  EXPECT_EQ(File::open_read(p).read_doubles("t").dims, (Dims{365, 2}));
+  {
+    File f = File::open_rw(p);
+    AppendableTable t = AppendableTable::open(f, "t");
+    t.append_row(std::array<double, 2>{12.0, 13.0});
+  }  // table destroyed first
+  EXPECT_EQ(File::open_read(p).read_doubles("t").dims, (Dims{366, 2}));
+  // And commit() of a temporary file.
+  const fs::path q = file("committed.h5");
+  {
+    File f = File::create_temporary(q);
+    auto t = AppendableTable::create(f, "x", 1, DType::Int64, {.flat = true});
+    for (std::int64_t i = 0; i < 5; ++i) t.append_row(std::array<std::int64_t, 1>{i});
+    f.commit();
+  }
+  EXPECT_EQ(File::open_read(q).read_int64s("x").data, (std::vector<std::int64_t>{0, 1, 2, 3, 4}));
+}
+
+TEST_F(Hdf5FileTest, OpeningMissingFileThrowsWithPath) {
+  const fs::path p = file("does_not_exist.h5");
+  for (auto open : {&File::open_read, &File::open_rw}) {
+    std::string msg = error_message([&] { (void)open(p); });
+    EXPECT_NE(msg.find("H5Fopen"), std::string::npos) << msg;
+    EXPECT_NE(msg.find(p.string()), std::string::npos) << msg;
+  }
+  // Not an HDF5 file at all.
+  const fs::path junk = file("junk.h5");
+  { std::ofstream(junk) << "not hdf5"; }
+  std::string msg = error_message([&] { (void)File::open_read(junk); });
+  EXPECT_NE(msg.find(junk.string()), std::string::npos) << msg;
+}
+
+TEST_F(Hdf5FileTest, WritingIntoUnwritableDirectoryThrowsWithPath) {
+  const fs::path missing_dir = file("no_such_dir") / "run.h5";
+  std::string msg = error_message([&] { (void)File::create(missing_dir); });
+  EXPECT_NE(msg.find("H5Fcreate"), std::string::npos) << msg;
+  EXPECT_NE(msg.find(missing_dir.string()), std::string::npos) << msg;
+  msg = error_message([&] { (void)File::create_temporary(missing_dir); });
+  EXPECT_NE(msg.find(missing_dir.string()), std::string::npos) << msg;
+}
+
+TEST_F(Hdf5FileTest, WritingIntoReadOnlyDirectoryThrowsWithPath) {
+  if (::geteuid() == 0) GTEST_SKIP() << "running as root: permission bits are not enforced";
+  const fs::path ro = file("read_only");
+  fs::create_directories(ro);
+  fs::permissions(ro, fs::perms::owner_read | fs::perms::owner_exec);
+  const std::string msg = error_message([&] { (void)File::create(ro / "run.h5"); });
+  EXPECT_NE(msg.find((ro / "run.h5").string()), std::string::npos) << msg;
+}
+
+TEST_F(Hdf5FileTest, TemporaryFileWithoutCommitLeavesNothing) {
+  const fs::path p = file("run.h5");
+  const fs::path part = file("run.h5.part");
+  {
+    File f = File::create_temporary(p);
+    EXPECT_TRUE(f.is_temporary());
+    EXPECT_EQ(f.disk_path(), part);
+    EXPECT_EQ(f.final_path(), p);
+    auto t = AppendableTable::create(f, "trajectory/r1", 3, DType::Float64);
+    t.append_row(std::array<double, 3>{1, 2, 3});
+    f.flush();
+    EXPECT_TRUE(fs::exists(part));
+    EXPECT_FALSE(fs::exists(p));
+  }  // destroyed without commit (table outlives the file here: harmless)
+  EXPECT_FALSE(fs::exists(part));
+  EXPECT_FALSE(fs::exists(p));
+
+  // An existing final file is left untouched by an abandoned temporary.
+  { File::create(p).set_attribute("version", 1); }
+  {
+    File f = File::create_temporary(p);
+    f.set_attribute("version", 2);
+    f.close();  // explicit close without commit discards as well
+    EXPECT_FALSE(fs::exists(part));
+  }
+  EXPECT_EQ(File::open_read(p).read_int64_attribute("version"), 1);
+
+  // write_atomically: an exception inside the callback leaves nothing new.
+  fs::remove(p);
+  EXPECT_THROW(ajx::io::write_atomically(p,
+                                         [](File& f) {
+                                           f.set_attribute("x", 1.0);
+                                           throw std::runtime_error("simulated crash");
+                                         }),
+               std::runtime_error);
+  EXPECT_FALSE(fs::exists(part));
+  EXPECT_FALSE(fs::exists(p));
+}
+
+TEST_F(Hdf5FileTest, TemporaryFileCommitRenames) {
+  const fs::path p = file("run.h5");
+  const fs::path part = file("run.h5.part");
+  {
+    File f = File::create_temporary(p);
+    auto r1 = AppendableTable::create(f, "trajectory/r1", 3, DType::Float64, {.chunk_rows = 4});
+    for (int i = 0; i < 10; ++i) r1.append_row(std::array<double, 3>{1.0 * i, 0, 0});
+    f.write_string_dataset("config", "x = 1");
+    File moved = std::move(f);  // ownership of the temporary moves with the object
+    moved.commit();
+    EXPECT_FALSE(fs::exists(part));
+    EXPECT_TRUE(fs::exists(p));
+    EXPECT_EQ(moved.disk_path(), p);
+    EXPECT_FALSE(moved.is_open());
+    // The table was closed with the file: using it is a clean error.
+    EXPECT_THROW(r1.append_row(std::array<double, 3>{0, 0, 0}), Hdf5Error);
+    EXPECT_THROW(moved.commit(), std::logic_error);
+  }
+  EXPECT_TRUE(fs::exists(p));  // destructor after commit keeps the file
+  File f = File::open_read(p);
+  EXPECT_EQ(f.read_doubles("trajectory/r1").dims, (Dims{10, 3}));
+  EXPECT_EQ(f.read_string_dataset("config"), "x = 1");
+
+  // write_atomically replaces an existing file only on success.
+  ajx::io::write_atomically(p, [](File& out) { out.set_attribute("generation", 2); });
+  EXPECT_EQ(File::open_read(p).read_int64_attribute("generation"), 2);
+  EXPECT_FALSE(fs::exists(part));
+}
+
+TEST_F(Hdf5FileTest, H5dumpReadsTheFile) {
+  if (!h5dump_available()) GTEST_SKIP() << "h5dump not on PATH";
+  const fs::path p = file("dump.h5");
+  {
+    File f = File::create(p);
+    f.set_attribute("config_toml", "[run]\nt_end = 10.0\n");
+    auto t = AppendableTable::create(f, "trajectory/r1", 3, DType::Float64, {.chunk_rows = 8, .deflate = 6});
+    t.set_attribute("units", "m");
+    for (int i = 0; i < 20; ++i) t.append_row(std::array<double, 3>{0.25 * i, 1.0, 2.0});
+    f.write_dataset("ints", std::vector<std::int32_t>{1, 2, 3, 4, 5, 6}, {3, 2});
+  }
+  const fs::path out = file("dump.txt");
+  const std::string cmd = "h5dump '" + p.string() + "' > '" + out.string() + "' 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  std::ifstream in(out);
+  const std::string dump((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(dump.find("DATASET \"r1\""), std::string::npos) << dump;
+  EXPECT_NE(dump.find("( 20, 3 ) / ( H5S_UNLIMITED, 3 )"), std::string::npos) << dump;
+  EXPECT_NE(dump.find("4.75"), std::string::npos) << dump;
+  EXPECT_NE(dump.find("\"m\""), std::string::npos) << dump;
+  EXPECT_NE(dump.find("t_end = 10.0"), std::string::npos) << dump;
+}
