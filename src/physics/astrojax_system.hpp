@@ -1,0 +1,31 @@
+// The equations of motion in one mode: r̈1 = (-T1 u1 + F2 u2 + f1)/m1, r̈2 = (-F2 u2 + f2)/m2,
+// with the tensions from the mode's acceleration-level constraints. A pure function of
+// (model, schedule, mode, t, y): no I/O, no globals.
+#pragma once
+#include "numerics/vector.hpp"
+#include "physics/contact_modes.hpp"
+#include "physics/drive.hpp"
+#include "physics/model.hpp"
+#include "physics/state.hpp"
+
+namespace ajx::physics {
+
+struct Dynamics {
+  Geometry g;
+  double T1;              // tension above the bead [N]
+  double T2;              // tension below the bead [N]
+  double contact;         // N_c, push of the bottom ball on the bead, >= 0 at the stop [N]
+  ConeMargins margins;    // friction-cone margins of the stuck or resting bead (+inf while sliding)
+  Vec3 acc1, acc2;        // r̈1, r̈2 [m/s²]
+  double motor_power;     // P_motor = -T1 u1·ȧ [W]
+  double drag_power;      // c_D (|v1|² + |v2|²) [W]
+  double friction_power;  // (T1 - T2) ṡ [W], >= 0 whenever the tensions are
+};
+
+Dynamics evaluate(const Model& m, const TopKinematics& top, const Contact& c, const numerics::Vec& y);
+
+// dy/dt in the layout of idx (accelerations and the three power quadratures).
+void rhs(const Model& m, const MotorSchedule& schedule, const Contact& c, double t,
+         const numerics::Vec& y, numerics::Vec& dydt);
+
+}  // namespace ajx::physics

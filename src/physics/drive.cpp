@@ -1,0 +1,52 @@
+#include "physics/drive.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace ajx::physics {
+
+MotorSchedule::MotorSchedule(std::vector<DriveSegment> segments, double phi0)
+    : segs_(std::move(segments)) {
+  if (segs_.empty()) throw std::invalid_argument("motor schedule is empty");
+  double t = 0.0, phi = phi0;
+  for (const auto& s : segs_) {
+    if (!(s.duration > 0.0)) throw std::invalid_argument("motor schedule segment has duration <= 0");
+    t_begin_.push_back(t);
+    phi_begin_.push_back(phi);
+    // φ advances by the mean ω over a linear ramp.
+    phi += 0.5 * (s.omega_begin + s.omega_end) * s.duration;
+    t += s.duration;
+  }
+}
+
+void MotorSchedule::phase(double t, double& phi, double& omega, double& omega_dot) const {
+  // The last segment whose start is <= t (the first one for t < 0).
+  auto it = std::upper_bound(t_begin_.begin(), t_begin_.end(), t);
+  const std::size_t k = it == t_begin_.begin() ? 0 : std::size_t(it - t_begin_.begin()) - 1;
+  const DriveSegment& s = segs_[k];
+  const double tau = t - t_begin_[k];
+  if (tau <= s.duration) {
+    omega_dot = (s.omega_end - s.omega_begin) / s.duration;
+    omega = s.omega_begin + omega_dot * tau;
+    phi = phi_begin_[k] + s.omega_begin * tau + 0.5 * omega_dot * tau * tau;
+  } else {  // past the end: hold the final ω
+    omega_dot = 0.0;
+    omega = s.omega_end;
+    phi = phi_begin_[k] + 0.5 * (s.omega_begin + s.omega_end) * s.duration +
+          s.omega_end * (tau - s.duration);
+  }
+}
+
+TopKinematics MotorSchedule::top(double R, double t) const {
+  TopKinematics k;
+  phase(t, k.phi, k.omega, k.omega_dot);
+  const double c = std::cos(k.phi), s = std::sin(k.phi);
+  const Vec3 radial(c, s, 0.0), tangential(-s, c, 0.0);
+  k.a = R * radial;
+  k.a_dot = R * k.omega * tangential;
+  k.a_ddot = R * k.omega_dot * tangential - R * k.omega * k.omega * radial;
+  return k;
+}
+
+}  // namespace ajx::physics

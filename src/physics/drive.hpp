@@ -1,0 +1,52 @@
+// The drive: the top of the string on a circle of radius R, a(t) = R (cos φ, sin φ, 0),
+// dφ/dt = ω_m(t) from a schedule of holds and linear ramps.
+#pragma once
+#include <Eigen/Core>
+#include <Eigen/Geometry>  // cross products
+#include <string>
+#include <vector>
+
+namespace ajx::physics {
+
+using Vec3 = Eigen::Vector3d;
+
+// One piece of the motor schedule: ω_m goes linearly from omega_begin to omega_end over
+// duration (a hold has omega_begin == omega_end).
+struct DriveSegment {
+  double omega_begin;  // ω_m at the segment's start [rad/s]
+  double omega_end;    // ω_m at its end [rad/s]
+  double duration;     // [s], > 0
+};
+
+// Top position and its derivatives at one instant.
+struct TopKinematics {
+  double phi;        // φ [rad]
+  double omega;      // ω_m = dφ/dt [rad/s]
+  double omega_dot;  // dω_m/dt [rad/s²]
+  Vec3 a;            // a(t) [m]
+  Vec3 a_dot;        // ȧ = R ω (-sin φ, cos φ, 0) [m/s]
+  Vec3 a_ddot;       // ä = R ω̇ (-sin φ, cos φ, 0) - R ω² (cos φ, sin φ, 0) [m/s²]
+};
+
+class MotorSchedule {
+ public:
+  MotorSchedule() = default;
+  // Throws std::invalid_argument for an empty schedule or a segment with duration <= 0.
+  MotorSchedule(std::vector<DriveSegment> segments, double phi0 = 0.0);
+
+  double duration() const { return t_begin_.empty() ? 0.0 : t_begin_.back() + segs_.back().duration; }
+  const std::vector<DriveSegment>& segments() const { return segs_; }
+  // Segment start times; ω̇ jumps there, so integrators stop on them.
+  const std::vector<double>& breakpoints() const { return t_begin_; }
+
+  // φ, ω, ω̇ at time t (t beyond the end holds the last ω).
+  void phase(double t, double& phi, double& omega, double& omega_dot) const;
+  TopKinematics top(double drive_radius, double t) const;
+
+ private:
+  std::vector<DriveSegment> segs_;
+  std::vector<double> t_begin_;    // [s]
+  std::vector<double> phi_begin_;  // φ at each segment start [rad]
+};
+
+}  // namespace ajx::physics

@@ -1,0 +1,54 @@
+// The immutable model: parameters in SI units and the layers of physics chosen.
+// Read once (config), shared read-only by every integrator (MuJoCo's mjModel).
+#pragma once
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace ajx::physics {
+
+struct Parameters {
+  double string_length = 0.826;      // l [m]
+  double bead_mass = 0.018;          // m1 [kg], the middle ball
+  double ball_mass = 0.018;          // m2 [kg], the bottom ball
+  double drag = 1.7245e-3;           // c_D [kg/s], force -c_D v on each ball
+  double mu_static = 0.25676;        // μ_s [1]
+  double mu_kinetic = 0.17176;       // μ_k [1]
+  double gravity = 9.81;             // g [m/s²]
+  double drive_radius = 0.01;        // R [m], to calibrate (1-20 mm)
+  double contact_distance = 0.03;    // d [m], L2 >= d (bead resting on the bottom ball)
+  double top_stop = 0.05;            // s_min [m], L1 >= s_min (used by the top-stop layer)
+};
+
+// Friction between bead and string. Stick-slip and the regularised law arrive with the full
+// contact model; the names are reserved here so configurations stay stable.
+enum class Friction { None, Kinetic };
+// How T1/T2 depends on the deflection ψ of the string at the bead (model.md, "Forces").
+enum class FrictionLaw { Capstan, PointContact };
+
+struct Layers {
+  Friction friction = Friction::Kinetic;
+  FrictionLaw friction_law = FrictionLaw::Capstan;
+  bool bottom_stop = true;           // one-sided contact L2 >= d
+};
+
+struct Model {
+  Parameters p;
+  Layers layers;
+};
+
+// One violated bound: the key (as spelled in configuration files), the value and the
+// allowed range in words. Configuration adds the file name.
+struct ParameterIssue {
+  std::string key;
+  double value;
+  std::string allowed;
+};
+
+// Every bound the physics needs (lengths and masses positive, R < l, d < l, μ >= 0, ...).
+std::vector<ParameterIssue> validate(const Model& model);
+
+std::string_view to_string(Friction f);
+std::string_view to_string(FrictionLaw f);
+
+}  // namespace ajx::physics

@@ -1,0 +1,38 @@
+#include "physics/string_friction.hpp"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace ajx::physics {
+
+double deflection(const Vec3& u1, const Vec3& u2) {
+  return std::atan2(u1.cross(u2).norm(), u1.dot(u2));
+}
+
+double tension_ratio(FrictionLaw law, double mu, double psi, int sigma) {
+  if (sigma == 0 || mu == 0.0) return 1.0;
+  switch (law) {
+    case FrictionLaw::Capstan:
+      return std::exp(mu * psi * sigma);
+    case FrictionLaw::PointContact: {
+      const double mt = mu * std::tan(0.5 * psi);
+      if (mt >= 1.0)
+        throw std::domain_error("point-contact friction jams: μ tan(ψ/2) >= 1");
+      return (1.0 + sigma * mt) / (1.0 - sigma * mt);
+    }
+  }
+  return 1.0;
+}
+
+FrictionCone friction_cone(FrictionLaw law, double mu, double psi) {
+  if (law == FrictionLaw::PointContact && mu * std::tan(0.5 * psi) >= 1.0)
+    return {0.0, std::numeric_limits<double>::infinity()};
+  return {tension_ratio(law, mu, psi, -1), tension_ratio(law, mu, psi, +1)};
+}
+
+double sliding_mu(const Model& m) {
+  return m.layers.friction == Friction::Kinetic ? m.p.mu_kinetic : 0.0;
+}
+
+}  // namespace ajx::physics

@@ -1,0 +1,31 @@
+// The string and the friction law at the bead (model.md, "Forces").
+// Sliding: T1 = κ T2 with κ from the law, the deflection ψ = arccos(u1·u2) and σ = sgn ṡ.
+#pragma once
+#include "physics/drive.hpp"
+#include "physics/model.hpp"
+
+namespace ajx::physics {
+
+// ψ = arccos(u1·u2) for unit vectors, computed as atan2(|u1×u2|, u1·u2): accurate near 0.
+double deflection(const Vec3& u1, const Vec3& u2);
+
+// κ = T1/T2 while sliding with σ = sgn ṡ ∈ {-1, 0, +1} and coefficient μ:
+//   capstan:        κ = exp(μ ψ σ)
+//   point contact:  (T1-T2) cos(ψ/2) = μ σ (T1+T2) sin(ψ/2)  ⇒  κ = (1 + μσ t)/(1 - μσ t), t = tan(ψ/2)
+// The point-contact law jams (no positive κ in either direction) when μ tan(ψ/2) >= 1; then
+// sliding is impossible and this throws std::domain_error.
+double tension_ratio(FrictionLaw law, double mu, double psi, int sigma);
+
+// The friction cone: the bead holds on the string while κ_lo <= T1/T2 <= κ_hi
+// (capstan: e^{∓μψ}; point contact: (1 ∓ μ t)/(1 ± μ t)). A jammed point contact holds any
+// ratio: κ_lo = 0, κ_hi = +inf.
+struct FrictionCone {
+  double lo;  // κ at the onset of sliding up (σ = -1)
+  double hi;  // κ at the onset of sliding down (σ = +1)
+};
+FrictionCone friction_cone(FrictionLaw law, double mu, double psi);
+
+// The coefficient the sliding layer uses: 0 without friction, μ_k with kinetic friction.
+double sliding_mu(const Model& m);
+
+}  // namespace ajx::physics

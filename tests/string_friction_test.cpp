@@ -1,0 +1,72 @@
+// Friction laws at the bead: capstan and the corrected point contact.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "physics/string_friction.hpp"
+
+using namespace ajx::physics;
+
+TEST(StringFriction, DeflectionOfUnitVectors) {
+  EXPECT_DOUBLE_EQ(deflection(Vec3::UnitZ(), Vec3::UnitZ()), 0.0);
+  EXPECT_NEAR(deflection(Vec3::UnitZ(), Vec3::UnitX()), M_PI / 2, 1e-15);
+  // Accurate near 0, where arccos loses half the digits.
+  const double a = 1e-9;
+  EXPECT_NEAR(deflection(Vec3(0, 0, -1), Vec3(std::sin(a), 0, -std::cos(a))), a, 1e-22);
+}
+
+TEST(StringFriction, StraightStringOrNoSlipHasNoFriction) {
+  for (auto law : {FrictionLaw::Capstan, FrictionLaw::PointContact}) {
+    EXPECT_EQ(tension_ratio(law, 0.2, 0.0, +1), 1.0);
+    EXPECT_EQ(tension_ratio(law, 0.2, 1.0, 0), 1.0);
+    EXPECT_EQ(tension_ratio(law, 0.0, 1.0, -1), 1.0);
+  }
+}
+
+TEST(StringFriction, CapstanRatiosAreReciprocal) {
+  const double mu = 0.17176;
+  for (double psi : {0.1, 1.0, 2.5, 3.1}) {
+    EXPECT_NEAR(tension_ratio(FrictionLaw::Capstan, mu, psi, +1) * tension_ratio(FrictionLaw::Capstan, mu, psi, -1),
+                1.0, 1e-15);
+    EXPECT_NEAR(tension_ratio(FrictionLaw::Capstan, mu, psi, +1), std::exp(mu * psi), 1e-15);
+  }
+}
+
+TEST(StringFriction, PointContactAgreesWithCapstanToSecondOrder) {
+  // Both expand as 1 + μσψ + μ²ψ²/2 + O(ψ³): the difference must shrink 8× per halving of ψ.
+  const double mu = 0.25;
+  double prev = 0.0;
+  for (double psi = 0.4; psi > 0.01; psi /= 2) {
+    const double diff = std::abs(tension_ratio(FrictionLaw::PointContact, mu, psi, +1) -
+                                 tension_ratio(FrictionLaw::Capstan, mu, psi, +1));
+    if (prev > 0.0) {
+      EXPECT_NEAR(std::log2(prev / diff), 3.0, 0.15) << "psi = " << psi;
+    }
+    prev = diff;
+  }
+}
+
+TEST(StringFriction, FrictionPowerIsNeverNegative) {
+  // (T1 - T2) ṡ = (κ - 1) T2 ṡ >= 0 for T2 >= 0 and σ = sgn ṡ: κ > 1 exactly when σ > 0.
+  for (auto law : {FrictionLaw::Capstan, FrictionLaw::PointContact})
+    for (double psi : {0.01, 0.5, 1.5, 2.5})
+      for (int sigma : {-1, +1}) {
+        const double kappa = tension_ratio(law, 0.3, psi, sigma);
+        EXPECT_GE((kappa - 1.0) * sigma, 0.0);
+      }
+}
+
+TEST(StringFriction, PointContactJamsWhenTheConeIsTooWide) {
+  const double mu = 0.5;
+  const double psi_jam = 2 * std::atan(1 / mu);  // μ tan(ψ/2) = 1
+  EXPECT_NO_THROW(tension_ratio(FrictionLaw::PointContact, mu, 0.99 * psi_jam, +1));
+  EXPECT_THROW(tension_ratio(FrictionLaw::PointContact, mu, 1.01 * psi_jam, +1), std::domain_error);
+  EXPECT_THROW(tension_ratio(FrictionLaw::PointContact, mu, 1.01 * psi_jam, -1), std::domain_error);
+  const FrictionCone cone = friction_cone(FrictionLaw::PointContact, mu, 1.01 * psi_jam);
+  EXPECT_EQ(cone.lo, 0.0);
+  EXPECT_EQ(cone.hi, std::numeric_limits<double>::infinity());
+  // The capstan law is well posed for every ψ.
+  EXPECT_NO_THROW(tension_ratio(FrictionLaw::Capstan, mu, 3.1, +1));
+}
