@@ -1,0 +1,81 @@
+// One trajectory of the hybrid system: integrate the current mode with its events, switch
+// modes (impacts included), project onto the constraints, and hand samples to an observer.
+#pragma once
+#include <functional>
+#include <string>
+
+#include "numerics/integrate.hpp"
+#include "physics/astrojax_system.hpp"
+#include "physics/energy.hpp"
+
+namespace ajx::sim {
+
+using physics::Contact;
+using physics::Mode;
+using physics::State;
+
+struct RunOptions {
+  std::string method = "dopri5";       // see numerics::stepper_names()
+  numerics::IntegrateOptions integ;    // tolerances, fixed step, bounds
+  double projection_tol = 1e-12;       // project when |C| exceeds this [m] (or [m/s] for J v - b)
+  long max_events = 1'000'000;         // bound on mode switches and impacts per run
+  double omega_window = 10.0;          // ω_ball is averaged over the last window [s]
+};
+
+// One sample of the trajectory with the quantities derived from it.
+struct Sample {
+  double t;                        // [s]
+  const Contact& contact;
+  const numerics::Vec& y;          // state in the layout of physics::idx
+  const physics::Dynamics& dyn;    // tensions, L1, powers
+  const physics::TopKinematics& top;
+  double impact_loss;              // cumulative [J]
+};
+using SampleObserver = std::function<void(const Sample&)>;
+
+struct RunSummary {
+  numerics::IntegrateStatus status = numerics::IntegrateStatus::Reached;
+  std::string failure;             // empty when the run reached its end
+  double t_end = 0.0;              // time reached [s]
+  long steps = 0, rejected = 0, rhs_evals = 0;
+  long mode_switches = 0, impacts = 0, projections = 0;
+  long sticks = 0;                 // times the bead stuck to the string (ṡ = 0 inside the cone)
+  double first_stick = -1.0;       // time of the first [s], -1 if none
+  double max_drift = 0.0;          // largest |C| after any accepted step, before projection [m]
+  double max_sample_drift = 0.0;   // largest |C| over the delivered samples [m]
+  physics::EnergyBalance energy{};
+  double omega_ball = 0.0;         // mean dθ/dt of the centre of mass over the last window [rad/s]
+  double min_tension = 0.0;        // smallest of T1, T2 seen at samples [N]
+  double min_friction_power = 0.0; // smallest (T1 - T2) ṡ seen at samples [W]
+  bool ok() const { return failure.empty(); }
+};
+
+class Simulation {
+ public:
+  Simulation(const physics::Model& model, const physics::MotorSchedule& schedule, RunOptions opt);
+
+  // Integrate s from s.t to t_end, sampling every sample_dt (and at s.t; sample_dt <= 0: none). s is advanced in place;
+  // on failure it holds the last good state.
+  RunSummary run(State& s, double t_end, double sample_dt, const SampleObserver& on_sample = {});
+
+  const physics::Model& model() const { return model_; }
+  const physics::MotorSchedule& schedule() const { return schedule_; }
+
+ private:
+  const physics::Model& model_;
+  const physics::MotorSchedule& schedule_;
+  RunOptions opt_;
+};
+
+// Both balls hanging at rest below the top, the bead on the bottom stop (L2 = d).
+State hanging_at_rest(const physics::Model& model, const physics::MotorSchedule& schedule,
+                      double t0 = 0.0);
+
+// An explicit state, projected onto the mode's constraints. Throws std::invalid_argument when
+// it is too far from them (|L1 + L2 - l| > tol_length) or below the bottom stop.
+State explicit_state(const physics::Model& model, const physics::MotorSchedule& schedule,
+                     const physics::Vec3& r1, const physics::Vec3& r2, const physics::Vec3& v1,
+                     const physics::Vec3& v2, Mode mode, double t0 = 0.0,
+                     double tol_length = 1e-6);
+
+}  // namespace ajx::sim
