@@ -1,0 +1,21 @@
+// Subcommands of the astrojax executable. Each returns the process exit code:
+// 0 success, 2 bad input (nothing written), 3 the integration failed (file written, marked failed).
+#pragma once
+#include <string>
+#include <vector>
+
+namespace ajx::app {
+
+inline constexpr int kExitBadInput = 2;
+inline constexpr int kExitRunFailed = 3;
+
+struct RunArgs {
+  std::string config_path;
+  std::vector<std::string> overrides;  // "key=value"
+  std::string output;                  // overrides output.path when non-empty
+  bool quiet = false;
+  std::string command_line;            // stored in the file for provenance
+};
+int run_command(const RunArgs& args);
+
+}  // namespace ajx::app

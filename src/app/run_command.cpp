@@ -1,0 +1,170 @@
+// astrojax run: one trajectory, sampled on a fixed grid, into HDF5 with units as attributes
+// and the configuration stored verbatim.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fmt/format.h>
+#include <numbers>
+#include <optional>
+#include <vector>
+
+#include "app/commands.hpp"
+#include "config/config.hpp"
+#include "io/hdf5_file.hpp"
+#include "physics/energy.hpp"
+#include "sim/simulation.hpp"
+
+namespace ajx::app {
+
+namespace {
+
+using physics::idx::dim;
+
+// Columns of the sampled trajectory, in memory until the run ends.
+struct Trajectory {
+  std::vector<double> t, r1, r2, v1, v2, T1, T2, contact, L1, psi, omega_m, phi, energy;
+  std::vector<double> motor_work, drag_loss, friction_loss, impact_loss;
+  std::vector<std::int32_t> mode;
+
+  void add(const sim::Sample& s, const physics::Parameters& p) {
+    t.push_back(s.t);
+    for (int i = 0; i < 3; ++i) {
+      r1.push_back(s.y(physics::idx::r1 + i));
+      r2.push_back(s.y(physics::idx::r2 + i));
+      v1.push_back(s.y(physics::idx::v1 + i));
+      v2.push_back(s.y(physics::idx::v2 + i));
+    }
+    mode.push_back(static_cast<std::int32_t>(s.contact.mode));
+    T1.push_back(s.dyn.T1);
+    T2.push_back(s.dyn.T2);
+    contact.push_back(s.dyn.contact);
+    L1.push_back(s.dyn.g.L1);
+    psi.push_back(s.dyn.g.psi);
+    omega_m.push_back(s.top.omega);
+    phi.push_back(s.top.phi);
+    energy.push_back(physics::mechanical_energy(p, s.y));
+    motor_work.push_back(s.y(physics::idx::motor_work));
+    drag_loss.push_back(s.y(physics::idx::drag_loss));
+    friction_loss.push_back(s.y(physics::idx::friction_loss));
+    impact_loss.push_back(s.impact_loss);
+  }
+
+  void write(io::Group& g) const {
+    const std::size_t n = t.size();
+    auto col = [&](const char* name, const std::vector<double>& v, const char* unit, const char* what) {
+      auto d = g.write_dataset(name, std::span<const double>(v), io::Dims{n});
+      d.set_attribute("units", unit);
+      d.set_attribute("description", what);
+    };
+    auto vec = [&](const char* name, const std::vector<double>& v, const char* unit, const char* what) {
+      auto d = g.write_dataset(name, std::span<const double>(v), io::Dims{n, 3});
+      d.set_attribute("units", unit);
+      d.set_attribute("description", what);
+    };
+    col("t", t, "s", "time");
+    vec("r1", r1, "m", "bead (middle ball) position, z up, motor axis at x = y = 0");
+    vec("r2", r2, "m", "bottom ball position");
+    vec("v1", v1, "m/s", "bead velocity");
+    vec("v2", v2, "m/s", "bottom ball velocity");
+    auto m = g.write_dataset("mode", std::span<const std::int32_t>(mode), io::Dims{n});
+    m.set_attribute("units", "1");
+    m.set_attribute("description", "contact mode: 0 = sliding (taut), 1 = bead resting on the bottom ball, 2 = bead stuck on the string");
+    col("T1", T1, "N", "tension above the bead");
+    col("T2", T2, "N", "tension below the bead (at the stop: the one closest to the link force)");
+    col("contact", contact, "N", "push N_c of the bottom ball on the bead (0 while sliding)");
+    col("L1", L1, "m", "string length above the bead, s = L1");
+    col("psi", psi, "rad", "deflection of the string at the bead, arccos(u1.u2)");
+    col("omega_m", omega_m, "rad/s", "motor angular velocity");
+    col("phi", phi, "rad", "motor phase");
+    col("energy", energy, "J", "kinetic + potential energy of both balls");
+    col("motor_work", motor_work, "J", "cumulative work done by the motor");
+    col("drag_loss", drag_loss, "J", "cumulative drag dissipation");
+    col("friction_loss", friction_loss, "J", "cumulative friction dissipation");
+    col("impact_loss", impact_loss, "J", "cumulative dissipation in plastic impacts");
+  }
+};
+
+physics::State initial_state(const config::RunConfig& c, const physics::MotorSchedule& schedule) {
+  if (c.initial.preset == "hanging") return sim::hanging_at_rest(c.model, schedule);
+  return sim::explicit_state(c.model, schedule, c.initial.r1, c.initial.r2, c.initial.v1, c.initial.v2,
+                             c.initial.mode);
+}
+
+}  // namespace
+
+int run_command(const RunArgs& args) {
+  config::RunConfig cfg;
+  physics::MotorSchedule schedule;
+  physics::State state;
+  std::optional<io::File> file;
+  // Everything that can be checked is checked before any work, and before any file exists.
+  try {
+    cfg = config::load_run_config(args.config_path, args.overrides);
+    if (!args.output.empty()) cfg.output.path = args.output;
+    schedule = physics::MotorSchedule(cfg.schedule);
+    try {
+      state = initial_state(cfg, schedule);
+    } catch (const std::invalid_argument& e) {
+      throw config::ConfigError(fmt::format("{}: key 'initial': {}", cfg.source_name, e.what()));
+    }
+    const std::filesystem::path out(cfg.output.path);
+    std::error_code ec;
+    if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path(), ec);
+    try {
+      file.emplace(io::File::create_temporary(out));
+    } catch (const io::Hdf5Error& e) {
+      throw config::ConfigError(fmt::format("{}: key 'output.path': cannot write '{}' ({})",
+                                            cfg.source_name, cfg.output.path, e.what()));
+    }
+  } catch (const config::ConfigError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return kExitBadInput;
+  }
+
+  Trajectory traj;
+  sim::Simulation simulation(cfg.model, schedule, cfg.run);
+  const auto wall0 = std::chrono::steady_clock::now();
+  const sim::RunSummary sum = simulation.run(state, schedule.duration(), cfg.output.sample_interval,
+                                             [&](const sim::Sample& s) { traj.add(s, cfg.model.p); });
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+
+  io::File& f = *file;
+  f.set_attribute("program", "astrojax-explorer");
+  f.set_attribute("command_line", args.command_line);
+  auto config = f.write_string_dataset("config", cfg.source_text);
+  config.set_attribute("source", cfg.source_name);
+  config.set_attribute("overrides", fmt::format("{}", fmt::join(cfg.overrides, "\n")));
+  io::Group tg = f.create_group("trajectory");
+  traj.write(tg);
+  io::Group sg = f.create_group("summary");
+  sg.set_attribute("status", sum.ok() ? std::string("ok") : sum.failure);
+  sg.set_attribute("final_mode", std::string(physics::to_string(state.contact.mode)));
+  sg.set_attribute("t_end", sum.t_end);
+  sg.set_attribute("omega_ball", sum.omega_ball);
+  sg.set_attribute("omega_window", cfg.run.omega_window);
+  sg.set_attribute("energy_residual_relative", sum.energy.relative());
+  sg.set_attribute("motor_work", sum.energy.motor_work);
+  sg.set_attribute("max_constraint_drift", sum.max_drift);
+  sg.set_attribute("max_sample_drift", sum.max_sample_drift);
+  sg.set_attribute("steps", sum.steps);
+  sg.set_attribute("rejected_steps", sum.rejected);
+  sg.set_attribute("rhs_evaluations", sum.rhs_evals);
+  sg.set_attribute("mode_switches", sum.mode_switches);
+  sg.set_attribute("impacts", sum.impacts);
+  sg.set_attribute("sticks", sum.sticks);
+  sg.set_attribute("first_stick", sum.first_stick);
+  sg.set_attribute("wall_time", wall);
+  f.commit();
+
+  if (!args.quiet || !sum.ok())
+    std::printf(
+        "%s  final mode %s  ω_ball %.5f rad/s (%.4fπ) over the last %.3g s  energy residual %.2e  "
+        "drift %.1e m  steps %ld  wall %.3f s  -> %s\n",
+        sum.ok() ? "ok" : ("FAILED: " + sum.failure).c_str(), std::string(physics::to_string(state.contact.mode)).c_str(),
+        sum.omega_ball, sum.omega_ball / std::numbers::pi,
+        std::min(cfg.run.omega_window, 0.5 * schedule.duration()), sum.energy.relative(), sum.max_drift,
+        sum.steps, wall, cfg.output.path.c_str());
+  return sum.ok() ? 0 : kExitRunFailed;
+}
+
+}  // namespace ajx::app

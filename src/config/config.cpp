@@ -1,0 +1,274 @@
+#include "config/config.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <fmt/format.h>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <toml++/toml.h>
+
+#include "numerics/stepper.hpp"
+
+namespace ajx::config {
+
+namespace {
+
+// Reads typed values out of one TOML table, remembering which keys were used so that
+// unknown ones can be reported.
+class Reader {
+ public:
+  Reader(const toml::table& t, std::string prefix, std::string_view file)
+      : t_(t), prefix_(std::move(prefix)), file_(file) {}
+
+  [[noreturn]] void fail(std::string_view key, std::string_view what) const {
+    throw ConfigError(fmt::format("{}: key '{}': {}", file_, full(key), what));
+  }
+  std::string full(std::string_view key) const { return prefix_.empty() ? std::string(key) : prefix_ + "." + std::string(key); }
+  bool has(std::string_view key) const { return t_.contains(key); }
+
+  // A number within [lo, hi] (open ends when the flags say so).
+  double number(std::string_view key, double fallback, double lo, double hi, bool lo_open = false,
+                bool hi_open = false) {
+    used_.insert(std::string(key));
+    const toml::node* n = t_.get(key);
+    if (!n) return fallback;
+    if (!n->is_number()) fail(key, "expected a number");
+    const double v = n->value<double>().value();
+    const bool ok = std::isfinite(v) && (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
+    if (!ok)
+      fail(key, fmt::format("{} is out of range; allowed {}{}, {}{}", v, lo_open ? "(" : "[", lo, hi,
+                            hi_open ? ")" : "]"));
+    return v;
+  }
+  std::string word(std::string_view key, std::string fallback, const std::vector<std::string>& allowed) {
+    used_.insert(std::string(key));
+    const toml::node* n = t_.get(key);
+    if (!n) return fallback;
+    if (!n->is_string()) fail(key, "expected a string");
+    std::string v = n->value<std::string>().value();
+    if (std::find(allowed.begin(), allowed.end(), v) == allowed.end())
+      fail(key, fmt::format("'{}' is not allowed; allowed: {}", v, fmt::join(allowed, ", ")));
+    return v;
+  }
+  std::string text(std::string_view key, std::string fallback) {
+    used_.insert(std::string(key));
+    const toml::node* n = t_.get(key);
+    if (!n) return fallback;
+    if (!n->is_string() || n->value<std::string>()->empty()) fail(key, "expected a non-empty string");
+    return *n->value<std::string>();
+  }
+  bool boolean(std::string_view key, bool fallback) {
+    used_.insert(std::string(key));
+    const toml::node* n = t_.get(key);
+    if (!n) return fallback;
+    if (!n->is_boolean()) fail(key, "expected true or false");
+    return *n->value<bool>();
+  }
+  physics::Vec3 vec3(std::string_view key, double bound) {
+    used_.insert(std::string(key));
+    const toml::array* a = t_.get_as<toml::array>(key);
+    if (!a || a->size() != 3) fail(key, "expected an array of 3 numbers");
+    physics::Vec3 v;
+    for (int i = 0; i < 3; ++i) {
+      const auto x = (*a)[std::size_t(i)].value<double>();
+      if (!x || !std::isfinite(*x) || std::abs(*x) > bound)
+        fail(key, fmt::format("component {} must be a number in [-{}, {}]", i, bound, bound));
+      v(i) = *x;
+    }
+    return v;
+  }
+  void reject_unknown() const {
+    for (const auto& [k, v] : t_)
+      if (!used_.count(std::string(k.str())))
+        fail(k.str(), "unknown key");
+  }
+
+ private:
+  const toml::table& t_;
+  std::string prefix_;
+  std::string_view file_;
+  std::set<std::string> used_;
+};
+
+const toml::table& subtable(const toml::table& root, std::string_view name, std::string_view file) {
+  static const toml::table empty;
+  const toml::node* n = root.get(name);
+  if (!n) return empty;
+  if (!n->is_table()) throw ConfigError(fmt::format("{}: key '{}': expected a table [{}]", file, name, name));
+  return *n->as_table();
+}
+
+// "a.b.c=value" into the table, creating tables on the way.
+void apply_override(toml::table& root, const std::string& kv, std::string_view file) {
+  const auto eq = kv.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw ConfigError(fmt::format("override '{}': expected key=value", kv));
+  const std::string key = kv.substr(0, eq), value = kv.substr(eq + 1);
+  toml::table* t = &root;
+  std::size_t start = 0;
+  for (std::size_t dot; (dot = key.find('.', start)) != std::string::npos; start = dot + 1) {
+    const std::string part = key.substr(start, dot - start);
+    if (!t->contains(part)) t->insert(part, toml::table{});
+    t = t->get_as<toml::table>(part);
+    if (!t) throw ConfigError(fmt::format("{}: override '{}': '{}' is not a table", file, kv, part));
+  }
+  const std::string leaf = key.substr(start);
+  try {
+    toml::table v = toml::parse("v = " + value);
+    t->insert_or_assign(leaf, std::move(*v.get("v")));
+  } catch (const toml::parse_error&) {
+    t->insert_or_assign(leaf, value);  // a bare word: a string
+  }
+}
+
+std::vector<physics::DriveSegment> parse_schedule(const toml::table& root, std::string_view file) {
+  const toml::node* n = root.get("schedule");
+  const toml::array* arr = n ? n->as_array() : nullptr;
+  if (!arr || arr->empty())
+    throw ConfigError(fmt::format(
+        "{}: key 'schedule': the motor schedule is empty; give at least one [[schedule]] segment "
+        "(kind = \"hold\" with omega and duration, or kind = \"ramp\" with from, to and rate or duration)",
+        file));
+  constexpr double w_max = 2000.0;  // [rad/s], far above any motor
+  std::vector<physics::DriveSegment> out;
+  for (std::size_t i = 0; i < arr->size(); ++i) {
+    const toml::table* t = (*arr)[i].as_table();
+    const std::string prefix = fmt::format("schedule[{}]", i);
+    if (!t) throw ConfigError(fmt::format("{}: key '{}': expected a table", file, prefix));
+    Reader r(*t, prefix, file);
+    const std::string kind = r.word("kind", "", {"hold", "ramp"});
+    if (kind.empty()) r.fail("kind", "missing; allowed: hold, ramp");
+    physics::DriveSegment s{};
+    if (kind == "hold") {
+      s.omega_begin = s.omega_end = r.number("omega", NAN, 0.0, w_max);
+      if (!r.has("omega")) r.fail("omega", "missing (ω_m of the hold [rad/s])");
+      if (!r.has("duration")) r.fail("duration", "missing (length of the hold [s])");
+      s.duration = r.number("duration", NAN, 0.0, 1e7, true);
+    } else {
+      for (const char* k : {"from", "to"})
+        if (!r.has(k)) r.fail(k, "missing (ω_m at the ramp's start and end [rad/s])");
+      s.omega_begin = r.number("from", NAN, 0.0, w_max);
+      s.omega_end = r.number("to", NAN, 0.0, w_max);
+      if (r.has("rate") == r.has("duration"))
+        r.fail("rate", "give exactly one of rate (|dω_m/dt| > 0 [rad/s²]) and duration (> 0 [s])");
+      if (s.omega_end == s.omega_begin) r.fail("to", "a ramp needs to != from; use kind = \"hold\"");
+      if (r.has("rate"))
+        s.duration = std::abs(s.omega_end - s.omega_begin) / r.number("rate", NAN, 0.0, 1e4, true);
+      else
+        s.duration = r.number("duration", NAN, 0.0, 1e7, true);
+    }
+    r.reject_unknown();
+    out.push_back(s);
+  }
+  return out;
+}
+
+}  // namespace
+
+RunConfig parse_run_config(std::string_view text, std::string_view source_name,
+                           const std::vector<std::string>& overrides) {
+  RunConfig c;
+  c.source_name = source_name;
+  c.source_text = text;
+  c.overrides = overrides;
+  const std::string_view file = c.source_name;
+  toml::table root;
+  try {
+    root = toml::parse(text, source_name);
+  } catch (const toml::parse_error& e) {
+    throw ConfigError(fmt::format("{}:{}:{}: {}", file, e.source().begin.line, e.source().begin.column,
+                                  e.description()));
+  }
+  for (const auto& o : overrides) apply_override(root, o, file);
+
+  for (const auto& [k, v] : root) {
+    static const std::set<std::string> known{"model", "layers", "integrator", "initial", "schedule", "output"};
+    if (!known.count(std::string(k.str())))
+      throw ConfigError(fmt::format("{}: key '{}': unknown key; allowed tables: {}", file, k.str(),
+                                    fmt::join(known, ", ")));
+  }
+
+  {  // [model]: ranges that depend on each other are checked by physics::validate below.
+    Reader r(subtable(root, "model", file), "model", file);
+    physics::Parameters& p = c.model.p;
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    p.string_length = r.number("string_length", p.string_length, 0.0, 100.0, true);
+    p.bead_mass = r.number("bead_mass", p.bead_mass, 0.0, inf, true, true);
+    p.ball_mass = r.number("ball_mass", p.ball_mass, 0.0, inf, true, true);
+    p.drag = r.number("drag", p.drag, 0.0, inf, false, true);
+    p.mu_static = r.number("mu_static", p.mu_static, 0.0, inf, false, true);
+    p.mu_kinetic = r.number("mu_kinetic", p.mu_kinetic, 0.0, inf, false, true);
+    p.gravity = r.number("gravity", p.gravity, 0.0, inf, false, true);
+    p.drive_radius = r.number("drive_radius", p.drive_radius, 0.0, inf, false, true);
+    p.contact_distance = r.number("contact_distance", p.contact_distance, 0.0, inf, true, true);
+    p.top_stop = r.number("top_stop", p.top_stop, 0.0, inf, false, true);
+    r.reject_unknown();
+    for (const auto& issue : physics::validate(c.model))
+      throw ConfigError(fmt::format("{}: key '{}': {} is out of range; allowed {}", file, issue.key,
+                                    issue.value, issue.allowed));
+  }
+  {
+    Reader r(subtable(root, "layers", file), "layers", file);
+    const std::string fr = r.word("friction", "kinetic", {"none", "kinetic"});
+    c.model.layers.friction = fr == "none" ? physics::Friction::None : physics::Friction::Kinetic;
+    const std::string law = r.word("friction_law", "capstan", {"capstan", "point_contact"});
+    c.model.layers.friction_law =
+        law == "capstan" ? physics::FrictionLaw::Capstan : physics::FrictionLaw::PointContact;
+    c.model.layers.bottom_stop = r.boolean("bottom_stop", true);
+    r.reject_unknown();
+  }
+  {
+    Reader r(subtable(root, "integrator", file), "integrator", file);
+    std::vector<std::string> methods;
+    std::stringstream ss{std::string(numerics::stepper_names())};
+    for (std::string w; std::getline(ss, w, ',');) {
+      w.erase(0, w.find_first_not_of(' '));
+      methods.push_back(w);
+    }
+    c.run.method = r.word("method", c.run.method, methods);
+    c.run.integ.tol.rtol = r.number("rtol", 1e-10, 1e-15, 1.0, false, true);
+    c.run.integ.tol.atol = r.number("atol", 1e-12, 0.0, 1.0, true);
+    c.run.integ.h_fixed = r.number("step", 5e-4, 0.0, 0.1, true);
+    c.run.integ.h_max = r.number("max_step", 0.05, 0.0, 10.0, true);
+    c.run.projection_tol = r.number("projection_tol", 1e-12, 0.0, 1e-3, true);
+    c.run.max_events = long(r.number("max_events", 1e6, 1.0, 1e12));
+    c.run.omega_window = r.number("omega_window", 10.0, 0.0, 1e7, true);
+    r.reject_unknown();
+  }
+  {
+    Reader r(subtable(root, "initial", file), "initial", file);
+    c.initial.preset = r.word("preset", "hanging", {"hanging", "explicit"});
+    if (c.initial.preset == "explicit") {
+      const double bound = 10.0 * c.model.p.string_length;
+      c.initial.r1 = r.vec3("r1", bound);
+      c.initial.r2 = r.vec3("r2", bound);
+      c.initial.v1 = r.has("v1") ? r.vec3("v1", 1e3) : physics::Vec3::Zero();
+      c.initial.v2 = r.has("v2") ? r.vec3("v2", 1e3) : physics::Vec3::Zero();
+      const std::string mode = r.word("mode", "sliding", {"sliding", "bottom_stop", "stuck"});
+      c.initial.mode = mode == "sliding"       ? physics::Mode::Sliding
+                       : mode == "bottom_stop" ? physics::Mode::BottomStop
+                                               : physics::Mode::Stuck;
+    }
+    r.reject_unknown();
+  }
+  c.schedule = parse_schedule(root, file);
+  {
+    Reader r(subtable(root, "output", file), "output", file);
+    c.output.path = r.text("path", c.output.path);
+    c.output.sample_interval = r.number("sample_interval", c.output.sample_interval, 0.0, 1e6, true);
+    r.reject_unknown();
+  }
+  return c;
+}
+
+RunConfig load_run_config(const std::string& path, const std::vector<std::string>& overrides) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ConfigError(fmt::format("{}: cannot open the configuration file", path));
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parse_run_config(ss.str(), path, overrides);
+}
+
+}  // namespace ajx::config
