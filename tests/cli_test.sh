@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# The astrojax executable end to end: bad input exits 2 with the file, key and range on
+# stderr and writes no output file; a good run exits 0 and writes a readable HDF5 file.
+# Usage: cli_test.sh ASTROJAX_BINARY SOURCE_DIR
+set -u
+bin=$1; src=$2
+work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+fail=0; pass=0
+check() { if eval "$2"; then pass=$((pass+1)); else echo "FAIL: $1"; fail=$((fail+1)); fi; }
+
+bad() {  # name, key expected in the message, range text, then --set overrides
+  local name=$1 key=$2 range=$3; shift 3
+  local out="$work/$name.h5"
+  "$bin" run "$src/sweeps/spin_up.toml" -o "$out" "$@" >"$work/$name.out" 2>"$work/$name.err"
+  local rc=$?
+  check "$name: exit code 2 (got $rc)" "[ $rc -eq 2 ]"
+  check "$name: message names the file" "grep -q 'sweeps/spin_up.toml' '$work/$name.err'"
+  check "$name: message names the key $key" "grep -qF '$key' '$work/$name.err'"
+  check "$name: message gives the range $range" "grep -qF '$range' '$work/$name.err'"
+  check "$name: no output file" "[ ! -e '$out' ] && [ ! -e '$out.part' ]"
+}
+bad unknown_key model.colour "unknown key" --set model.colour=1
+bad negative_length model.string_length "(0, 100]" --set model.string_length=-1
+bad negative_mass model.ball_mass "(0, inf)" --set model.ball_mass=-0.01
+bad R_ge_l model.drive_radius "0 <= R < l" --set model.drive_radius=1.0
+bad negative_mu model.mu_static "[0, inf)" --set model.mu_static=-0.2
+bad d_ge_l model.contact_distance "0 < d < l" --set model.contact_distance=0.9
+bad reversed_schedule "schedule[1].rate" "(0, 10000]" --set "schedule=[{kind=\"hold\",omega=1.0,duration=1.0},{kind=\"ramp\",from=1.0,to=5.0,rate=-1.0}]"
+bad empty_schedule schedule "at least one" --set "schedule=[]"
+
+# An unwritable output path is bad input too, found before any work.
+"$bin" run "$src/sweeps/spin_up.toml" -o /proc/no/such/dir/x.h5 >/dev/null 2>"$work/unwritable.err"
+rc=$?
+check "unwritable output: exit 2 (got $rc)" "[ $rc -eq 2 ]"
+check "unwritable output: names output.path" "grep -q 'output.path' '$work/unwritable.err'"
+
+# A good, short run.
+"$bin" run "$src/sweeps/spin_up.toml" -o "$work/good.h5" --set "schedule=[{kind=\"hold\",omega=6.0,duration=2.0}]" >"$work/good.out" 2>&1
+rc=$?
+check "good run: exit 0 (got $rc)" "[ $rc -eq 0 ]"
+check "good run: summary line" "grep -q '^ok ' '$work/good.out'"
+check "good run: file written" "[ -s '$work/good.h5' ] && [ ! -e '$work/good.h5.part' ]"
+if command -v h5dump >/dev/null; then
+  check "good run: 201 samples of r1" "h5dump -H -d /trajectory/r1 '$work/good.h5' | grep -q '( 201, 3 )'"
+  check "good run: units attribute" "h5dump -a /trajectory/r1/units '$work/good.h5' | grep -q '\"m\"'"
+  check "good run: configuration stored verbatim" "h5dump -d /config '$work/good.h5' | grep -q 'Spin-up from rest'"
+fi
+echo "cli: $pass passed, $fail failed"
+[ $fail -eq 0 ]
