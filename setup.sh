@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# One entry point for a fresh Debian 12 machine: installs what is missing (apt, idempotent),
+# builds in Release, and runs the demo or the tests.
+#   ./setup.sh demo        install, build, run the default job and plot it
+#   ./setup.sh test        install, build, run the default test suite (ctest -L unit)
+#   ./setup.sh test-long   install, build, run the long physics validations (ctest -L long)
+#   ./setup.sh install | build
+set -euo pipefail
+cd "$(dirname "$0")"
+
+PACKAGES=(build-essential cmake pkg-config libeigen3-dev libopenmpi-dev openmpi-bin
+          libhdf5-dev hdf5-tools libcli11-dev libtomlplusplus-dev libfmt-dev
+          libgtest-dev libgmock-dev libbenchmark-dev
+          python3-numpy python3-h5py python3-matplotlib)
+BUILD_DIR=${BUILD_DIR:-build}
+# Debian's interpreter: it has python3-numpy/h5py/matplotlib, whatever python3 is first on PATH.
+PYTHON=/usr/bin/python3
+
+install() {
+  local missing=()
+  for p in "${PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  echo "installing: ${missing[*]}"
+  local sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo=sudo
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+}
+
+build() {
+  cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release >/dev/null
+  cmake --build "$BUILD_DIR" -j"$(nproc)"
+}
+
+demo() {
+  mkdir -p out
+  "$BUILD_DIR"/astrojax run sweeps/spin_up.toml
+  "$PYTHON" analysis/plot_run.py out/spin_up.h5 -o out/spin_up.png
+}
+
+case "${1:-}" in
+  install) install ;;
+  build) install; build ;;
+  demo) install; build; demo ;;
+  test) install; build; (cd "$BUILD_DIR" && ctest -L unit -j"$(nproc)" --output-on-failure) ;;
+  test-long) install; build; (cd "$BUILD_DIR" && ctest -L long --output-on-failure) ;;
+  *) sed -n '2,9p' "$0"; exit 2 ;;
+esac
