@@ -45,5 +45,19 @@ if command -v h5dump >/dev/null; then
   check "good run: units attribute" "h5dump -a /trajectory/r1/units '$work/good.h5' | grep -q '\"m\"'"
   check "good run: configuration stored verbatim" "h5dump -d /config '$work/good.h5' | grep -q 'Spin-up from rest'"
 fi
+# An explicit start from the paper's Table 1 orbit (0.3 mm off the string length: projected).
+explicit=(--set initial.preset=explicit --set "initial.r1=[-0.14427,0.0,-0.52483]"
+          --set "initial.r2=[0.11924,0.0,-0.62353]" --set "initial.v1=[0.0,-2.13,0.0]"
+          --set "initial.v2=[0.0,1.761,0.0]" --set model.drive_radius=0.0
+          --set "schedule=[{kind=\"hold\",omega=14.77,duration=1.0}]")
+"$bin" run "$src/sweeps/spin_up.toml" -o "$work/explicit.h5" "${explicit[@]}" --set initial.length_tolerance=1e-3 >/dev/null 2>&1
+rc=$?
+check "explicit start within tolerance: exit 0 (got $rc)" "[ $rc -eq 0 ] && [ -s '$work/explicit.h5' ]"
+"$bin" run "$src/sweeps/spin_up.toml" -o "$work/explicit_bad.h5" "${explicit[@]}" >/dev/null 2>"$work/explicit_bad.err"
+rc=$?
+check "explicit start off the string: exit 2 (got $rc)" "[ $rc -eq 2 ] && [ ! -e '$work/explicit_bad.h5' ]"
+check "explicit start off the string: names initial.r1 and the tolerance" \
+  "grep -q \"initial.r1\" '$work/explicit_bad.err' && grep -q 'length_tolerance' '$work/explicit_bad.err'"
+
 echo "cli: $pass passed, $fail failed"
 [ $fail -eq 0 ]

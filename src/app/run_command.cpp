@@ -87,7 +87,7 @@ struct Trajectory {
 physics::State initial_state(const config::RunConfig& c, const physics::MotorSchedule& schedule) {
   if (c.initial.preset == "hanging") return sim::hanging_at_rest(c.model, schedule);
   return sim::explicit_state(c.model, schedule, c.initial.r1, c.initial.r2, c.initial.v1, c.initial.v2,
-                             c.initial.mode);
+                             c.initial.mode, 0.0, c.initial.length_tolerance);
 }
 
 }  // namespace
@@ -105,7 +105,9 @@ int run_command(const RunArgs& args) {
     try {
       state = initial_state(cfg, schedule);
     } catch (const std::invalid_argument& e) {
-      throw config::ConfigError(fmt::format("{}: key 'initial': {}", cfg.source_name, e.what()));
+      throw config::ConfigError(fmt::format("{}: key 'initial.r1', 'initial.r2': {}; allowed "
+                                            "|L1 + L2 - l| <= initial.length_tolerance and L2 >= d",
+                                            cfg.source_name, e.what()));
     }
     const std::filesystem::path out(cfg.output.path);
     std::error_code ec;

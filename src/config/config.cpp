@@ -250,6 +250,8 @@ RunConfig parse_run_config(std::string_view text, std::string_view source_name,
       c.initial.mode = mode == "sliding"       ? physics::Mode::Sliding
                        : mode == "bottom_stop" ? physics::Mode::BottomStop
                                                : physics::Mode::Stuck;
+      c.initial.length_tolerance =
+          r.number("length_tolerance", c.initial.length_tolerance, 0.0, 0.1 * c.model.p.string_length, true);
     }
     r.reject_unknown();
   }

@@ -24,6 +24,7 @@ struct InitialSpec {
   physics::Vec3 r1 = physics::Vec3::Zero(), r2 = physics::Vec3::Zero();  // [m]
   physics::Vec3 v1 = physics::Vec3::Zero(), v2 = physics::Vec3::Zero();  // [m/s]
   physics::Mode mode = physics::Mode::Sliding;
+  double length_tolerance = 1e-6;  // |L1 + L2 - l| accepted before projection [m]
 };
 
 struct OutputSpec {
