@@ -51,15 +51,18 @@ struct Trajectory {
 
   void write(io::Group& g) const {
     const std::size_t n = t.size();
-    auto col = [&](const char* name, const std::vector<double>& v, const char* unit, const char* what) {
-      auto d = g.write_dataset(name, std::span<const double>(v), io::Dims{n});
+    // One dataset per quantity, n rows of `width` columns, with units and a description.
+    auto put = [&](const char* name, const std::vector<double>& v, std::size_t width, const char* unit,
+                   const char* what) {
+      auto d = g.write_dataset(name, std::span<const double>(v), width == 1 ? io::Dims{n} : io::Dims{n, width});
       d.set_attribute("units", unit);
       d.set_attribute("description", what);
     };
+    auto col = [&](const char* name, const std::vector<double>& v, const char* unit, const char* what) {
+      put(name, v, 1, unit, what);
+    };
     auto vec = [&](const char* name, const std::vector<double>& v, const char* unit, const char* what) {
-      auto d = g.write_dataset(name, std::span<const double>(v), io::Dims{n, 3});
-      d.set_attribute("units", unit);
-      d.set_attribute("description", what);
+      put(name, v, 3, unit, what);
     };
     col("t", t, "s", "time");
     vec("r1", r1, "m", "bead (middle ball) position, z up, motor axis at x = y = 0");
