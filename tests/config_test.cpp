@@ -106,3 +106,9 @@ INSTANTIATE_TEST_SUITE_P(
                 "output.sample_interval", "(0, 1000000]"},
         BadCase{"syntax_error", "", "\n[model\n", "sweeps/test.toml:", ""}),
     [](const ::testing::TestParamInfo<BadCase>& info) { return info.param.name; });
+
+TEST(Config, HangingPresetNeedsTheBottomStop) {
+  const std::string e = error_of(kGood, {"layers.bottom_stop=false"});
+  EXPECT_NE(e.find("initial.preset"), std::string::npos) << e;
+  EXPECT_NE(e.find("layers.bottom_stop = true"), std::string::npos) << e;
+}

@@ -244,3 +244,20 @@ TEST(Simulation, PairOnTheBottomStopSettlesToTheSteadyConicalOrbit) {
     report("radius_bottom_ball_w" + std::to_string(int(w)), fmt::format("{:.6e}", x.segment<2>(3).norm()));
   }
 }
+
+TEST(Simulation, AJammedPointContactEndsTheRunWithAReasonNotACrash) {
+  // μ tan(ψ/2) >= 1 has no sliding solution for the point-contact law: with μ_k = 2 the
+  // law jams once ψ > 2 atan(1/2) ≈ 0.93 rad. A sharply bent string gets there at once.
+  Model m;
+  m.p.mu_static = m.p.mu_kinetic = 2.0;
+  m.p.drive_radius = 0.0;
+  m.layers.friction_law = FrictionLaw::PointContact;
+  const MotorSchedule sched({{0.0, 0.0, 1.0}});
+  const Vec3 r1(0.3, 0.0, -0.3), r2 = r1 + (m.p.string_length - r1.norm()) * Vec3(-1, 0, 0);
+  State s = sim::explicit_state(m, sched, r1, r2, Vec3(0, 0, 0.5), Vec3::Zero(), Mode::Sliding);
+  sim::Simulation simulation(m, sched, tight("dopri5", 1e-9));
+  const sim::RunSummary r = simulation.run(s, 1.0, 0.01);
+  EXPECT_FALSE(r.ok());
+  EXPECT_NE(r.failure.find("jams"), std::string::npos) << r.failure;
+  EXPECT_TRUE(s.y.allFinite());
+}

@@ -240,6 +240,8 @@ RunConfig parse_run_config(std::string_view text, std::string_view source_name,
   {
     Reader r(subtable(root, "initial", file), "initial", file);
     c.initial.preset = r.word("preset", "hanging", {"hanging", "explicit"});
+    if (c.initial.preset == "hanging" && !c.model.layers.bottom_stop)
+      r.fail("preset", "'hanging' rests the bead on the bottom ball and needs layers.bottom_stop = true");
     if (c.initial.preset == "explicit") {
       const double bound = 10.0 * c.model.p.string_length;
       c.initial.r1 = r.vec3("r1", bound);

@@ -179,67 +179,74 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
       contact = resolve_at_rest(model_, top, s.y);
   }
 
-  if (sample_dt > 0.0) {
-    emit(s.t, s.y);
-    next_sample = 1;
-  }
-
   long events = 0;
-  while (s.t < t_end) {
-    // Stop on the schedule's breakpoints: ω̇ jumps there.
-    double t_stop = t_end;
-    for (double tb : schedule_.breakpoints())
-      if (tb > s.t * (1 + 1e-15) + 1e-15 && tb < t_stop) t_stop = tb;
+  Vec last_good = s.y;
+  // A law with no solution (the point contact jammed) ends the run with its reason.
+  try {
+    if (sample_dt > 0.0) {
+      emit(s.t, s.y);
+      next_sample = 1;
+    }
+    while (s.t < t_end) {
+      // Stop on the schedule's breakpoints: ω̇ jumps there.
+      double t_stop = t_end;
+      for (double tb : schedule_.breakpoints())
+        if (tb > s.t * (1 + 1e-15) + 1e-15 && tb < t_stop) t_stop = tb;
 
-    const auto& events_now = contact.mode == Mode::Sliding  ? sliding_events
-                             : contact.mode == Mode::Stuck ? stuck_events
-                                                           : stop_events;
-    const numerics::IntegrateResult r =
-        numerics::integrate(f, *stepper, s.t, s.y, t_stop, events_now, observe, post_step, integ);
-    sum.steps += r.steps;
-    sum.rejected += r.rejected;
-    s.t = r.t;
-    if (r.h_next > 0) integ.h_init = r.h_next;
-    sum.status = r.status;
+      const auto& events_now = contact.mode == Mode::Sliding  ? sliding_events
+                               : contact.mode == Mode::Stuck ? stuck_events
+                                                             : stop_events;
+      last_good = s.y;
+      const numerics::IntegrateResult r =
+          numerics::integrate(f, *stepper, s.t, s.y, t_stop, events_now, observe, post_step, integ);
+      sum.steps += r.steps;
+      sum.rejected += r.rejected;
+      s.t = r.t;
+      if (r.h_next > 0) integ.h_init = r.h_next;
+      sum.status = r.status;
 
-    if (r.status == numerics::IntegrateStatus::Reached) {
-      stepper->reset();
-      continue;
-    }
-    if (r.status != numerics::IntegrateStatus::Event) {
-      sum.failure = fmt::format("integration failed at t = {:.6f} s: {}", s.t, numerics::to_string(r.status));
-      break;
-    }
-    if (++events > opt_.max_events) {
-      sum.failure = fmt::format("event bound {} hit at t = {:.6f} s", opt_.max_events, s.t);
-      break;
-    }
-    const physics::TopKinematics top = schedule_.top(R, s.t);
-    switch (contact.mode) {
-      case Mode::Sliding:
-        if (r.event_index == 0) {  // landing on the bottom ball: a plastic impact
-          if (!model_.layers.bottom_stop) {
-            sum.failure = fmt::format(
-                "the bead reached the bottom ball (L2 = d) at t = {:.6f} s but the bottom-stop layer is off", s.t);
-            break;
+      if (r.status == numerics::IntegrateStatus::Reached) {
+        stepper->reset();
+        continue;
+      }
+      if (r.status != numerics::IntegrateStatus::Event) {
+        sum.failure = fmt::format("integration failed at t = {:.6f} s: {}", s.t, numerics::to_string(r.status));
+        break;
+      }
+      if (++events > opt_.max_events) {
+        sum.failure = fmt::format("event bound {} hit at t = {:.6f} s", opt_.max_events, s.t);
+        break;
+      }
+      const physics::TopKinematics top = schedule_.top(R, s.t);
+      switch (contact.mode) {
+        case Mode::Sliding:
+          if (r.event_index == 0) {  // landing on the bottom ball: a plastic impact
+            if (!model_.layers.bottom_stop) {
+              sum.failure = fmt::format(
+                  "the bead reached the bottom ball (L2 = d) at t = {:.6f} s but the bottom-stop layer is off", s.t);
+              break;
+            }
+            enter({Mode::BottomStop, 0, 0.0});
+            ++sum.impacts;
+            // It rests only while the contact holds; otherwise it leaves at once.
+            if (physics::evaluate(model_, top, contact, s.y).margins.up < 0.0) enter({Mode::Sliding, -1, 0.0});
+          } else {  // ṡ = 0: stick, or slide on in the direction the forces push
+            enter(resolve_at_rest(model_, top, s.y));
           }
-          enter({Mode::BottomStop, 0, 0.0});
-          ++sum.impacts;
-          // It rests only while the contact holds; otherwise it leaves at once.
-          if (physics::evaluate(model_, top, contact, s.y).margins.up < 0.0) enter({Mode::Sliding, -1, 0.0});
-        } else {  // ṡ = 0: stick, or slide on in the direction the forces push
-          enter(resolve_at_rest(model_, top, s.y));
-        }
-        break;
-      case Mode::Stuck:
-        enter({Mode::Sliding, r.event_index == 0 ? -1 : +1, 0.0});
-        break;
-      case Mode::BottomStop:
-        enter({Mode::Sliding, -1, 0.0});  // the bead climbs off the bottom ball
-        break;
+          break;
+        case Mode::Stuck:
+          enter({Mode::Sliding, r.event_index == 0 ? -1 : +1, 0.0});
+          break;
+        case Mode::BottomStop:
+          enter({Mode::Sliding, -1, 0.0});  // the bead climbs off the bottom ball
+          break;
+      }
+      if (!sum.failure.empty()) break;
+      stepper->reset();
     }
-    if (!sum.failure.empty()) break;
-    stepper->reset();
+  } catch (const std::domain_error& e) {
+    s.y = last_good;
+    sum.failure = fmt::format("the friction law failed after t = {:.6f} s: {}", s.t, e.what());
   }
   if (sum.failure.empty()) sum.status = numerics::IntegrateStatus::Reached;
   sum.t_end = s.t;
