@@ -71,10 +71,10 @@ struct Trajectory {
     vec("v2", v2, "m/s", "bottom ball velocity");
     auto m = g.write_dataset("mode", std::span<const std::int32_t>(mode), io::Dims{n});
     m.set_attribute("units", "1");
-    m.set_attribute("description", "contact mode: 0 = sliding (taut), 1 = bead resting on the bottom ball, 2 = bead stuck on the string");
+    m.set_attribute("description", "contact mode: 0 sliding (taut), 1 bead on the bottom ball, 2 bead stuck on the string, 3 bead at the top stop, 4 slack string");
     col("T1", T1, "N", "tension above the bead");
     col("T2", T2, "N", "tension below the bead (at the stop: the one closest to the link force)");
-    col("contact", contact, "N", "push N_c of the bottom ball on the bead (0 while sliding)");
+    col("contact", contact, "N", "push of the stop (bottom ball or top) on the bead (0 elsewhere)");
     col("L1", L1, "m", "string length above the bead, s = L1");
     col("psi", psi, "rad", "deflection of the string at the bead, arccos(u1.u2)");
     col("omega_m", omega_m, "rad/s", "motor angular velocity");
@@ -158,6 +158,20 @@ int run_command(const RunArgs& args) {
   sg.set_attribute("impacts", sum.impacts);
   sg.set_attribute("sticks", sum.sticks);
   sg.set_attribute("first_stick", sum.first_stick);
+  sg.set_attribute("slack_phases", sum.slack_phases);
+  sg.set_attribute("chatter_episodes", sum.chatter);
+  sg.set_attribute("first_chatter", sum.first_chatter);
+  // Assumptions of omitted layers that the run found violated, one group each.
+  io::Group vg = sg.create_group("violations");
+  for (std::size_t i = 0; i < sum.violations.size(); ++i) {
+    const sim::Violation& v = sum.violations[i];
+    io::Group g = vg.create_group(fmt::format("{}", i));
+    g.set_attribute("what", v.what);
+    g.set_attribute("count", v.count);
+    g.set_attribute("first_time", v.first_time);
+    g.set_attribute("worst", v.worst);
+    g.set_attribute("worst_units", v.unit);
+  }
   sg.set_attribute("wall_time", wall);
   f.commit();
 
@@ -169,6 +183,13 @@ int run_command(const RunArgs& args) {
         sum.omega_ball, sum.omega_ball / std::numbers::pi,
         std::min(cfg.run.omega_window, 0.5 * schedule.duration()), sum.energy.relative(), sum.max_drift,
         sum.steps, wall, cfg.output.path.c_str());
+  for (const sim::Violation& v : sum.violations)
+    if (v.count > 0)
+      std::printf("  layer assumption violated: %s: %ld times, first at t = %.6f s, worst %.3e %s\n", v.what.c_str(),
+                  v.count, v.first_time, v.worst, v.unit.c_str());
+  if (sum.chatter > 0)
+    std::printf("  chattering resolved %ld times (first at t = %.6f s): switch band widened, impacts made plastic\n",
+                sum.chatter, sum.first_chatter);
   return sum.ok() ? 0 : kExitRunFailed;
 }
 

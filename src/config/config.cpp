@@ -211,8 +211,15 @@ RunConfig parse_run_config(std::string_view text, std::string_view source_name,
   }
   {
     Reader r(subtable(root, "layers", file), "layers", file);
-    const std::string fr = r.word("friction", "kinetic", {"none", "kinetic"});
-    c.model.layers.friction = fr == "none" ? physics::Friction::None : physics::Friction::Kinetic;
+    const std::string fr = r.word("friction", "stick_slip", {"none", "kinetic", "stick_slip", "regularised"});
+    c.model.layers.friction = fr == "none"         ? physics::Friction::None
+                              : fr == "kinetic"    ? physics::Friction::Kinetic
+                              : fr == "stick_slip" ? physics::Friction::StickSlip
+                                                   : physics::Friction::Regularised;
+    c.model.layers.regularisation = r.number("regularisation", c.model.layers.regularisation, 0.0, 1e3, true);
+    c.model.layers.top_stop = r.boolean("top_stop", true);
+    c.model.layers.slack = r.boolean("slack", true);
+    c.model.layers.restitution = r.number("restitution", 0.0, 0.0, 1.0);
     const std::string law = r.word("friction_law", "capstan", {"capstan", "point_contact"});
     c.model.layers.friction_law =
         law == "capstan" ? physics::FrictionLaw::Capstan : physics::FrictionLaw::PointContact;

@@ -17,45 +17,59 @@ Dynamics evaluate(const Model& m, const TopKinematics& top, const Contact& c, co
   d.g = geometry(top, r1, r2, v1, v2);
   const AppliedForces f = applied_forces(p, v1, v2);
 
-  double F2 = 0.0;  // net pull of link 2 on the bottom ball
+  // F1, F2: the net pulls of the two links on the bead (tension minus any contact push).
+  double F1 = 0.0, F2 = 0.0;
+  d.contact = 0.0;
+  d.margins = {inf, inf};
   switch (c.mode) {
     case Mode::Sliding: {
-      // T1 = κ(ψ, σ) T2 with the mode's sliding direction σ.
-      const double kappa = tension_ratio(m.layers.friction_law, sliding_mu(m), d.g.psi, c.sigma);
-      d.T2 = sliding_tension_T2(p, d.g, f, top.a_ddot, kappa);
-      d.T1 = kappa * d.T2;
-      F2 = d.T2;
-      d.contact = 0.0;
-      d.margins = {inf, inf};
+      // T1 = κ(ψ, σ) T2 with the mode's sliding direction σ, or tanh(ṡ/ε) when regularised.
+      const double sigma = m.layers.friction == Friction::Regularised
+                               ? std::tanh(d.g.L1_dot / m.layers.regularisation)
+                               : double(c.sigma);
+      const double kappa = tension_ratio(m.layers.friction_law, sliding_mu(m), d.g.psi, sigma);
+      d.T2 = F2 = sliding_tension_T2(p, d.g, f, top.a_ddot, kappa);
+      d.T1 = F1 = kappa * d.T2;
       break;
     }
-    case Mode::Stuck: {
+    case Mode::Stuck:
+    case Mode::BottomStop:
+    case Mode::TopStop: {
       const Eigen::Vector2d tf = two_link_forces(p, d.g, f, top.a_ddot);
-      d.T1 = tf(0);
-      d.T2 = F2 = tf(1);
-      d.contact = 0.0;
-      d.margins = cone_margins(m, d.g, d.T1, d.T2);
-      break;
-    }
-    case Mode::BottomStop: {
-      const Eigen::Vector2d tf = two_link_forces(p, d.g, f, top.a_ddot);
-      d.T1 = tf(0);
+      F1 = tf(0);
       F2 = tf(1);
-      // Friction at rest makes T2 indeterminate within T1/κ_hi <= T2 <= T1/κ_lo; report the
-      // T2 closest to F2, i.e. the smallest contact push N_c = T2 - F2 >= 0.
-      const FrictionCone cone = friction_cone(m.layers.friction_law, sliding_mu(m), d.g.psi);
-      const double T2_min = d.T1 / cone.hi;
-      const double T2_max = cone.lo > 0.0 ? d.T1 / cone.lo : inf;
-      d.T2 = std::max(std::min(F2, T2_max), T2_min);
-      d.contact = d.T2 - F2;
-      // One-sided cone: the ball blocks slipping down; it climbs when T1 - κ_lo F2 < 0.
-      d.margins = {cone_margins(m, d.g, d.T1, F2).up, inf};
+      const FrictionCone cone = friction_cone(m.layers.friction_law, sticking_mu(m), d.g.psi);
+      const ConeMargins both = cone_margins(m, d.g, F1, F2);
+      if (c.mode == Mode::Stuck) {
+        d.T1 = F1;
+        d.T2 = F2;
+        d.margins = both;
+      } else if (c.mode == Mode::BottomStop) {
+        // The ball pushes the bead up with N_c = T2 - F2 >= 0. Friction at rest leaves T2
+        // anywhere in T1/κ_hi <= T2 <= T1/κ_lo: report the one closest to F2 (least push).
+        // One-sided cone: the bead climbs off when T1 - κ_lo F2 < 0.
+        d.T1 = F1;
+        const double T2_max = cone.lo > 0.0 ? F1 / cone.lo : inf;
+        d.T2 = std::max(std::min(F2, T2_max), F1 / cone.hi);
+        d.contact = d.T2 - F2;
+        d.margins.up = both.up;
+      } else {
+        // The top pushes the bead down with N_t = T1 - F1 >= 0, T1 within κ_lo T2... κ_hi T2.
+        // One-sided cone: the bead slides down when κ_hi F2 - F1 < 0.
+        d.T2 = F2;
+        d.T1 = std::max(std::min(F1, cone.hi * F2), cone.lo * F2);
+        d.contact = d.T1 - F1;
+        d.margins.down = both.down;
+      }
       break;
     }
+    case Mode::Slack:
+      d.T1 = d.T2 = 0.0;
+      break;
   }
-  d.acc1 = (-d.T1 * d.g.u1 + F2 * d.g.u2 + f.f1) / p.bead_mass;
+  d.acc1 = (-F1 * d.g.u1 + F2 * d.g.u2 + f.f1) / p.bead_mass;
   d.acc2 = (-F2 * d.g.u2 + f.f2) / p.ball_mass;
-  d.motor_power = -d.T1 * d.g.u1.dot(top.a_dot);
+  d.motor_power = -F1 * d.g.u1.dot(top.a_dot);  // the top pulls link 1 (the stop's push included)
   d.drag_power = p.drag * (v1.squaredNorm() + v2.squaredNorm());
   d.friction_power = c.mode == Mode::Sliding ? (d.T1 - d.T2) * d.g.L1_dot : 0.0;
   return d;

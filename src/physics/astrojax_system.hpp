@@ -14,10 +14,10 @@ struct Dynamics {
   Geometry g;
   double T1;              // tension above the bead [N]
   double T2;              // tension below the bead [N]
-  double contact;         // N_c, push of the bottom ball on the bead, >= 0 at the stop [N]
+  double contact;         // push of the stop on the bead (bottom ball or top), >= 0 [N]
   ConeMargins margins;    // friction-cone margins of the stuck or resting bead (+inf while sliding)
   Vec3 acc1, acc2;        // r̈1, r̈2 [m/s²]
-  double motor_power;     // P_motor = -T1 u1·ȧ [W]
+  double motor_power;     // P_motor = -F1 u1·ȧ, F1 the net pull of link 1 [W]
   double drag_power;      // c_D (|v1|² + |v2|²) [W]
   double friction_power;  // (T1 - T2) ṡ [W], >= 0 whenever the tensions are
 };

@@ -61,8 +61,17 @@ Eigen::Vector2d two_link_forces(const Parameters& p, const Geometry& g, const Ap
 }
 
 ConeMargins cone_margins(const Model& m, const Geometry& g, double T1, double T2) {
-  const FrictionCone cone = friction_cone(m.layers.friction_law, sliding_mu(m), g.psi);
+  const FrictionCone cone = friction_cone(m.layers.friction_law, sticking_mu(m), g.psi);
   return {T1 - cone.lo * T2, std::isinf(cone.hi) ? std::numeric_limits<double>::infinity() : cone.hi * T2 - T1};
+}
+
+double held_length(const Model& m, const Contact& c) {
+  switch (c.mode) {
+    case Mode::BottomStop: return m.p.string_length - m.p.contact_distance;
+    case Mode::TopStop: return m.p.top_stop;
+    case Mode::Stuck: return c.s_star;
+    default: return std::numeric_limits<double>::quiet_NaN();
+  }
 }
 
 Constraints constraints(const Model& m, const Contact& contact, const TopKinematics& top,
@@ -84,9 +93,9 @@ Constraints constraints(const Model& m, const Contact& contact, const TopKinemat
       c.b(0) = u1.dot(top.a_dot);
       break;
     case Mode::BottomStop:  // C = (L1 - (l - d), L2 - d)
+    case Mode::TopStop:     // C = (L1 - s_min, L2 - (l - s_min))
     case Mode::Stuck: {     // C = (L1 - s*, L2 - (l - s*))
-      const double s1 = contact.mode == Mode::Stuck ? contact.s_star
-                                                    : m.p.string_length - m.p.contact_distance;
+      const double s1 = held_length(m, contact);
       c.n = 2;
       c.J.block<1, 3>(0, 0) = u1.transpose();
       c.J.block<1, 3>(1, 0) = -u2.transpose();
@@ -96,6 +105,9 @@ Constraints constraints(const Model& m, const Contact& contact, const TopKinemat
       c.b(0) = u1.dot(top.a_dot);
       break;
     }
+    case Mode::Slack:  // no constraint: a free flight
+      c.n = 0;
+      break;
   }
   return c;
 }
@@ -113,11 +125,13 @@ Vec6 inverse_mass(const Parameters& p) {
 Eigen::Vector2d multipliers(const Constraints& c, const Vec6& Minv, const Eigen::Vector2d& rhs) {
   const Eigen::Matrix<double, 2, 6> JW = c.J * Minv.asDiagonal();
   const Eigen::Matrix2d A = JW * c.J.transpose();
+  if (c.n == 0) return Eigen::Vector2d::Zero();
   if (c.n == 1) return {rhs(0) / A(0, 0), 0.0};
   return A.inverse() * rhs;  // 2×2, det > 0 for two distinct links
 }
 
 double max_abs(const Eigen::Vector2d& v, int n) {
+  if (n == 0) return 0.0;
   return n == 1 ? std::abs(v(0)) : std::max(std::abs(v(0)), std::abs(v(1)));
 }
 }  // namespace
@@ -146,22 +160,51 @@ void project_positions(const Model& m, const Contact& contact, const TopKinemati
   }
 }
 
-ProjectionEnergy project_velocities(const Model& m, const Contact& contact, const TopKinematics& top,
-                                    numerics::Vec& y) {
+namespace {
+// The impulse onto the constraint rows of c with restitution e, and its energy account.
+ProjectionEnergy impulse(const Model& m, const Constraints& c, numerics::Vec& y, double e) {
   const Vec6 Minv = inverse_mass(m.p);
-  const Constraints c = constraints(m, contact, top, y);
   Vec6 v;
   v << y.segment<3>(idx::v1), y.segment<3>(idx::v2);
-  const Eigen::Vector2d lambda = multipliers(c, Minv, c.J * v - c.b);
-  const Vec6 dv = -(Minv.asDiagonal() * (c.J.transpose() * lambda));
-  y.segment<3>(idx::v1) += dv.head<3>();
-  y.segment<3>(idx::v2) += dv.tail<3>();
-  // ΔKE = -½ λᵀAλ - λᵀb: Carnot loss plus the impulsive work of the moving top.
-  ProjectionEnergy e;
-  const Vec6 mdv = dv.cwiseQuotient(Minv);  // M Δv
-  e.dissipated = 0.5 * dv.dot(mdv);
-  e.motor_work = -lambda.dot(c.b);  // λ and b vanish beyond n
-  return e;
+  const double ke0 = 0.5 * v.dot(v.cwiseQuotient(Minv));
+  const Eigen::Vector2d lambda = (1.0 + e) * multipliers(c, Minv, c.J * v - c.b);
+  v -= Minv.asDiagonal() * (c.J.transpose() * lambda);
+  y.segment<3>(idx::v1) = v.head<3>();
+  y.segment<3>(idx::v2) = v.tail<3>();
+  // ΔKE = -dissipated - λᵀb: what the top's impulse put in and the balls did not keep was lost.
+  ProjectionEnergy out;
+  out.motor_work = -lambda.dot(c.b);  // λ and b vanish beyond n
+  out.dissipated = out.motor_work - (0.5 * v.dot(v.cwiseQuotient(Minv)) - ke0);
+  return out;
+}
+
+Constraints one_row(const Vec3& d_r1, const Vec3& d_r2, double b) {
+  Constraints c;
+  c.n = 1;
+  c.J.setZero();
+  c.C.setZero();
+  c.b.setZero();
+  c.J.block<1, 3>(0, 0) = d_r1.transpose();
+  c.J.block<1, 3>(0, 3) = d_r2.transpose();
+  c.b(0) = b;
+  return c;
+}
+}  // namespace
+
+ProjectionEnergy project_velocities(const Model& m, const Contact& contact, const TopKinematics& top,
+                                    numerics::Vec& y, double restitution) {
+  return impulse(m, constraints(m, contact, top, y), y, restitution);
+}
+
+ProjectionEnergy collide_with_ball(const Model& m, numerics::Vec& y, double restitution) {
+  const Vec3 u2 = (Vec3(y.segment<3>(idx::r2)) - Vec3(y.segment<3>(idx::r1))).normalized();
+  return impulse(m, one_row(-u2, u2, 0.0), y, restitution);  // L̇2 = u2·(v2 - v1)
+}
+
+ProjectionEnergy collide_with_top(const Model& m, const TopKinematics& top, numerics::Vec& y,
+                                  double restitution) {
+  const Vec3 u1 = (Vec3(y.segment<3>(idx::r1)) - top.a).normalized();
+  return impulse(m, one_row(u1, Vec3::Zero(), u1.dot(top.a_dot)), y, restitution);  // L̇1 = u1·(v1 - ȧ)
 }
 
 }  // namespace ajx::physics
@@ -172,6 +215,8 @@ std::string_view to_string(Mode m) {
     case Mode::Sliding: return "sliding";
     case Mode::BottomStop: return "bottom_stop";
     case Mode::Stuck: return "stuck";
+    case Mode::TopStop: return "top_stop";
+    case Mode::Slack: return "slack";
   }
   return "?";
 }

@@ -53,9 +53,12 @@ struct ConeMargins {
 };
 ConeMargins cone_margins(const Model& m, const Geometry& g, double T1, double T2);
 
+// L1 held fixed by a two-link mode: l - d on the bottom ball, s_min at the top, s* stuck.
+double held_length(const Model& m, const Contact& c);
+
 // Position and velocity constraints of a mode, C(r) = 0 and J v = b (b from the moving top).
 struct Constraints {
-  int n = 0;                          // number of active constraints (1 or 2)
+  int n = 0;                          // number of active constraints (0 slack, 1 sliding, 2)
   Eigen::Matrix<double, 2, 6> J;      // ∂C/∂(r1, r2)
   Eigen::Vector2d C;                  // position residual [m]
   Eigen::Vector2d b;                  // J v must equal b [m/s]
@@ -71,14 +74,20 @@ Drift constraint_drift(const Model& m, const Contact& c, const TopKinematics& to
 
 // Mass-weighted projection of positions (Newton iterations) and then velocities onto the
 // mode's constraint manifold: Δx = -M⁻¹Jᵀ (J M⁻¹ Jᵀ)⁻¹ C. The velocity part is also the
-// plastic impact onto a new constraint set. Returns the kinetic energy removed by the
-// velocity projection, split into the Carnot loss ½ λᵀ(JM⁻¹Jᵀ)λ and the impulsive motor work.
+// impact onto a new constraint set: the impulse M Δv = -Jᵀλ, λ = (1 + e)(JM⁻¹Jᵀ)⁻¹(J v - b),
+// reverses the approach velocity J v - b times the restitution e (0: plastic).
 struct ProjectionEnergy {
-  double dissipated = 0.0;   // ½ λᵀ A λ [J]
+  double dissipated = 0.0;   // energy lost in the impact, ½(1 - e²)(Jv-b)ᵀA⁻¹(Jv-b) [J]
   double motor_work = 0.0;   // -λᵀ b, work done by the moving top during the impulse [J]
 };
 void project_positions(const Model& m, const Contact& c, const TopKinematics& top, numerics::Vec& y);
 ProjectionEnergy project_velocities(const Model& m, const Contact& c, const TopKinematics& top,
-                                    numerics::Vec& y);
+                                    numerics::Vec& y, double restitution = 0.0);
+
+// Collisions of a slack string's bead, as one-constraint impacts with restitution e:
+// with the bottom ball along u2 (L̇2 reversed), or with the top along u1 (L̇1 reversed).
+ProjectionEnergy collide_with_ball(const Model& m, numerics::Vec& y, double restitution);
+ProjectionEnergy collide_with_top(const Model& m, const TopKinematics& top, numerics::Vec& y,
+                                  double restitution);
 
 }  // namespace ajx::physics

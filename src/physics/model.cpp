@@ -26,6 +26,9 @@ std::vector<ParameterIssue> validate(const Model& model) {
        p.contact_distance, fmt::format("0 < d < l = {} m", l));
   need(p.top_stop >= 0 && p.top_stop < l - p.contact_distance, "model.top_stop", p.top_stop,
        fmt::format("0 <= s_min < l - d = {} m", l - p.contact_distance));
+  const Layers& L = model.layers;
+  need(L.regularisation > 0, "layers.regularisation", L.regularisation, "ε > 0 m/s");
+  need(L.restitution >= 0 && L.restitution <= 1, "layers.restitution", L.restitution, "0 <= e <= 1");
   return out;
 }
 
@@ -33,6 +36,8 @@ std::string_view to_string(Friction f) {
   switch (f) {
     case Friction::None: return "none";
     case Friction::Kinetic: return "kinetic";
+    case Friction::StickSlip: return "stick_slip";
+    case Friction::Regularised: return "regularised";
   }
   return "?";
 }

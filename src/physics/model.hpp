@@ -20,16 +20,25 @@ struct Parameters {
   double top_stop = 0.05;            // s_min [m], L1 >= s_min (used by the top-stop layer)
 };
 
-// Friction between bead and string. Stick-slip and the regularised law arrive with the full
-// contact model; the names are reserved here so configurations stay stable.
-enum class Friction { None, Kinetic };
+// Friction between bead and string:
+//  None         frictionless, T1 = T2;
+//  Kinetic      sliding friction μ_k only: a model without stick. Where ṡ = 0 finds the
+//               forces inside the μ_k cone the bead is held there (the Filippov solution of
+//               the Coulomb law), and the run reports it as a violated assumption;
+//  StickSlip    sliding with μ_k, sticking while the μ_s cone holds (the full model);
+//  Regularised  sgn ṡ replaced by tanh(ṡ/ε), no stuck mode: for comparison only (it creeps).
+enum class Friction { None, Kinetic, StickSlip, Regularised };
 // How T1/T2 depends on the deflection ψ of the string at the bead (model.md, "Forces").
 enum class FrictionLaw { Capstan, PointContact };
 
 struct Layers {
-  Friction friction = Friction::Kinetic;
+  Friction friction = Friction::StickSlip;
   FrictionLaw friction_law = FrictionLaw::Capstan;
+  double regularisation = 1e-3;      // ε of tanh(ṡ/ε) for Friction::Regularised [m/s]
   bool bottom_stop = true;           // one-sided contact L2 >= d
+  bool top_stop = true;              // one-sided contact L1 >= s_min
+  bool slack = true;                 // the string may go slack (else negative tensions are reported)
+  double restitution = 0.0;          // e of the re-taut impact of a slack string, in [0, 1]
 };
 
 struct Model {

@@ -7,12 +7,13 @@
 
 namespace ajx::physics {
 
-// Which constraints are active (model.md, "Modes"). The top stop and the slack string slot
-// in here with the full contact model.
+// Which constraints are active (model.md, "Modes").
 enum class Mode : int {
   Sliding = 0,     // taut, bead sliding: L1 + L2 = l, one unknown tension, T1 = κ T2
   BottomStop = 1,  // bead resting on the bottom ball: L1 = l - d, L2 = d (a double pendulum)
   Stuck = 2,       // bead held by friction: L1 = s*, L2 = l - s* (a double pendulum)
+  TopStop = 3,     // bead against the top: L1 = s_min, L2 = l - s_min (a double pendulum)
+  Slack = 4,       // L1 + L2 < l: both balls fly free under gravity and drag
 };
 std::string_view to_string(Mode m);
 

@@ -10,7 +10,7 @@ double deflection(const Vec3& u1, const Vec3& u2) {
   return std::atan2(u1.cross(u2).norm(), u1.dot(u2));
 }
 
-double tension_ratio(FrictionLaw law, double mu, double psi, int sigma) {
+double tension_ratio(FrictionLaw law, double mu, double psi, double sigma) {
   if (sigma == 0 || mu == 0.0) return 1.0;
   switch (law) {
     case FrictionLaw::Capstan:
@@ -32,7 +32,21 @@ FrictionCone friction_cone(FrictionLaw law, double mu, double psi) {
 }
 
 double sliding_mu(const Model& m) {
-  return m.layers.friction == Friction::Kinetic ? m.p.mu_kinetic : 0.0;
+  return m.layers.friction == Friction::None ? 0.0 : m.p.mu_kinetic;
+}
+
+double sticking_mu(const Model& m) {
+  switch (m.layers.friction) {
+    case Friction::StickSlip: return m.p.mu_static;
+    case Friction::Kinetic: return m.p.mu_kinetic;
+    case Friction::None:
+    case Friction::Regularised: return 0.0;
+  }
+  return 0.0;
+}
+
+bool can_stick(const Model& m) {
+  return m.layers.friction == Friction::StickSlip || m.layers.friction == Friction::Kinetic;
 }
 
 }  // namespace ajx::physics

@@ -9,12 +9,13 @@ namespace ajx::physics {
 // ψ = arccos(u1·u2) for unit vectors, computed as atan2(|u1×u2|, u1·u2): accurate near 0.
 double deflection(const Vec3& u1, const Vec3& u2);
 
-// κ = T1/T2 while sliding with σ = sgn ṡ ∈ {-1, 0, +1} and coefficient μ:
+// κ = T1/T2 while sliding with σ = sgn ṡ ∈ {-1, 0, +1} (or tanh(ṡ/ε) ∈ (-1, 1) for the
+// regularised layer) and coefficient μ:
 //   capstan:        κ = exp(μ ψ σ)
 //   point contact:  (T1-T2) cos(ψ/2) = μ σ (T1+T2) sin(ψ/2)  ⇒  κ = (1 + μσ t)/(1 - μσ t), t = tan(ψ/2)
 // The point-contact law jams (no positive κ in either direction) when μ tan(ψ/2) >= 1; then
 // sliding is impossible and this throws std::domain_error.
-double tension_ratio(FrictionLaw law, double mu, double psi, int sigma);
+double tension_ratio(FrictionLaw law, double mu, double psi, double sigma);
 
 // The friction cone: the bead holds on the string while κ_lo <= T1/T2 <= κ_hi
 // (capstan: e^{∓μψ}; point contact: (1 ∓ μ t)/(1 ± μ t)). A jammed point contact holds any
@@ -25,7 +26,12 @@ struct FrictionCone {
 };
 FrictionCone friction_cone(FrictionLaw law, double mu, double psi);
 
-// The coefficient the sliding layer uses: 0 without friction, μ_k with kinetic friction.
+// The coefficient while sliding: 0 without friction, μ_k otherwise.
 double sliding_mu(const Model& m);
+// The coefficient of the cone that holds a stuck or resting bead: μ_s with stick-slip, μ_k in
+// the kinetic layer (Coulomb with one coefficient), 0 without friction or when regularised.
+double sticking_mu(const Model& m);
+// Whether the layer has a stuck mode at all.
+bool can_stick(const Model& m);
 
 }  // namespace ajx::physics

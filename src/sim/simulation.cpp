@@ -1,5 +1,7 @@
 #include "sim/simulation.hpp"
 
+#include "physics/mode_transitions.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
@@ -10,6 +12,7 @@ namespace ajx::sim {
 
 using numerics::Vec;
 using physics::idx::dim;
+using physics::Model;
 using physics::Vec3;
 
 namespace {
@@ -33,58 +36,81 @@ Simulation::Simulation(const physics::Model& model, const physics::MotorSchedule
                        RunOptions opt)
     : model_(model), schedule_(schedule), opt_(std::move(opt)) {}
 
-namespace {
-
-// The mode the bead enters when ṡ = 0 (a reversal while sliding, or a start at rest on the
-// string): stuck while the two-link forces lie inside the friction cone, otherwise sliding in
-// the direction of the violated bound.
-Contact resolve_at_rest(const physics::Model& m, const physics::TopKinematics& top, const Vec& y) {
-  const double s = (y.segment<3>(physics::idx::r1) - top.a).norm();
-  if (m.layers.friction == physics::Friction::None) return {Mode::Sliding, 0, 0.0};
-  const Contact stuck{Mode::Stuck, 0, s};
-  const physics::ConeMargins c = physics::evaluate(m, top, stuck, y).margins;
-  if (c.up >= 0.0 && c.down >= 0.0) return stuck;
-  return {Mode::Sliding, c.up < 0.0 ? -1 : +1, 0.0};
-}
-
-}  // namespace
-
 RunSummary Simulation::run(State& s, double t_end, double sample_dt, const SampleObserver& on_sample) {
+  using physics::Guard;
   const physics::Parameters& p = model_.p;
+  const physics::Layers& layers = model_.layers;
   const double R = p.drive_radius;
-  const bool friction = model_.layers.friction != physics::Friction::None;
   auto stepper = numerics::make_stepper(opt_.method);
   RunSummary sum;
   const State begin = s;
   Contact& contact = s.contact;
   numerics::IntegrateOptions integ = opt_.integ;
+  const auto top_at = [&](double t) { return schedule_.top(R, t); };
 
   const numerics::System f = [&](double t, const Vec& y, Vec& dydt) {
     physics::rhs(model_, schedule_, contact, t, y, dydt);
   };
 
-  // Events of each mode (all "falling through zero"):
-  //  sliding:     L2 - d (the bead lands on the bottom ball); σ ṡ (the bead comes to rest on the string)
-  //  bottom stop: T1 - κ_lo F2 (the lower segment pulls the bead off the ball)
-  //  stuck:       T1 - κ_lo T2 (slips up), κ_hi T2 - T1 (slips down)
-  const auto L2_minus_d = [&](double, const Vec& y) {
-    return (y.segment<3>(physics::idx::r2) - y.segment<3>(physics::idx::r1)).norm() - p.contact_distance;
+  // Chatter resolution: after a storm of switches the force guards (cone margins, tensions)
+  // switch only past a band of `band` newtons, and impacts become plastic. Deterministic:
+  // the band starts at 1e-9 (m1 + m2) g and grows tenfold per further storm.
+  double band = 0.0;
+  double restitution = layers.restitution;
+  const double weight = (p.bead_mass + p.ball_mass) * p.gravity;
+  std::vector<double> recent_switches;
+
+  // The guards of the current mode as events; force guards are shifted by the band.
+  std::vector<physics::GuardSpec> specs;
+  std::vector<numerics::Event> events;
+  const auto arm = [&] {
+    specs = physics::guards(model_, contact);
+    events.clear();
+    for (const auto& g : specs) {
+      const bool force = g.kind == Guard::SlipUp || g.kind == Guard::SlipDown || g.kind == Guard::Slacken;
+      events.push_back({[&, kind = g.kind, force](double t, const Vec& y) {
+                          return physics::guard_value(kind, model_, top_at(t), contact, y) + (force ? band : 0.0);
+                        },
+                        g.direction});
+    }
   };
-  const auto sigma_sdot = [&](double t, const Vec& y) {
-    const physics::TopKinematics top = schedule_.top(R, t);
-    const Vec3 u1 = (y.segment<3>(physics::idx::r1) - top.a).normalized();
-    return contact.sigma * u1.dot(y.segment<3>(physics::idx::v1) - top.a_dot);
+
+  // Violations of omitted layers: entered when the watch crosses into its bad side; the worst
+  // excess is followed at every accepted step while inside.
+  struct Watch {
+    Violation v;
+    bool inside = false;
   };
-  const auto margin_up = [&](double t, const Vec& y) {
-    return physics::evaluate(model_, schedule_.top(R, t), contact, y).margins.up;
+  std::vector<std::pair<Guard, Watch>> watches;
+  const auto watch = [&](Guard g) -> Watch& {
+    for (auto& [k, w] : watches)
+      if (k == g) return w;
+    Watch w;
+    w.v.what = std::string(physics::to_string(g));
+    w.v.unit = g == Guard::WatchTension ? "N" : (g == Guard::WatchStick ? "N of cone margin" : "m");
+    watches.emplace_back(g, w);
+    return watches.back().second;
   };
-  const auto margin_down = [&](double t, const Vec& y) {
-    return physics::evaluate(model_, schedule_.top(R, t), contact, y).margins.down;
+  const auto enter_violation = [&](Guard g, double t, double excess) {
+    Watch& w = watch(g);
+    if (w.v.count++ == 0) w.v.first_time = t;
+    w.v.worst = std::max(w.v.worst, excess);
   };
-  std::vector<numerics::Event> sliding_events{{L2_minus_d, -1}};
-  if (friction) sliding_events.push_back({sigma_sdot, -1});
-  const std::vector<numerics::Event> stop_events{{margin_up, -1}};
-  const std::vector<numerics::Event> stuck_events{{margin_up, -1}, {margin_down, -1}};
+  // The cone margin a stuck bead would have here: > 0 means a model with stick would hold it.
+  const auto stick_margin = [&](double t, const Vec& y) {
+    const physics::TopKinematics top = top_at(t);
+    Model held_model = model_;
+    held_model.layers.friction = physics::Friction::StickSlip;
+    const Contact held{Mode::Stuck, 0, (Vec3(y.segment<3>(physics::idx::r1)) - top.a).norm()};
+    const physics::ConeMargins c = physics::evaluate(held_model, top, held, y).margins;
+    return std::min(c.up, c.down);
+  };
+  const auto follow_watches = [&](double t, const Vec& y) {
+    for (auto& [g, w] : watches) {
+      if (!w.inside || g == Guard::WatchStick) continue;
+      w.v.worst = std::max(w.v.worst, -physics::guard_value(g, model_, top_at(t), contact, y));
+    }
+  };
 
   // Samples on the grid s.t + k sample_dt, and the azimuths for ω_ball.
   const double t_start = s.t;
@@ -101,11 +127,11 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
   sum.min_friction_power = std::numeric_limits<double>::infinity();
 
   const auto emit = [&](double t, const Vec& y) {
-    const physics::TopKinematics top = schedule_.top(R, t);
+    const physics::TopKinematics top = top_at(t);
     const physics::Dynamics dyn = physics::evaluate(model_, top, contact, y);
     sum.max_sample_drift =
         std::max(sum.max_sample_drift, physics::constraint_drift(model_, contact, top, y).position);
-    sum.min_tension = std::min({sum.min_tension, dyn.T1, dyn.T2});
+    if (contact.mode != Mode::Slack) sum.min_tension = std::min({sum.min_tension, dyn.T1, dyn.T2});
     sum.min_friction_power = std::min(sum.min_friction_power, dyn.friction_power);
     if (on_sample) on_sample(Sample{t, contact, y, dyn, top, s.impact_loss});
   };
@@ -143,7 +169,9 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
     return true;
   };
   const auto post_step = [&](double t, Vec& y) {
-    const physics::TopKinematics top = schedule_.top(R, t);
+    follow_watches(t, y);
+    if (contact.mode == Mode::Slack) return false;
+    const physics::TopKinematics top = top_at(t);
     const physics::Drift drift = physics::constraint_drift(model_, contact, top, y);
     sum.max_drift = std::max(sum.max_drift, drift.position);
     if (drift.position <= opt_.projection_tol && drift.velocity <= opt_.projection_tol) return false;
@@ -152,34 +180,44 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
     ++sum.projections;
     return true;
   };
-  // Enter a new mode: snap onto its constraints; the velocity jump is an impulse whose
-  // Carnot loss and motor work enter the energy account (zero for a consistent switch).
-  const auto enter = [&](const Contact& next) {
-    const physics::TopKinematics top = schedule_.top(R, s.t);
-    contact = next;
-    physics::project_positions(model_, contact, top, s.y);
-    const physics::ProjectionEnergy e = physics::project_velocities(model_, contact, top, s.y);
-    s.y(physics::idx::motor_work) += e.motor_work;
-    s.impact_loss += e.dissipated;
-    ++sum.mode_switches;
-    if (contact.mode == Mode::Stuck) {
-      if (sum.sticks++ == 0) sum.first_stick = s.t;
+  // Enter a taut mode: snap onto its constraints with an impulse (restitution e; zero work for
+  // a consistent switch), then let the cones and ṡ decide the final mode.
+  const auto enter = [&](Contact next, double e) {
+    const physics::TopKinematics top = top_at(s.t);
+    if (next.mode != Mode::Slack) {
+      physics::project_positions(model_, next, top, s.y);
+      const physics::ProjectionEnergy pe = physics::project_velocities(model_, next, top, s.y, e);
+      s.y(physics::idx::motor_work) += pe.motor_work;
+      s.impact_loss += pe.dissipated;
+      next = physics::settle(model_, top, next, s.y, band);
     }
+    if (next.mode == Mode::Stuck && contact.mode != Mode::Stuck && sum.sticks++ == 0) sum.first_stick = s.t;
+    if (next.mode == Mode::Slack && contact.mode != Mode::Slack) ++sum.slack_phases;
+    if (next.mode != contact.mode || next.sigma != contact.sigma) ++sum.mode_switches;
+    contact = next;
+  };
+  const auto impact_account = [&](const physics::ProjectionEnergy& pe) {
+    s.y(physics::idx::motor_work) += pe.motor_work;
+    s.impact_loss += pe.dissipated;
+    ++sum.impacts;
+  };
+  // A storm of switches in a short time: widen the band, make impacts plastic.
+  const auto check_chatter = [&] {
+    recent_switches.push_back(s.t);
+    if (recent_switches.size() < std::size_t(opt_.chatter_switches)) return;
+    const double span = recent_switches.back() - recent_switches.front();
+    recent_switches.erase(recent_switches.begin());
+    if (span > opt_.chatter_window) return;
+    if (sum.chatter++ == 0) sum.first_chatter = s.t;
+    band = band == 0.0 ? 1e-9 * weight : std::min(10.0 * band, 1e-3 * weight);
+    restitution = 0.0;
+    recent_switches.clear();
   };
 
-  // A sliding start needs a direction: sgn ṡ, or the rest rule when ṡ = 0.
-  if (contact.mode == Mode::Sliding && friction) {
-    const physics::TopKinematics top = schedule_.top(R, s.t);
-    const double sdot = physics::geometry(top, s.y.segment<3>(physics::idx::r1), s.y.segment<3>(physics::idx::r2),
-                                          s.y.segment<3>(physics::idx::v1), s.y.segment<3>(physics::idx::v2))
-                            .L1_dot;
-    if (sdot != 0.0)
-      contact.sigma = sdot > 0 ? +1 : -1;
-    else
-      contact = resolve_at_rest(model_, top, s.y);
-  }
+  // The start: a taut mode must satisfy its cone; a sliding bead needs its direction.
+  if (contact.mode != Mode::Slack) contact = physics::settle(model_, top_at(s.t), contact, s.y);
 
-  long events = 0;
+  long n_events = 0;
   Vec last_good = s.y;
   // A law with no solution (the point contact jammed) ends the run with its reason.
   try {
@@ -193,12 +231,10 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
       for (double tb : schedule_.breakpoints())
         if (tb > s.t * (1 + 1e-15) + 1e-15 && tb < t_stop) t_stop = tb;
 
-      const auto& events_now = contact.mode == Mode::Sliding  ? sliding_events
-                               : contact.mode == Mode::Stuck ? stuck_events
-                                                             : stop_events;
+      arm();
       last_good = s.y;
       const numerics::IntegrateResult r =
-          numerics::integrate(f, *stepper, s.t, s.y, t_stop, events_now, observe, post_step, integ);
+          numerics::integrate(f, *stepper, s.t, s.y, t_stop, events, observe, post_step, integ);
       sum.steps += r.steps;
       sum.rejected += r.rejected;
       s.t = r.t;
@@ -206,49 +242,96 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
       sum.status = r.status;
 
       if (r.status == numerics::IntegrateStatus::Reached) {
-        stepper->reset();
+        // A new segment: the held modes' cones are checked again (ä jumps with ω̇).
+        if (contact.mode != Mode::Slack) {
+          const Contact c = physics::settle(model_, top_at(s.t), contact, s.y, band);
+          if (c.mode != contact.mode) enter(c, 0.0);
+        }
         continue;
       }
       if (r.status != numerics::IntegrateStatus::Event) {
         sum.failure = fmt::format("integration failed at t = {:.6f} s: {}", s.t, numerics::to_string(r.status));
         break;
       }
-      if (++events > opt_.max_events) {
+      if (++n_events > opt_.max_events) {
         sum.failure = fmt::format("event bound {} hit at t = {:.6f} s", opt_.max_events, s.t);
         break;
       }
-      const physics::TopKinematics top = schedule_.top(R, s.t);
-      switch (contact.mode) {
-        case Mode::Sliding:
-          if (r.event_index == 0) {  // landing on the bottom ball: a plastic impact
-            if (!model_.layers.bottom_stop) {
-              sum.failure = fmt::format(
-                  "the bead reached the bottom ball (L2 = d) at t = {:.6f} s but the bottom-stop layer is off", s.t);
-              break;
-            }
-            enter({Mode::BottomStop, 0, 0.0});
-            ++sum.impacts;
-            // It rests only while the contact holds; otherwise it leaves at once.
-            if (physics::evaluate(model_, top, contact, s.y).margins.up < 0.0) enter({Mode::Sliding, -1, 0.0});
-          } else {  // ṡ = 0: stick, or slide on in the direction the forces push
-            enter(resolve_at_rest(model_, top, s.y));
+      const Guard g = specs[std::size_t(r.event_index)].kind;
+      const physics::TopKinematics top = top_at(s.t);
+      if (physics::is_watch(g)) {
+        // Entering or leaving an omitted layer's bad side; the mode goes on.
+        const double value = physics::guard_value(g, model_, top, contact, s.y);
+        Watch& w = watch(g);
+        if (g == Guard::WatchStick) {
+          const double margin = stick_margin(s.t, s.y);
+          if (margin > 0.0) enter_violation(g, s.t, margin);
+        } else if (!w.inside && value <= 0.0) {
+          w.inside = true;
+          enter_violation(g, s.t, -value);
+        } else {
+          w.inside = false;
+        }
+        const double L_min = 1e-4 * p.string_length;
+        if (g == Guard::WatchBottom || g == Guard::WatchTop) {
+          const double L = physics::guard_value(g, model_, top, contact, s.y) +
+                           (g == Guard::WatchBottom ? p.contact_distance : p.top_stop);
+          if (L < L_min) {
+            sum.failure = fmt::format("at t = {:.6f} s the bead reached the {} (the {} layer is off)", s.t,
+                                      g == Guard::WatchBottom ? "bottom ball" : "top",
+                                      g == Guard::WatchBottom ? "bottom-stop" : "top-stop");
+            break;
+          }
+        }
+        continue;
+      }
+      switch (g) {
+        case Guard::LandBottom:
+        case Guard::LandTop:
+          if (contact.mode == Mode::Slack) {  // a collision in free flight; the string stays slack
+            impact_account(g == Guard::LandBottom ? physics::collide_with_ball(model_, s.y, restitution)
+                                                  : physics::collide_with_top(model_, top, s.y, restitution));
+          } else {  // landing on a stop: a plastic impact onto the two-link set
+            const double e0 = s.y(physics::idx::motor_work), l0 = s.impact_loss;
+            enter({g == Guard::LandBottom ? Mode::BottomStop : Mode::TopStop, 0, 0.0}, 0.0);
+            if (s.y(physics::idx::motor_work) != e0 || s.impact_loss != l0) ++sum.impacts;
           }
           break;
-        case Mode::Stuck:
-          enter({Mode::Sliding, r.event_index == 0 ? -1 : +1, 0.0});
+        case Guard::Rest:
+          // The kinetic layer has no static coefficient: where μ_s would have held the bead,
+          // its assumption failed (whether μ_k then holds it or lets it reverse).
+          if (layers.friction == physics::Friction::Kinetic) {
+            const double margin = stick_margin(s.t, s.y);
+            if (margin > 0.0) enter_violation(Guard::WatchStick, s.t, margin);
+          }
+          enter(physics::at_rest(model_, top, s.y, band), 0.0);
           break;
-        case Mode::BottomStop:
-          enter({Mode::Sliding, -1, 0.0});  // the bead climbs off the bottom ball
+        case Guard::SlipUp:
+          enter({Mode::Sliding, -1, 0.0}, 0.0);
+          break;
+        case Guard::SlipDown:
+          enter({Mode::Sliding, +1, 0.0}, 0.0);
+          break;
+        case Guard::Slacken:
+          enter({Mode::Slack, 0, 0.0}, 0.0);
+          break;
+        case Guard::Taut: {  // the re-taut impact, with restitution
+          const double l0 = s.impact_loss;
+          enter({Mode::Sliding, 0, 0.0}, restitution);
+          if (s.impact_loss != l0) ++sum.impacts;
+          break;
+        }
+        default:
           break;
       }
-      if (!sum.failure.empty()) break;
-      stepper->reset();
+      check_chatter();
     }
   } catch (const std::domain_error& e) {
     s.y = last_good;
     sum.failure = fmt::format("the friction law failed after t = {:.6f} s: {}", s.t, e.what());
   }
   if (sum.failure.empty()) sum.status = numerics::IntegrateStatus::Reached;
+  for (auto& [g, w] : watches) sum.violations.push_back(w.v);
   sum.t_end = s.t;
   sum.rhs_evals = stepper->rhs_evals();
   sum.energy = physics::energy_balance(p, begin, s);

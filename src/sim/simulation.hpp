@@ -3,6 +3,7 @@
 #pragma once
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "numerics/integrate.hpp"
 #include "physics/astrojax_system.hpp"
@@ -19,6 +20,8 @@ struct RunOptions {
   numerics::IntegrateOptions integ;    // tolerances, fixed step, bounds
   double projection_tol = 1e-12;       // project when |C| exceeds this [m] (or [m/s] for J v - b)
   long max_events = 1'000'000;         // bound on mode switches and impacts per run
+  int chatter_switches = 50;           // this many switches ...
+  double chatter_window = 1e-3;        // ... within this time [s] is chattering
   double omega_window = 10.0;          // ω_ball is averaged over the last window [s]
 };
 
@@ -33,6 +36,15 @@ struct Sample {
 };
 using SampleObserver = std::function<void(const Sample&)>;
 
+// An assumption of an omitted layer that the run found violated (model.md, "Modes").
+struct Violation {
+  std::string what;          // e.g. "negative tension without the slack layer"
+  long count = 0;            // times the run entered the violation
+  double first_time = -1.0;  // [s]
+  double worst = 0.0;        // the largest excess, in `unit`
+  std::string unit;
+};
+
 struct RunSummary {
   numerics::IntegrateStatus status = numerics::IntegrateStatus::Reached;
   std::string failure;             // empty when the run reached its end
@@ -41,10 +53,14 @@ struct RunSummary {
   long mode_switches = 0, impacts = 0, projections = 0;
   long sticks = 0;                 // times the bead stuck to the string (ṡ = 0 inside the cone)
   double first_stick = -1.0;       // time of the first [s], -1 if none
+  long slack_phases = 0;           // times the string went slack
+  long chatter = 0;                // chattering episodes detected (many switches in a short time)
+  double first_chatter = -1.0;     // [s]
+  std::vector<Violation> violations;  // assumptions of omitted layers that did not hold
   double max_drift = 0.0;          // largest |C| after any accepted step, before projection [m]
   double max_sample_drift = 0.0;   // largest |C| over the delivered samples [m]
   physics::EnergyBalance energy{};
-  double omega_ball = 0.0;         // mean dθ/dt of the centre of mass over the last window [rad/s]
+  double omega_ball = 0.0;         // mean dθ/dt of the two balls over the last window [rad/s]
   double min_tension = 0.0;        // smallest of T1, T2 seen at samples [N]
   double min_friction_power = 0.0; // smallest (T1 - T2) ṡ seen at samples [W]
   bool ok() const { return failure.empty(); }

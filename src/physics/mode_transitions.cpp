@@ -1,0 +1,134 @@
+#include "physics/mode_transitions.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "physics/astrojax_system.hpp"
+#include "physics/contact_modes.hpp"
+#include "physics/string_friction.hpp"
+
+namespace ajx::physics {
+
+std::string_view to_string(Guard g) {
+  switch (g) {
+    case Guard::LandBottom: return "land_bottom";
+    case Guard::LandTop: return "land_top";
+    case Guard::Rest: return "rest";
+    case Guard::SlipUp: return "slip_up";
+    case Guard::SlipDown: return "slip_down";
+    case Guard::Slacken: return "slacken";
+    case Guard::Taut: return "taut";
+    case Guard::WatchTension: return "negative tension without the slack layer";
+    case Guard::WatchStick: return "ṡ = 0 inside the static cone without stick-slip";
+    case Guard::WatchBottom: return "bead below the bottom stop without that layer";
+    case Guard::WatchTop: return "bead above the top stop without that layer";
+  }
+  return "?";
+}
+
+bool is_watch(Guard g) { return g >= Guard::WatchTension; }
+
+std::vector<GuardSpec> guards(const Model& m, const Contact& c) {
+  const Layers& L = m.layers;
+  std::vector<GuardSpec> out;
+  const auto add = [&](Guard g, int dir) { out.push_back({g, dir}); };
+  const auto tension = [&] {
+    if (L.slack) add(Guard::Slacken, -1);
+    else add(Guard::WatchTension, 0);
+  };
+  switch (c.mode) {
+    case Mode::Sliding:
+      add(L.bottom_stop ? Guard::LandBottom : Guard::WatchBottom, L.bottom_stop ? -1 : 0);
+      add(L.top_stop ? Guard::LandTop : Guard::WatchTop, L.top_stop ? -1 : 0);
+      if (can_stick(m) && c.sigma != 0) add(Guard::Rest, -1);
+      if (L.friction == Friction::Regularised) add(Guard::WatchStick, 0);
+      tension();
+      break;
+    case Mode::Stuck:
+      add(Guard::SlipUp, -1);
+      add(Guard::SlipDown, -1);
+      tension();
+      break;
+    case Mode::BottomStop:
+      add(Guard::SlipUp, -1);
+      tension();
+      break;
+    case Mode::TopStop:
+      add(Guard::SlipDown, -1);
+      tension();
+      break;
+    case Mode::Slack:
+      add(Guard::Taut, +1);
+      if (L.bottom_stop) add(Guard::LandBottom, -1);
+      if (L.top_stop) add(Guard::LandTop, -1);
+      break;
+  }
+  return out;
+}
+
+double guard_value(Guard g, const Model& m, const TopKinematics& top, const Contact& c,
+                   const numerics::Vec& y) {
+  const Vec3 r1 = y.segment<3>(idx::r1), r2 = y.segment<3>(idx::r2);
+  switch (g) {
+    case Guard::LandBottom:
+    case Guard::WatchBottom: return (r2 - r1).norm() - m.p.contact_distance;
+    case Guard::LandTop:
+    case Guard::WatchTop: return (r1 - top.a).norm() - m.p.top_stop;
+    case Guard::Taut: return (r1 - top.a).norm() + (r2 - r1).norm() - m.p.string_length;
+    case Guard::Rest:
+    case Guard::WatchStick: {
+      const Vec3 u1 = (r1 - top.a).normalized();
+      const double sdot = u1.dot(Vec3(y.segment<3>(idx::v1)) - top.a_dot);
+      return g == Guard::Rest ? c.sigma * sdot : sdot;
+    }
+    case Guard::SlipUp: return evaluate(m, top, c, y).margins.up;
+    case Guard::SlipDown: return evaluate(m, top, c, y).margins.down;
+    case Guard::Slacken:
+    case Guard::WatchTension: {
+      const Dynamics d = evaluate(m, top, c, y);
+      return std::min(d.T1, d.T2);
+    }
+  }
+  return 1.0;
+}
+
+Contact at_rest(const Model& m, const TopKinematics& top, const numerics::Vec& y, double band) {
+  const double s = (Vec3(y.segment<3>(idx::r1)) - top.a).norm();
+  const Contact held{Mode::Stuck, 0, s};
+  const ConeMargins c = evaluate(m, top, held, y).margins;
+  if (can_stick(m) && c.up >= -band && c.down >= -band) return held;
+  if (can_stick(m)) return {Mode::Sliding, c.up < -band ? -1 : +1, 0.0};
+  // No stuck mode: the direction of s̈ under frictionless sliding, which friction only scales.
+  const Model frictionless{m.p, Layers{Friction::None, m.layers.friction_law}};
+  const Dynamics d = evaluate(frictionless, top, {Mode::Sliding, 0, 0.0}, y);
+  const double sdd = d.g.u1.dot(d.acc1 - top.a_ddot) + d.g.q1;
+  return {Mode::Sliding, sdd > 0.0 ? +1 : (sdd < 0.0 ? -1 : 0), 0.0};
+}
+
+Contact settle(const Model& m, const TopKinematics& top, const Contact& c, const numerics::Vec& y,
+               double band) {
+  switch (c.mode) {
+    case Mode::Stuck:
+    case Mode::BottomStop:
+    case Mode::TopStop: {
+      const ConeMargins k = evaluate(m, top, c, y).margins;
+      if (k.up < -band) return {Mode::Sliding, -1, 0.0};
+      if (k.down < -band) return {Mode::Sliding, +1, 0.0};
+      return c;
+    }
+    case Mode::Sliding: {
+      if (m.layers.friction == Friction::None || m.layers.friction == Friction::Regularised)
+        return {Mode::Sliding, 0, 0.0};
+      const double sdot = geometry(top, y.segment<3>(idx::r1), y.segment<3>(idx::r2), y.segment<3>(idx::v1),
+                                   y.segment<3>(idx::v2))
+                              .L1_dot;
+      if (sdot != 0.0) return {Mode::Sliding, sdot > 0.0 ? +1 : -1, 0.0};
+      return at_rest(m, top, y, band);
+    }
+    case Mode::Slack:
+      return c;
+  }
+  return c;
+}
+
+}  // namespace ajx::physics

@@ -1,0 +1,56 @@
+// When a mode ends and what follows (model.md, "Modes"): the guard functions each mode
+// watches, as zero crossings located on the dense output, and the mode entered at a crossing.
+// Guards of omitted layers are watches: they count a violated assumption and switch nothing.
+#pragma once
+#include <string_view>
+#include <vector>
+
+#include "numerics/vector.hpp"
+#include "physics/drive.hpp"
+#include "physics/model.hpp"
+#include "physics/state.hpp"
+
+namespace ajx::physics {
+
+enum class Guard {
+  LandBottom,  // L2 - d falls through 0: the bead meets the bottom ball
+  LandTop,     // L1 - s_min falls through 0: the bead meets the top
+  Rest,        // σ ṡ falls through 0: the sliding bead comes to rest on the string
+  SlipUp,      // T1 - κ_lo T2 falls through 0: the held bead slips up
+  SlipDown,    // κ_hi T2 - T1 falls through 0: the held bead slips down
+  Slacken,     // min(T1, T2) falls through 0: the string goes slack
+  Taut,        // L1 + L2 - l rises through 0: the slack string pulls taut (an impact)
+  // Watches of omitted layers (both directions: entering and leaving the violation).
+  WatchTension,  // min(T1, T2) < 0 without the slack layer
+  WatchStick,    // ṡ = 0 without a stuck mode (regularised friction creeps through it)
+  WatchBottom,   // L2 < d without the bottom stop
+  WatchTop,      // L1 < s_min without the top stop
+};
+std::string_view to_string(Guard g);
+bool is_watch(Guard g);
+
+struct GuardSpec {
+  Guard kind;
+  int direction;  // -1 falling, +1 rising, 0 both
+};
+
+// The guards of a mode under the model's layers.
+std::vector<GuardSpec> guards(const Model& m, const Contact& c);
+
+// The guard's value at (t, y) in mode c; zero at the switch.
+double guard_value(Guard g, const Model& m, const TopKinematics& top, const Contact& c,
+                   const numerics::Vec& y);
+
+// The mode the bead takes when it is at rest on the string (ṡ = 0): stuck while the forces
+// of the held bead lie inside the sticking cone, else sliding in the direction of the violated
+// bound (σ = -1 up, +1 down). Without a stuck mode: sliding in the direction s̈ points.
+// `band` widens the cone by a few newtons (>= 0; the chatter resolution, see simulation.hpp).
+Contact at_rest(const Model& m, const TopKinematics& top, const numerics::Vec& y, double band = 0.0);
+
+// A taut mode entered with velocities already on its constraints: the held modes keep it
+// while their one-sided cones hold, else the bead slides in the direction of the violated
+// bound; a sliding bead gets σ = sgn ṡ, or the rest rule when ṡ = 0.
+Contact settle(const Model& m, const TopKinematics& top, const Contact& c, const numerics::Vec& y,
+               double band = 0.0);
+
+}  // namespace ajx::physics
