@@ -13,6 +13,7 @@
 #include "physics/astrojax_system.hpp"
 #include "physics/energy.hpp"
 #include "sim/simulation.hpp"
+#include "steady_orbit.hpp"
 
 using namespace ajx;
 using namespace ajx::physics;
@@ -168,54 +169,6 @@ TEST(Simulation, MeasuredConvergenceOrderOfRk4AndDopri5) {
   }
 }
 
-namespace {
-
-// Steady rotation of the pair on the bottom stop, driven at constant ω (model.md, "Modes":
-// a double pendulum with links l - d and d on the moving support). In the frame turning with
-// the motor (top at (R, 0, 0)) the balls sit still at p1, p2 with lab velocity ω ẑ × p and
-// acceleration -ω² (x, y, 0), so Newton's law becomes the algebraic force balance
-//   -m1 ω² P p1 = -T1 u1 + F2 u2 - c_D ω ẑ×p1 - m1 g ẑ
-//   -m2 ω² P p2 =         -F2 u2 - c_D ω ẑ×p2 - m2 g ẑ
-//   |p1 - a| = l - d,  |p2 - p1| = d,
-// eight equations in (p1, p2, T1, F2), solved here by Newton from the linear-theory guess.
-Eigen::Matrix<double, 8, 1> steady_residual(const Parameters& p, double w, const Eigen::Matrix<double, 8, 1>& x) {
-  const Vec3 a(p.drive_radius, 0, 0), z = Vec3::UnitZ();
-  const Vec3 p1 = x.segment<3>(0), p2 = x.segment<3>(3);
-  const double T1 = x(6), F2 = x(7);
-  const Vec3 u1 = (p1 - a).normalized(), u2 = (p2 - p1).normalized();
-  const auto horiz = [](const Vec3& v) { return Vec3(v.x(), v.y(), 0.0); };
-  Eigen::Matrix<double, 8, 1> r;
-  r.segment<3>(0) = -T1 * u1 + F2 * u2 - p.drag * w * z.cross(p1) - p.bead_mass * p.gravity * z +
-                    p.bead_mass * w * w * horiz(p1);
-  r.segment<3>(3) = -F2 * u2 - p.drag * w * z.cross(p2) - p.ball_mass * p.gravity * z + p.ball_mass * w * w * horiz(p2);
-  r(6) = (p1 - a).norm() - (p.string_length - p.contact_distance);
-  r(7) = (p2 - p1).norm() - p.contact_distance;
-  return r;
-}
-
-Eigen::Matrix<double, 8, 1> solve_steady(const Parameters& p, double w) {
-  // Linear theory of a pendulum of length l driven at R: in-phase radius R ω0²/(ω0² - ω²).
-  const double l = p.string_length, g = p.gravity;
-  const double rho = p.drive_radius * (g / l) / (g / l - w * w);
-  Eigen::Matrix<double, 8, 1> x;
-  x << rho, 0, -(l - p.contact_distance), rho, 0, -l, (p.bead_mass + p.ball_mass) * g, p.ball_mass * g;
-  for (int it = 0; it < 50; ++it) {
-    const auto r = steady_residual(p, w, x);
-    if (r.norm() < 1e-15) break;
-    Eigen::Matrix<double, 8, 8> J;
-    for (int j = 0; j < 8; ++j) {
-      auto xp = x;
-      const double h = 1e-7 * std::max(1.0, std::abs(x(j)));
-      xp(j) += h;
-      J.col(j) = (steady_residual(p, w, xp) - r) / h;
-    }
-    x -= J.partialPivLu().solve(r);
-  }
-  return x;
-}
-
-}  // namespace
-
 TEST(Simulation, PairOnTheBottomStopSettlesToTheSteadyConicalOrbit) {
   // Drag mass-proportional on both balls (c_D/m equal) damps every mode as e^{-c_D t/(2m)};
   // with c_D = 0.02 kg/s that is e^{-0.556 t}: after 80 s an initial 0.1 m transient is 5e-21 m,
@@ -230,8 +183,10 @@ TEST(Simulation, PairOnTheBottomStopSettlesToTheSteadyConicalOrbit) {
     const sim::RunSummary r = simulation.run(s, 80.0, 0.0);
     ASSERT_TRUE(r.ok()) << r.failure;
     ASSERT_EQ(s.contact.mode, Mode::BottomStop);
-    const auto x = solve_steady(m.p, w);
-    ASSERT_LT(steady_residual(m.p, w, x).norm(), 1e-12) << "Newton did not converge";
+    // The co-rotating force balance (tests/steady_orbit.hpp), solved independently.
+    const double L1 = m.p.string_length - m.p.contact_distance, L2 = m.p.contact_distance;
+    const auto x = test::solve_steady(m.p, L1, L2, w, test::linear_guess(m.p, L1, L2, w));
+    ASSERT_LT(test::steady_residual(m.p, L1, L2, w, x).norm(), 1e-12) << "Newton did not converge";
     // The simulated state in the co-rotating frame.
     double phi, om, od;
     sched.phase(s.t, phi, om, od);

@@ -122,6 +122,9 @@ Contact settle(const Model& m, const TopKinematics& top, const Contact& c, const
       const double sdot = geometry(top, y.segment<3>(idx::r1), y.segment<3>(idx::r2), y.segment<3>(idx::v1),
                                    y.segment<3>(idx::v2))
                               .L1_dot;
+      // A direction already chosen (by the cone, at a slip) stands while ṡ is at round-off.
+      const double sdot_floor = 1e-12;  // [m/s]
+      if (c.sigma != 0 && std::abs(sdot) <= sdot_floor) return c;
       if (sdot != 0.0) return {Mode::Sliding, sdot > 0.0 ? +1 : -1, 0.0};
       return at_rest(m, top, y, band);
     }

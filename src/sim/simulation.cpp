@@ -60,21 +60,6 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
   const double weight = (p.bead_mass + p.ball_mass) * p.gravity;
   std::vector<double> recent_switches;
 
-  // The guards of the current mode as events; force guards are shifted by the band.
-  std::vector<physics::GuardSpec> specs;
-  std::vector<numerics::Event> events;
-  const auto arm = [&] {
-    specs = physics::guards(model_, contact);
-    events.clear();
-    for (const auto& g : specs) {
-      const bool force = g.kind == Guard::SlipUp || g.kind == Guard::SlipDown || g.kind == Guard::Slacken;
-      events.push_back({[&, kind = g.kind, force](double t, const Vec& y) {
-                          return physics::guard_value(kind, model_, top_at(t), contact, y) + (force ? band : 0.0);
-                        },
-                        g.direction});
-    }
-  };
-
   // Violations of omitted layers: entered when the watch crosses into its bad side; the worst
   // excess is followed at every accepted step while inside.
   struct Watch {
@@ -111,6 +96,30 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
       w.v.worst = std::max(w.v.worst, -physics::guard_value(g, model_, top_at(t), contact, y));
     }
   };
+
+  // The guards of the current mode as events; force guards are shifted by the band.
+  std::vector<physics::GuardSpec> specs;
+  std::vector<numerics::Event> events;
+  const auto arm = [&] {
+    specs = physics::guards(model_, contact);
+    // A violation already present at a segment start is never seen as a crossing: check here.
+    for (const auto& g : specs) {
+      if (!physics::is_watch(g.kind) || g.kind == Guard::WatchStick) continue;
+      const double value = physics::guard_value(g.kind, model_, top_at(s.t), contact, s.y);
+      Watch& w = watch(g.kind);
+      if (value < 0.0 && !w.inside) enter_violation(g.kind, s.t, -value);
+      w.inside = value < 0.0;
+    }
+    events.clear();
+    for (const auto& g : specs) {
+      const bool force = g.kind == Guard::SlipUp || g.kind == Guard::SlipDown || g.kind == Guard::Slacken;
+      events.push_back({[&, kind = g.kind, force](double t, const Vec& y) {
+                          return physics::guard_value(kind, model_, top_at(t), contact, y) + (force ? band : 0.0);
+                        },
+                        g.direction});
+    }
+  };
+
 
   // Samples on the grid s.t + k sample_dt, and the azimuths for ω_ball.
   const double t_start = s.t;
@@ -201,6 +210,37 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
     s.impact_loss += pe.dissipated;
     ++sum.impacts;
   };
+  const double on_surface = 1e-10 * p.string_length;  // a state this close sits on a surface [m]
+  // The bead lands on a stop: a plastic impact onto the two-link set.
+  const auto land = [&](Mode stop) {
+    const double w0 = s.y(physics::idx::motor_work), l0 = s.impact_loss;
+    enter({stop, 0, 0.0}, 0.0);
+    if (s.y(physics::idx::motor_work) != w0 || s.impact_loss != l0) ++sum.impacts;
+  };
+  // The slack string pulls taut: one simultaneous impact with restitution e onto the active set,
+  // L1 + L2 = l, together with a stop the bead touches at that instant (the bead resting on the
+  // ball moves with it). With e > 0 the string rebounds and stays slack; with e = 0 it is taut.
+  const auto pull_taut = [&] {
+    const physics::TopKinematics top = top_at(s.t);
+    const Vec3 r1 = s.y.segment<3>(physics::idx::r1), r2 = s.y.segment<3>(physics::idx::r2);
+    Contact set{Mode::Sliding, 0, 0.0};
+    if (layers.bottom_stop && (r2 - r1).norm() - p.contact_distance <= on_surface)
+      set.mode = Mode::BottomStop;
+    else if (layers.top_stop && (r1 - top.a).norm() - p.top_stop <= on_surface)
+      set.mode = Mode::TopStop;
+    // Bounces shrink geometrically (a Zeno sequence): below the rest speed the impact is plastic,
+    // before the flights become shorter than any event can resolve.
+    const physics::Geometry g = physics::geometry(top, r1, r2, s.y.segment<3>(physics::idx::v1),
+                                                  s.y.segment<3>(physics::idx::v2));
+    const double approach = g.L1_dot + g.L2_dot;
+    if (restitution > 0.0 && approach > opt_.rest_speed) {
+      impact_account(physics::project_velocities(model_, set, top, s.y, restitution));
+    } else {
+      const double l0 = s.impact_loss;
+      enter(set, 0.0);
+      if (s.impact_loss != l0) ++sum.impacts;
+    }
+  };
   // A storm of switches in a short time: widen the band, make impacts plastic.
   const auto check_chatter = [&] {
     recent_switches.push_back(s.t);
@@ -214,13 +254,54 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
     recent_switches.clear();
   };
 
-  // The start: a taut mode must satisfy its cone; a sliding bead needs its direction.
-  if (contact.mode != Mode::Slack) contact = physics::settle(model_, top_at(s.t), contact, s.y);
+  // After an impact, and at every segment start, the state may sit on a guard's surface while
+  // moving into its forbidden side, where no crossing is ever seen: act on it here. A taut
+  // mode must also satisfy its cone (settle) and, with the slack layer, positive tensions.
+  const auto resolve_now = [&] {
+    for (int pass = 0; pass < 20; ++pass) {
+      const physics::TopKinematics top = top_at(s.t);
+      const physics::Geometry g =
+          physics::geometry(top, s.y.segment<3>(physics::idx::r1), s.y.segment<3>(physics::idx::r2),
+                            s.y.segment<3>(physics::idx::v1), s.y.segment<3>(physics::idx::v2));
+      const bool free = contact.mode == Mode::Sliding || contact.mode == Mode::Slack;
+      const bool into_ball = layers.bottom_stop && g.L2 - p.contact_distance <= on_surface && g.L2_dot < 0.0;
+      const bool into_top = layers.top_stop && g.L1 - p.top_stop <= on_surface && g.L1_dot < 0.0;
+      if (free && (into_ball || into_top)) {
+        if (contact.mode == Mode::Slack)
+          impact_account(into_ball ? physics::collide_with_ball(model_, s.y, 0.0)
+                                   : physics::collide_with_top(model_, top, s.y, 0.0));
+        else
+          land(into_ball ? Mode::BottomStop : Mode::TopStop);
+        continue;
+      }
+      if (contact.mode == Mode::Slack) {
+        if (g.L1 + g.L2 - p.string_length >= -on_surface && g.L1_dot + g.L2_dot > 0.0) {
+          pull_taut();
+          continue;
+        }
+        break;
+      }
+      const Contact settled = physics::settle(model_, top, contact, s.y, band);
+      if (settled.mode != contact.mode || settled.sigma != contact.sigma) {
+        enter(settled, 0.0);
+        continue;
+      }
+      if (layers.slack) {
+        const physics::Dynamics d = physics::evaluate(model_, top, contact, s.y);
+        if (std::min(d.T1, d.T2) < -band) {
+          enter({Mode::Slack, 0, 0.0}, 0.0);
+          continue;
+        }
+      }
+      break;
+    }
+  };
 
   long n_events = 0;
   Vec last_good = s.y;
   // A law with no solution (the point contact jammed) ends the run with its reason.
   try {
+    resolve_now();
     if (sample_dt > 0.0) {
       emit(s.t, s.y);
       next_sample = 1;
@@ -242,11 +323,7 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
       sum.status = r.status;
 
       if (r.status == numerics::IntegrateStatus::Reached) {
-        // A new segment: the held modes' cones are checked again (ä jumps with ω̇).
-        if (contact.mode != Mode::Slack) {
-          const Contact c = physics::settle(model_, top_at(s.t), contact, s.y, band);
-          if (c.mode != contact.mode) enter(c, 0.0);
-        }
+        resolve_now();  // a new segment: ä jumps with ω̇, so the cones are checked again
         continue;
       }
       if (r.status != numerics::IntegrateStatus::Event) {
@@ -288,14 +365,11 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
       switch (g) {
         case Guard::LandBottom:
         case Guard::LandTop:
-          if (contact.mode == Mode::Slack) {  // a collision in free flight; the string stays slack
-            impact_account(g == Guard::LandBottom ? physics::collide_with_ball(model_, s.y, restitution)
-                                                  : physics::collide_with_top(model_, top, s.y, restitution));
-          } else {  // landing on a stop: a plastic impact onto the two-link set
-            const double e0 = s.y(physics::idx::motor_work), l0 = s.impact_loss;
-            enter({g == Guard::LandBottom ? Mode::BottomStop : Mode::TopStop, 0, 0.0}, 0.0);
-            if (s.y(physics::idx::motor_work) != e0 || s.impact_loss != l0) ++sum.impacts;
-          }
+          if (contact.mode == Mode::Slack)  // a collision in free flight; the string stays slack
+            impact_account(g == Guard::LandBottom ? physics::collide_with_ball(model_, s.y, 0.0)
+                                                  : physics::collide_with_top(model_, top, s.y, 0.0));
+          else
+            land(g == Guard::LandBottom ? Mode::BottomStop : Mode::TopStop);
           break;
         case Guard::Rest:
           // The kinetic layer has no static coefficient: where μ_s would have held the bead,
@@ -315,16 +389,14 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
         case Guard::Slacken:
           enter({Mode::Slack, 0, 0.0}, 0.0);
           break;
-        case Guard::Taut: {  // the re-taut impact, with restitution
-          const double l0 = s.impact_loss;
-          enter({Mode::Sliding, 0, 0.0}, restitution);
-          if (s.impact_loss != l0) ++sum.impacts;
+        case Guard::Taut:
+          pull_taut();
           break;
-        }
         default:
           break;
       }
       check_chatter();
+      resolve_now();
     }
   } catch (const std::domain_error& e) {
     s.y = last_good;

@@ -20,6 +20,7 @@ struct RunOptions {
   numerics::IntegrateOptions integ;    // tolerances, fixed step, bounds
   double projection_tol = 1e-12;       // project when |C| exceeds this [m] (or [m/s] for J v - b)
   long max_events = 1'000'000;         // bound on mode switches and impacts per run
+  double rest_speed = 1e-3;            // re-taut impacts slower than this are plastic [m/s]
   int chatter_switches = 50;           // this many switches ...
   double chatter_window = 1e-3;        // ... within this time [s] is chattering
   double omega_window = 10.0;          // ω_ball is averaged over the last window [s]
