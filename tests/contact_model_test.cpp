@@ -310,3 +310,69 @@ TEST(ContactModel, TheSameRunTwiceIsBitIdentical) {
   ASSERT_EQ(a.size(), b.size());
   EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(double)), 0);
 }
+
+TEST(ContactModel, EventBoundAndChatterResolutionNeverHang) {
+  // A violent spin-up with many switches. (1) With a bound of 20 events the run stops and says
+  // so. (2) With a hair-trigger chatter detector (3 switches within 10 s) the resolution engages
+  // (band widened, impacts plastic), the run completes, reports it, and stays deterministic
+  // and energy-consistent.
+  Model m = paper_model();
+  m.p.drive_radius = 0.06;
+  const MotorSchedule sched({{2 * pi, 2 * pi, 10.0}, {2 * pi, 14 * pi, 75.4}});
+  {
+    State st = sim::hanging_at_rest(m, sched);
+    sim::RunOptions o = opts(1e-10);
+    o.max_events = 20;
+    sim::Simulation simulation(m, sched, o);
+    const sim::RunSummary r = simulation.run(st, sched.duration(), 0.0);
+    EXPECT_FALSE(r.ok());
+    EXPECT_NE(r.failure.find("event bound 20 hit"), std::string::npos) << r.failure;
+    EXPECT_TRUE(st.y.allFinite());
+  }
+  std::vector<double> finals[2];
+  for (auto& fin : finals) {
+    State st = sim::hanging_at_rest(m, sched);
+    sim::RunOptions o = opts(1e-10);
+    o.chatter_switches = 3;
+    o.chatter_window = 10.0;
+    sim::Simulation simulation(m, sched, o);
+    const sim::RunSummary r = simulation.run(st, sched.duration(), 0.0);
+    ASSERT_TRUE(r.ok()) << r.failure;
+    EXPECT_GT(r.chatter, 0);
+    EXPECT_GT(r.first_chatter, 0.0);
+    EXPECT_LT(std::abs(r.energy.residual), 1e-6 * r.energy.motor_work);
+    fin.assign(st.y.data(), st.y.data() + st.y.size());
+  }
+  EXPECT_EQ(finals[0], finals[1]);
+}
+
+TEST(ContactModel, PlasticLandingOnTheTopStop) {
+  // Fixed top, no drag, straight string: the bead thrown up the string at v0 from
+  // L1 = s_min + h decelerates at g (the hanging ball stays still) and reaches the top stop at
+  // t* = (v0 - v)/g with v = √(v0² - 2 g h); the plastic landing dissipates ½ m1 v². The stop
+  // only blocks upward motion and a straight string has no friction (ψ = 0): the bead leaves
+  // at once and falls back at g.
+  Model m = paper_model();
+  m.p.drive_radius = 0.0;
+  m.p.drag = 0.0;
+  const double l = m.p.string_length, g = m.p.gravity, smin = m.p.top_stop, h = 0.2, v0 = 2.5;
+  const double v = std::sqrt(v0 * v0 - 2 * g * h), t_land = (v0 - v) / g;
+  const MotorSchedule sched({{0.0, 0.0, 1.0}});
+  for (const double dt : {-1e-6, 1e-6}) {
+    State st = sim::explicit_state(m, sched, Vec3(0, 0, -(smin + h)), Vec3(0, 0, -l), Vec3(0, 0, v0), Vec3::Zero(),
+                                   Mode::Sliding);
+    sim::Simulation simulation(m, sched, opts(1e-12));
+    const sim::RunSummary r = simulation.run(st, t_land + dt, 0.0);
+    ASSERT_TRUE(r.ok()) << r.failure;
+    if (dt < 0) {
+      EXPECT_EQ(st.contact.mode, Mode::Sliding);
+    } else {
+      EXPECT_EQ(r.impacts, 1);
+      EXPECT_NEAR(st.impact_loss, 0.5 * m.p.bead_mass * v * v, 1e-9 * m.p.bead_mass * v0 * v0);
+      EXPECT_EQ(st.contact.mode, Mode::Sliding);
+      EXPECT_EQ(st.contact.sigma, +1);
+      EXPECT_NEAR(st.y(idx::v1 + 2), -g * dt, 1e-9);
+      EXPECT_NEAR(st.y(idx::r1 + 2), -smin, 1e-9);
+    }
+  }
+}

@@ -104,6 +104,30 @@ TEST(Simulation, MotorWorkBalancesEnergyDragFrictionAndImpacts) {
   }
 }
 
+TEST(Simulation, EnergyClosesThroughStickSlipSlackPhasesAndImpacts) {
+  // The full model on a violent spin-up (R = 6 cm, ω_m 2π → 14π rad/s): the bead sticks and
+  // slips, the string goes slack and snaps taut again, the bead lands on the bottom ball.
+  // W_m = ΔE + drag + friction + impact losses must still close to 1e-6 of W_m.
+  Model m;
+  m.p.drive_radius = 0.06;
+  m.layers.friction = Friction::StickSlip;
+  const double pi = 3.141592653589793;
+  const MotorSchedule sched({{2 * pi, 2 * pi, 10.0}, {2 * pi, 14 * pi, 75.4}, {14 * pi, 14 * pi, 20.0}});
+  State s = sim::hanging_at_rest(m, sched);
+  sim::Simulation simulation(m, sched, tight("dopri5", 1e-10));
+  const sim::RunSummary r = simulation.run(s, sched.duration(), 0.01);
+  ASSERT_TRUE(r.ok()) << r.failure;
+  EXPECT_GT(r.sticks, 0);
+  EXPECT_GT(r.slack_phases, 0);
+  EXPECT_GT(r.impacts, 0);
+  EXPECT_LT(std::abs(r.energy.residual), 1e-6 * r.energy.motor_work);
+  EXPECT_GE(r.min_friction_power, 0.0);
+  report("full_model_balance",
+         fmt::format("W_m {:.6e} J, residual {:.2e} J, friction {:.3e} J, impacts {:.3e} J ({}), sticks {}, slack {}",
+                     r.energy.motor_work, r.energy.residual, r.energy.friction_loss, r.energy.impact_loss, r.impacts,
+                     r.sticks, r.slack_phases));
+}
+
 TEST(Simulation, ConstraintDriftStaysBelow1e10OverA600sRun) {
   Model m;
   m.p.drive_radius = 0.01;
