@@ -170,7 +170,7 @@ TEST(ContactModel, SlackPhaseEndsInAReTautImpact) {
   const MotorSchedule sched({{0.0, 0.0, 1.0}});
   const Vec3 r1(0, 0, -(l - d - delta)), r2(0, 0, -(l - delta));
   for (const double dt : {-1e-6, 1e-3}) {
-    State st = sim::explicit_state(m, sched, r1, r2, Vec3::Zero(), Vec3::Zero(), Mode::Slack, 0.0, 0.01);
+    State st = sim::explicit_state(m, sched, r1, r2, Vec3::Zero(), Vec3::Zero(), Mode::Slack);
     sim::Simulation simulation(m, sched, opts(1e-12));
     const sim::RunSummary r = simulation.run(st, t_taut + dt, 0.0);
     ASSERT_TRUE(r.ok()) << r.failure;
@@ -198,7 +198,7 @@ TEST(ContactModel, BouncingWithRestitutionEndsWithoutAnEventStorm) {
   const double l = m.p.string_length, d = m.p.contact_distance;
   const MotorSchedule sched({{0.0, 0.0, 2.0}});
   State st = sim::explicit_state(m, sched, Vec3(0, 0, -(l - d - 0.01)), Vec3(0, 0, -(l - 0.01)), Vec3::Zero(),
-                                 Vec3::Zero(), Mode::Slack, 0.0, 0.02);
+                                 Vec3::Zero(), Mode::Slack);
   sim::Simulation simulation(m, sched, opts(1e-12));
   const sim::RunSummary r = simulation.run(st, 2.0, 0.0);
   ASSERT_TRUE(r.ok()) << r.failure;

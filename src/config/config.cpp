@@ -242,6 +242,9 @@ RunConfig parse_run_config(std::string_view text, std::string_view source_name,
     c.run.projection_tol = r.number("projection_tol", 1e-12, 0.0, 1e-3, true);
     c.run.max_events = long(r.number("max_events", 1e6, 1.0, 1e12));
     c.run.omega_window = r.number("omega_window", 10.0, 0.0, 1e7, true);
+    c.run.rest_speed = r.number("rest_speed", c.run.rest_speed, 0.0, 1.0);
+    c.run.chatter_switches = int(r.number("chatter_switches", c.run.chatter_switches, 2.0, 1e6));
+    c.run.chatter_window = r.number("chatter_window", c.run.chatter_window, 0.0, 1e3, true);
     r.reject_unknown();
   }
   {
@@ -255,10 +258,11 @@ RunConfig parse_run_config(std::string_view text, std::string_view source_name,
       c.initial.r2 = r.vec3("r2", bound);
       c.initial.v1 = r.has("v1") ? r.vec3("v1", 1e3) : physics::Vec3::Zero();
       c.initial.v2 = r.has("v2") ? r.vec3("v2", 1e3) : physics::Vec3::Zero();
-      const std::string mode = r.word("mode", "sliding", {"sliding", "bottom_stop", "stuck"});
+      const std::string mode = r.word("mode", "sliding", {"sliding", "bottom_stop", "stuck", "slack"});
       c.initial.mode = mode == "sliding"       ? physics::Mode::Sliding
                        : mode == "bottom_stop" ? physics::Mode::BottomStop
-                                               : physics::Mode::Stuck;
+                       : mode == "stuck"       ? physics::Mode::Stuck
+                                               : physics::Mode::Slack;
       c.initial.length_tolerance =
           r.number("length_tolerance", c.initial.length_tolerance, 0.0, 0.1 * c.model.p.string_length, true);
     }

@@ -440,7 +440,10 @@ State explicit_state(const physics::Model& model, const physics::MotorSchedule& 
   s.y.segment<3>(physics::idx::v1) = v1;
   s.y.segment<3>(physics::idx::v2) = v2;
   const double L1 = (r1 - top.a).norm(), L2 = (r2 - r1).norm();
-  if (std::abs(L1 + L2 - p.string_length) > tol_length)
+  if (mode == Mode::Slack && L1 + L2 > p.string_length + tol_length)
+    throw std::invalid_argument(fmt::format(
+        "initial positions give L1 + L2 = {:.9g} m, longer than the string l = {:.9g} m", L1 + L2, p.string_length));
+  if (mode != Mode::Slack && std::abs(L1 + L2 - p.string_length) > tol_length)
     throw std::invalid_argument(fmt::format(
         "initial positions give L1 + L2 = {:.9g} m, not the string length l = {:.9g} m (tolerance {:g} m)",
         L1 + L2, p.string_length, tol_length));

@@ -89,7 +89,8 @@ State hanging_at_rest(const physics::Model& model, const physics::MotorSchedule&
                       double t0 = 0.0);
 
 // An explicit state, projected onto the mode's constraints. Throws std::invalid_argument when
-// it is too far from them (|L1 + L2 - l| > tol_length) or below the bottom stop.
+// it is too far from them (|L1 + L2 - l| > tol_length; for a slack start L1 + L2 > l) or
+// below the bottom stop.
 State explicit_state(const physics::Model& model, const physics::MotorSchedule& schedule,
                      const physics::Vec3& r1, const physics::Vec3& r2, const physics::Vec3& v1,
                      const physics::Vec3& v2, Mode mode, double t0 = 0.0,
