@@ -376,3 +376,28 @@ TEST(ContactModel, PlasticLandingOnTheTopStop) {
     }
   }
 }
+
+TEST(ContactModel, WithoutTheBottomStopTheCrossingIsReportedAndTheSingularityRefused) {
+  // The free fall of the bead along a straight string with the bottom-stop layer off: it
+  // passes L2 = d at t* = √(2 (0.3 - d)/g), reported as a violation from that instant, with
+  // the penetration as its worst value; it falls on until 1e-4 l from the ball, where the
+  // equations are singular, and the run ends there with that reason.
+  Model m = paper_model();
+  m.p.drive_radius = 0.0;
+  m.p.drag = 0.0;
+  m.layers.bottom_stop = false;
+  const double l = m.p.string_length, d = m.p.contact_distance, g = m.p.gravity, L20 = 0.3;
+  const double t_cross = std::sqrt(2 * (L20 - d) / g);
+  const MotorSchedule sched({{0.0, 0.0, 1.0}});
+  State st = sim::explicit_state(m, sched, Vec3(0, 0, -(l - L20)), Vec3(0, 0, -l), Vec3::Zero(), Vec3::Zero(),
+                                 Mode::Sliding);
+  sim::Simulation simulation(m, sched, opts(1e-12));
+  const sim::RunSummary r = simulation.run(st, 1.0, 0.0);
+  EXPECT_FALSE(r.ok());
+  EXPECT_NE(r.failure.find("bottom-stop layer is off"), std::string::npos) << "failure: " << r.failure;
+  ASSERT_EQ(r.violations.size(), 1u);
+  EXPECT_NE(r.violations[0].what.find("below the bottom stop"), std::string::npos);
+  EXPECT_EQ(r.violations[0].count, 1);
+  EXPECT_NEAR(r.violations[0].first_time, t_cross, 1e-9);
+  EXPECT_GT(r.violations[0].worst, 0.5 * d);
+}

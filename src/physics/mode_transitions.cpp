@@ -18,6 +18,8 @@ std::string_view to_string(Guard g) {
     case Guard::SlipDown: return "slip_down";
     case Guard::Slacken: return "slacken";
     case Guard::Taut: return "taut";
+    case Guard::ReachBall: return "the bead reached the bottom ball";
+    case Guard::ReachTop: return "the bead reached the top";
     case Guard::WatchTension: return "negative tension without the slack layer";
     case Guard::WatchStick: return "ṡ = 0 inside the static cone without stick-slip";
     case Guard::WatchBottom: return "bead below the bottom stop without that layer";
@@ -40,6 +42,8 @@ std::vector<GuardSpec> guards(const Model& m, const Contact& c) {
     case Mode::Sliding:
       add(L.bottom_stop ? Guard::LandBottom : Guard::WatchBottom, L.bottom_stop ? -1 : 0);
       add(L.top_stop ? Guard::LandTop : Guard::WatchTop, L.top_stop ? -1 : 0);
+      if (!L.bottom_stop) add(Guard::ReachBall, -1);
+      if (!L.top_stop) add(Guard::ReachTop, -1);
       if (can_stick(m) && c.sigma != 0) add(Guard::Rest, -1);
       if (L.friction == Friction::Regularised) add(Guard::WatchStick, 0);
       tension();
@@ -75,6 +79,8 @@ double guard_value(Guard g, const Model& m, const TopKinematics& top, const Cont
     case Guard::LandTop:
     case Guard::WatchTop: return (r1 - top.a).norm() - m.p.top_stop;
     case Guard::Taut: return (r1 - top.a).norm() + (r2 - r1).norm() - m.p.string_length;
+    case Guard::ReachBall: return (r2 - r1).norm() - 1e-4 * m.p.string_length;
+    case Guard::ReachTop: return (r1 - top.a).norm() - 1e-4 * m.p.string_length;
     case Guard::Rest:
     case Guard::WatchStick: {
       const Vec3 u1 = (r1 - top.a).normalized();

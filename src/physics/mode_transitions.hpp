@@ -20,6 +20,8 @@ enum class Guard {
   SlipDown,    // κ_hi T2 - T1 falls through 0: the held bead slips down
   Slacken,     // min(T1, T2) falls through 0: the string goes slack
   Taut,        // L1 + L2 - l rises through 0: the slack string pulls taut (an impact)
+  ReachBall,   // L2 falls to 1e-4 l without the bottom stop: singular, the run ends
+  ReachTop,    // L1 falls to 1e-4 l without the top stop: singular, the run ends
   // Watches of omitted layers (both directions: entering and leaving the violation).
   WatchTension,  // min(T1, T2) < 0 without the slack layer
   WatchStick,    // ṡ = 0 without a stuck mode (regularised friction creeps through it)

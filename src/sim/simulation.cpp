@@ -349,17 +349,6 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
         } else {
           w.inside = false;
         }
-        const double L_min = 1e-4 * p.string_length;
-        if (g == Guard::WatchBottom || g == Guard::WatchTop) {
-          const double L = physics::guard_value(g, model_, top, contact, s.y) +
-                           (g == Guard::WatchBottom ? p.contact_distance : p.top_stop);
-          if (L < L_min) {
-            sum.failure = fmt::format("at t = {:.6f} s the bead reached the {} (the {} layer is off)", s.t,
-                                      g == Guard::WatchBottom ? "bottom ball" : "top",
-                                      g == Guard::WatchBottom ? "bottom-stop" : "top-stop");
-            break;
-          }
-        }
         continue;
       }
       switch (g) {
@@ -392,9 +381,15 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
         case Guard::Taut:
           pull_taut();
           break;
+        case Guard::ReachBall:
+        case Guard::ReachTop:
+          sum.failure = fmt::format("at t = {:.6f} s {} (the {} layer is off): the equations are singular there",
+                                    s.t, physics::to_string(g), g == Guard::ReachBall ? "bottom-stop" : "top-stop");
+          break;
         default:
           break;
       }
+      if (!sum.failure.empty()) break;
       check_chatter();
       resolve_now();
     }
