@@ -66,6 +66,19 @@ Model paper_model() {
   return m;
 }
 
+// The scenes whose answers are derived by hand: a fixed top (R = 0) and no drag.
+Model fixed_top() {
+  Model m = paper_model();
+  m.p.drive_radius = 0.0;
+  m.p.drag = 0.0;
+  return m;
+}
+
+sim::RunSummary run_to(const Model& m, const MotorSchedule& sched, State& st, double t_end, double rtol = 1e-12) {
+  sim::Simulation simulation(m, sched, opts(rtol));
+  return simulation.run(st, t_end, 0.0);
+}
+
 }  // namespace
 
 TEST(ContactModel, StuckOrbitInsideTheConeStaysStuck) {
@@ -131,17 +144,14 @@ TEST(ContactModel, PlasticLandingOnTheBottomStop) {
   // A fixed top (R = 0), no drag, the string hanging straight: the bottom ball hangs still
   // (T2 = m2 g) and the bead falls freely along the string from L2 = 0.3 m. It lands after
   // t* = √(2 (0.3 - d)/g) at v = g t* and stops dead: the impact dissipates m1 g (0.3 - d).
-  Model m = paper_model();
-  m.p.drive_radius = 0.0;
-  m.p.drag = 0.0;
+  Model m = fixed_top();
   const double l = m.p.string_length, d = m.p.contact_distance, g = m.p.gravity, L20 = 0.3;
   const double t_land = std::sqrt(2 * (L20 - d) / g);
   const MotorSchedule sched({{0.0, 0.0, 1.0}});
   for (const double dt : {-1e-6, 1e-6}) {
     State st = sim::explicit_state(m, sched, Vec3(0, 0, -(l - L20)), Vec3(0, 0, -l), Vec3::Zero(), Vec3::Zero(),
                                    Mode::Sliding);
-    sim::Simulation simulation(m, sched, opts(1e-12));
-    const sim::RunSummary r = simulation.run(st, t_land + dt, 0.0);
+    const sim::RunSummary r = run_to(m, sched, st, t_land + dt);
     ASSERT_TRUE(r.ok()) << r.failure;
     if (dt < 0) {
       EXPECT_EQ(st.contact.mode, Mode::Sliding);
@@ -162,17 +172,14 @@ TEST(ContactModel, SlackPhaseEndsInAReTautImpact) {
   // top: both fall freely together for t* = √(2δ/g) until the string pulls taut; the
   // plastic re-taut impact (and the bead meeting the ball at that instant) stop both, and
   // (m1 + m2) g δ is dissipated. They then hang at rest on the bottom stop.
-  Model m = paper_model();
-  m.p.drive_radius = 0.0;
-  m.p.drag = 0.0;
+  Model m = fixed_top();
   const double l = m.p.string_length, d = m.p.contact_distance, g = m.p.gravity, delta = 0.005;
   const double t_taut = std::sqrt(2 * delta / g);
   const MotorSchedule sched({{0.0, 0.0, 1.0}});
   const Vec3 r1(0, 0, -(l - d - delta)), r2(0, 0, -(l - delta));
   for (const double dt : {-1e-6, 1e-3}) {
     State st = sim::explicit_state(m, sched, r1, r2, Vec3::Zero(), Vec3::Zero(), Mode::Slack);
-    sim::Simulation simulation(m, sched, opts(1e-12));
-    const sim::RunSummary r = simulation.run(st, t_taut + dt, 0.0);
+    const sim::RunSummary r = run_to(m, sched, st, t_taut + dt);
     ASSERT_TRUE(r.ok()) << r.failure;
     if (dt < 0) {
       EXPECT_EQ(st.contact.mode, Mode::Slack);
@@ -191,16 +198,13 @@ TEST(ContactModel, BouncingWithRestitutionEndsWithoutAnEventStorm) {
   // The same drop with restitution e = 0.5: the string bounces the ball up and the bounces
   // shrink geometrically (a Zeno sequence). The run must end, with every impact accounted:
   // ΔE + impact losses = 0 to 1e-6 of the energy dissipated.
-  Model m = paper_model();
-  m.p.drive_radius = 0.0;
-  m.p.drag = 0.0;
+  Model m = fixed_top();
   m.layers.restitution = 0.5;
   const double l = m.p.string_length, d = m.p.contact_distance;
   const MotorSchedule sched({{0.0, 0.0, 2.0}});
   State st = sim::explicit_state(m, sched, Vec3(0, 0, -(l - d - 0.01)), Vec3(0, 0, -(l - 0.01)), Vec3::Zero(),
                                  Vec3::Zero(), Mode::Slack);
-  sim::Simulation simulation(m, sched, opts(1e-12));
-  const sim::RunSummary r = simulation.run(st, 2.0, 0.0);
+  const sim::RunSummary r = run_to(m, sched, st, 2.0);
   ASSERT_TRUE(r.ok()) << r.failure;
   EXPECT_GT(r.impacts, 2);
   EXPECT_LT(std::abs(r.energy.residual), 1e-6 * r.energy.impact_loss);
@@ -281,8 +285,7 @@ TEST(ContactModel, OmittedLayersReportTheirViolatedAssumptions) {
     const MotorSchedule sched({{0.0, 0.0, 0.5}});
     const Vec3 up = Vec3(0.05, 0, 1).normalized();
     State st = sim::explicit_state(m, sched, (l - d) * up, l * up, Vec3::Zero(), Vec3::Zero(), Mode::BottomStop);
-    sim::Simulation simulation(m, sched, opts(1e-10));
-    const sim::RunSummary r = simulation.run(st, 0.5, 0.0);
+    const sim::RunSummary r = run_to(m, sched, st, 0.5, 1e-10);
     ASSERT_TRUE(r.ok()) << r.failure;
     bool found = false;
     for (const auto& v : r.violations)
@@ -352,17 +355,14 @@ TEST(ContactModel, PlasticLandingOnTheTopStop) {
   // t* = (v0 - v)/g with v = √(v0² - 2 g h); the plastic landing dissipates ½ m1 v². The stop
   // only blocks upward motion and a straight string has no friction (ψ = 0): the bead leaves
   // at once and falls back at g.
-  Model m = paper_model();
-  m.p.drive_radius = 0.0;
-  m.p.drag = 0.0;
+  Model m = fixed_top();
   const double l = m.p.string_length, g = m.p.gravity, smin = m.p.top_stop, h = 0.2, v0 = 2.5;
   const double v = std::sqrt(v0 * v0 - 2 * g * h), t_land = (v0 - v) / g;
   const MotorSchedule sched({{0.0, 0.0, 1.0}});
   for (const double dt : {-1e-6, 1e-6}) {
     State st = sim::explicit_state(m, sched, Vec3(0, 0, -(smin + h)), Vec3(0, 0, -l), Vec3(0, 0, v0), Vec3::Zero(),
                                    Mode::Sliding);
-    sim::Simulation simulation(m, sched, opts(1e-12));
-    const sim::RunSummary r = simulation.run(st, t_land + dt, 0.0);
+    const sim::RunSummary r = run_to(m, sched, st, t_land + dt);
     ASSERT_TRUE(r.ok()) << r.failure;
     if (dt < 0) {
       EXPECT_EQ(st.contact.mode, Mode::Sliding);
@@ -382,17 +382,14 @@ TEST(ContactModel, WithoutTheBottomStopTheCrossingIsReportedAndTheSingularityRef
   // passes L2 = d at t* = √(2 (0.3 - d)/g), reported as a violation from that instant, with
   // the penetration as its worst value; it falls on until 1e-4 l from the ball, where the
   // equations are singular, and the run ends there with that reason.
-  Model m = paper_model();
-  m.p.drive_radius = 0.0;
-  m.p.drag = 0.0;
+  Model m = fixed_top();
   m.layers.bottom_stop = false;
   const double l = m.p.string_length, d = m.p.contact_distance, g = m.p.gravity, L20 = 0.3;
   const double t_cross = std::sqrt(2 * (L20 - d) / g);
   const MotorSchedule sched({{0.0, 0.0, 1.0}});
   State st = sim::explicit_state(m, sched, Vec3(0, 0, -(l - L20)), Vec3(0, 0, -l), Vec3::Zero(), Vec3::Zero(),
                                  Mode::Sliding);
-  sim::Simulation simulation(m, sched, opts(1e-12));
-  const sim::RunSummary r = simulation.run(st, 1.0, 0.0);
+  const sim::RunSummary r = run_to(m, sched, st, 1.0);
   EXPECT_FALSE(r.ok());
   EXPECT_NE(r.failure.find("bottom-stop layer is off"), std::string::npos) << "failure: " << r.failure;
   ASSERT_EQ(r.violations.size(), 1u);

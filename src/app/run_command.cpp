@@ -83,7 +83,7 @@ struct Trajectory {
     col("motor_work", motor_work, "J", "cumulative work done by the motor");
     col("drag_loss", drag_loss, "J", "cumulative drag dissipation");
     col("friction_loss", friction_loss, "J", "cumulative friction dissipation");
-    col("impact_loss", impact_loss, "J", "cumulative dissipation in plastic impacts");
+    col("impact_loss", impact_loss, "J", "cumulative dissipation in impacts");
   }
 };
 
