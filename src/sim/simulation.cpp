@@ -36,7 +36,8 @@ Simulation::Simulation(const physics::Model& model, const physics::MotorSchedule
                        RunOptions opt)
     : model_(model), schedule_(schedule), opt_(std::move(opt)) {}
 
-RunSummary Simulation::run(State& s, double t_end, double sample_dt, const SampleObserver& on_sample) {
+RunSummary Simulation::run(State& s, double t_end, double sample_dt, const SampleObserver& on_sample,
+                           double sample_origin) {
   using physics::Guard;
   const physics::Parameters& p = model_.p;
   const physics::Layers& layers = model_.layers;
@@ -121,9 +122,10 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
   };
 
 
-  // Samples on the grid s.t + k sample_dt, and the azimuths for ω_ball.
+  // Samples on the grid origin + k sample_dt, and the azimuths for ω_ball.
   const double t_start = s.t;
-  long next_sample = 0;
+  const double origin = std::isfinite(sample_origin) ? sample_origin : t_start;
+  long next_sample = sample_dt > 0.0 ? long(std::ceil((t_start - origin) / sample_dt - 1e-9)) : 0;
   Vec ybuf(dim);
   Azimuth az1, az2;
   az1.reset(s.y.segment<3>(physics::idx::r1));
@@ -147,7 +149,7 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
   const auto observe = [&](const numerics::StepView& step) {
     // Samples in (t0, t1] (the first one at t_start is emitted before integrating).
     while (sample_dt > 0.0) {
-      const double ts = t_start + double(next_sample) * sample_dt;
+      const double ts = origin + double(next_sample) * sample_dt;
       if (ts > step.t1() || ts > t_end) break;
       if (ts >= step.t0()) {
         step.at(ts, ybuf);
@@ -302,9 +304,9 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
   // A law with no solution (the point contact jammed) ends the run with its reason.
   try {
     resolve_now();
-    if (sample_dt > 0.0) {
+    if (sample_dt > 0.0 && origin + double(next_sample) * sample_dt <= t_start) {
       emit(s.t, s.y);
-      next_sample = 1;
+      ++next_sample;
     }
     while (s.t < t_end) {
       // Stop on the schedule's breakpoints: ω̇ jumps there.

@@ -2,6 +2,7 @@
 // modes (impacts included), project onto the constraints, and hand samples to an observer.
 #pragma once
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -71,9 +72,11 @@ class Simulation {
  public:
   Simulation(const physics::Model& model, const physics::MotorSchedule& schedule, RunOptions opt);
 
-  // Integrate s from s.t to t_end, sampling every sample_dt (and at s.t; sample_dt <= 0: none). s is advanced in place;
-  // on failure it holds the last good state.
-  RunSummary run(State& s, double t_end, double sample_dt, const SampleObserver& on_sample = {});
+  // Integrate s from s.t to t_end, sampling every sample_dt (sample_dt <= 0: none) on the grid
+  // sample_origin + k sample_dt from s.t on (the default origin is s.t). s is advanced in
+  // place; on failure it holds the last good state.
+  RunSummary run(State& s, double t_end, double sample_dt, const SampleObserver& on_sample = {},
+                 double sample_origin = std::numeric_limits<double>::quiet_NaN());
 
   const physics::Model& model() const { return model_; }
   const physics::MotorSchedule& schedule() const { return schedule_; }

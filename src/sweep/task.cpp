@@ -1,0 +1,114 @@
+#include "sweep/task.hpp"
+
+#include <cmath>
+
+#include "sweep/codec.hpp"
+
+namespace ajx::sweep {
+
+TaskOutput run_task(const ChainSetup& chain, const TaskSpan& span, physics::State start) {
+  const physics::MotorSchedule schedule(chain.protocol.schedule);
+  sim::Simulation simulation(chain.model, schedule, chain.run);
+  TaskOutput out;
+  const auto& windows = chain.protocol.windows;
+  for (int i = 0; i < span.num_windows; ++i) out.windows.push_back({span.first_window + i, {}, {}, {}, {}, {}, {}, {}, {}});
+  // The sample grid is anchored at the chain's t = 0, so a result depends on its task alone and
+  // the samples do not depend on how the chain is split.
+  std::size_t w = 0;
+  const auto on_sample = [&](const sim::Sample& s) {
+    while (w < out.windows.size() && s.t >= windows[std::size_t(out.windows[w].index)].t_end) ++w;
+    if (w == out.windows.size() || s.t < windows[std::size_t(out.windows[w].index)].t_begin) return;
+    WindowRecord& rec = out.windows[w];
+    rec.t.push_back(s.t);
+    rec.omega_m.push_back(s.top.omega);
+    for (int k = 0; k < 3; ++k) {
+      rec.r1.push_back(s.y(physics::idx::r1 + k));
+      rec.r2.push_back(s.y(physics::idx::r2 + k));
+    }
+    rec.L1.push_back(s.dyn.g.L1);
+    rec.T1.push_back(s.dyn.T1);
+    rec.T2.push_back(s.dyn.T2);
+    rec.mode.push_back(static_cast<std::int32_t>(s.contact.mode));
+  };
+  start.t = span.t_begin;
+  const sim::RunSummary r = simulation.run(start, span.t_end, 1.0 / chain.sample_rate, on_sample, 0.0);
+  out.ok = r.ok();
+  out.failure = r.failure;
+  out.final_state = start;
+  out.steps = r.steps;
+  out.rhs_evals = r.rhs_evals;
+  out.impacts = r.impacts;
+  out.sticks = r.sticks;
+  out.slack_phases = r.slack_phases;
+  out.simulated = r.t_end - span.t_begin;
+  return out;
+}
+
+namespace {
+void put_state(ByteWriter& w, const physics::State& s) {
+  w.put(s.t);
+  w.put(static_cast<std::int32_t>(s.contact.mode));
+  w.put(static_cast<std::int32_t>(s.contact.sigma));
+  w.put(s.contact.s_star);
+  w.put(s.impact_loss);
+  w.put_vector(std::vector<double>(s.y.data(), s.y.data() + s.y.size()));
+}
+physics::State get_state(ByteReader& r) {
+  physics::State s;
+  s.t = r.get<double>();
+  s.contact.mode = static_cast<physics::Mode>(r.get<std::int32_t>());
+  s.contact.sigma = r.get<std::int32_t>();
+  s.contact.s_star = r.get<double>();
+  s.impact_loss = r.get<double>();
+  const auto y = r.get_vector<double>();
+  s.y = numerics::Vec::Map(y.data(), Eigen::Index(y.size()));
+  return s;
+}
+}  // namespace
+
+std::vector<std::byte> encode(const physics::State& s) {
+  ByteWriter w;
+  put_state(w, s);
+  return w.take();
+}
+
+physics::State decode_state(const std::vector<std::byte>& bytes) {
+  ByteReader r(bytes.data(), bytes.size());
+  return get_state(r);
+}
+
+std::vector<std::byte> encode(const TaskOutput& o) {
+  ByteWriter w;
+  w.put<std::uint8_t>(o.ok);
+  w.put_string(o.failure);
+  put_state(w, o.final_state);
+  for (long v : {o.steps, o.rhs_evals, o.impacts, o.sticks, o.slack_phases}) w.put<std::int64_t>(v);
+  w.put(o.simulated);
+  w.put<std::uint64_t>(o.windows.size());
+  for (const WindowRecord& rec : o.windows) {
+    w.put<std::int32_t>(rec.index);
+    for (const auto* v : {&rec.t, &rec.omega_m, &rec.r1, &rec.r2, &rec.L1, &rec.T1, &rec.T2}) w.put_vector(*v);
+    w.put_vector(rec.mode);
+  }
+  return w.take();
+}
+
+TaskOutput decode_output(const std::vector<std::byte>& bytes) {
+  ByteReader r(bytes.data(), bytes.size());
+  TaskOutput o;
+  o.ok = r.get<std::uint8_t>() != 0;
+  o.failure = r.get_string();
+  o.final_state = get_state(r);
+  for (long* v : {&o.steps, &o.rhs_evals, &o.impacts, &o.sticks, &o.slack_phases}) *v = long(r.get<std::int64_t>());
+  o.simulated = r.get<double>();
+  o.windows.resize(r.get<std::uint64_t>());
+  for (WindowRecord& rec : o.windows) {
+    rec.index = r.get<std::int32_t>();
+    for (auto* v : {&rec.t, &rec.omega_m, &rec.r1, &rec.r2, &rec.L1, &rec.T1, &rec.T2}) *v = r.get_vector<double>();
+    rec.mode = r.get_vector<std::int32_t>();
+  }
+  if (!r.done()) throw std::runtime_error("sweep codec: trailing bytes in a task output");
+  return o;
+}
+
+}  // namespace ajx::sweep

@@ -1,0 +1,49 @@
+// One task of a sweep chain: integrate the chain's schedule over [t_begin, t_end] from the
+// carried state, and record every measurement window's samples at a fixed rate, so that the
+// orbit can be classified now and reclassified later without integrating again.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "physics/model.hpp"
+#include "physics/state.hpp"
+#include "sim/simulation.hpp"
+#include "sweep/protocol.hpp"
+
+namespace ajx::sweep {
+
+// What every task of a chain shares.
+struct ChainSetup {
+  physics::Model model;
+  CompiledProtocol protocol;
+  sim::RunOptions run;
+  double sample_rate = 200.0;  // samples per second inside windows [1/s]
+};
+
+// The samples of one window, row-major: r1 and r2 are N×3.
+struct WindowRecord {
+  int index = 0;  // window index in the chain
+  std::vector<double> t, omega_m, r1, r2, L1, T1, T2;
+  std::vector<std::int32_t> mode;
+  std::size_t size() const { return t.size(); }
+};
+
+struct TaskOutput {
+  bool ok = true;
+  std::string failure;           // why the integration stopped early
+  physics::State final_state;    // the carry for the next task (the last good state on failure)
+  std::vector<WindowRecord> windows;
+  long steps = 0, rhs_evals = 0, impacts = 0, sticks = 0, slack_phases = 0;
+  double simulated = 0.0;        // seconds of physics integrated [s]
+};
+
+TaskOutput run_task(const ChainSetup& chain, const TaskSpan& span, physics::State start);
+
+// The carry and the output as bytes for the farm; decode(encode(x)) == x exactly.
+std::vector<std::byte> encode(const physics::State& s);
+physics::State decode_state(const std::vector<std::byte>& bytes);
+std::vector<std::byte> encode(const TaskOutput& out);
+TaskOutput decode_output(const std::vector<std::byte>& bytes);
+
+}  // namespace ajx::sweep

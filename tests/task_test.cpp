@@ -1,0 +1,112 @@
+// Sweep tasks: a chain run as tasks (each from the previous task's final state) records
+// every window at the fixed sample rate; the result depends on the task alone; the byte
+// encoding for the farm is exact; a failed integration comes back with its reason.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "sim/simulation.hpp"
+#include "sweep/task.hpp"
+
+using namespace ajx;
+using namespace ajx::sweep;
+
+namespace {
+const double pi = 3.141592653589793;
+
+ChainSetup short_chain() {
+  ChainSetup c;
+  c.model.p.drive_radius = 0.01;
+  Segment up{Segment::Kind::Ramp, {2 * pi, 6 * pi, 0.5, 2.0}, {}};
+  Segment hold{Segment::Kind::Steps, {}, {6 * pi, 5 * pi, 2, 3.0, 2.0, 1.0}};
+  c.protocol = compile({up, hold}, 2 * pi);
+  c.run.method = "dop853";
+  c.run.integ.tol.rtol = 1e-10;
+  c.run.integ.tol.atol = 1e-12;
+  c.sample_rate = 100.0;
+  return c;
+}
+
+// Run the chain as consecutive tasks, each from the previous task's final state.
+std::vector<WindowRecord> run_chain(const ChainSetup& c, int windows_per_task) {
+  const physics::MotorSchedule sched(c.protocol.schedule);
+  physics::State carry = sim::hanging_at_rest(c.model, sched);
+  std::vector<WindowRecord> all;
+  for (const TaskSpan& span : split(c.protocol, windows_per_task)) {
+    TaskOutput out = run_task(c, span, carry);
+    EXPECT_TRUE(out.ok) << out.failure;
+    EXPECT_DOUBLE_EQ(out.final_state.t, span.t_end);
+    carry = out.final_state;
+    for (auto& w : out.windows) all.push_back(std::move(w));
+  }
+  return all;
+}
+}  // namespace
+
+TEST(Task, EveryWindowIsRecordedAtTheSampleRate) {
+  const ChainSetup c = short_chain();
+  const auto windows = run_chain(c, 2);
+  ASSERT_EQ(windows.size(), c.protocol.windows.size());
+  for (std::size_t i = 0; i < windows.size(); ++i) {
+    const Window& w = c.protocol.windows[i];
+    const WindowRecord& r = windows[i];
+    EXPECT_EQ(r.index, int(i));
+    // N = duration × rate, give or take the grid's phase at the window's edges.
+    EXPECT_NEAR(double(r.size()), (w.t_end - w.t_begin) * c.sample_rate, 1.0);
+    ASSERT_GT(r.size(), 0u);
+    EXPECT_GE(r.t.front(), w.t_begin);
+    EXPECT_LT(r.t.back(), w.t_end);
+    EXPECT_EQ(r.r1.size(), 3 * r.size());
+    EXPECT_NEAR(r.omega_m.front(), w.omega_begin, std::abs(w.omega_end - w.omega_begin) / 10 + 1e-9);
+  }
+}
+
+TEST(Task, SplittingAChainDifferentlyChangesNothingBeyondTheTolerance) {
+  // Task boundaries restart the integrator; the trajectory is the same to the tolerance
+  // (this scene is a driven pendulum on the bottom stop, not chaotic over 20 s).
+  const ChainSetup c = short_chain();
+  const auto a = run_chain(c, 1), b = run_chain(c, 100);
+  ASSERT_EQ(a.size(), b.size());
+  double worst = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    ASSERT_EQ(a[i].size(), b[i].size());
+    for (std::size_t k = 0; k < a[i].r2.size(); ++k) worst = std::max(worst, std::abs(a[i].r2[k] - b[i].r2[k]));
+  }
+  EXPECT_LT(worst, 1e-7);
+}
+
+TEST(Task, TheSameTaskTwiceGivesTheSameBytes) {
+  const ChainSetup c = short_chain();
+  const physics::MotorSchedule sched(c.protocol.schedule);
+  const auto spans = split(c.protocol, 3);
+  const physics::State s0 = sim::hanging_at_rest(c.model, sched);
+  EXPECT_EQ(encode(run_task(c, spans[0], s0)), encode(run_task(c, spans[0], s0)));
+}
+
+TEST(Task, EncodingRoundTripsExactly) {
+  const ChainSetup c = short_chain();
+  const physics::MotorSchedule sched(c.protocol.schedule);
+  const TaskOutput out = run_task(c, split(c.protocol, 2)[0], sim::hanging_at_rest(c.model, sched));
+  const std::vector<std::byte> bytes = encode(out);
+  const TaskOutput back = decode_output(bytes);
+  EXPECT_EQ(encode(back), bytes);
+  EXPECT_EQ(back.windows.size(), out.windows.size());
+  EXPECT_EQ(back.final_state.y, out.final_state.y);
+  EXPECT_EQ(back.final_state.contact.mode, out.final_state.contact.mode);
+  const physics::State st = decode_state(encode(out.final_state));
+  EXPECT_EQ(st.y, out.final_state.y);
+  EXPECT_EQ(st.t, out.final_state.t);
+  std::vector<std::byte> cut(bytes.begin(), bytes.end() - 3);
+  EXPECT_THROW(decode_output(cut), std::runtime_error);
+}
+
+TEST(Task, AFailedIntegrationComesBackWithItsReasonAndLastGoodState) {
+  ChainSetup c = short_chain();
+  c.run.integ.max_steps = 50;  // far too few for the first task
+  const physics::MotorSchedule sched(c.protocol.schedule);
+  const TaskOutput out = run_task(c, split(c.protocol, 100)[0], sim::hanging_at_rest(c.model, sched));
+  EXPECT_FALSE(out.ok);
+  EXPECT_NE(out.failure.find("max steps"), std::string::npos) << out.failure;
+  EXPECT_TRUE(out.final_state.y.allFinite());
+  EXPECT_LT(out.final_state.t, c.protocol.duration);
+}
