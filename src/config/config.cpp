@@ -165,31 +165,8 @@ std::vector<physics::DriveSegment> parse_schedule(const toml::table& root, std::
   return out;
 }
 
-}  // namespace
-
-RunConfig parse_run_config(std::string_view text, std::string_view source_name,
-                           const std::vector<std::string>& overrides) {
-  RunConfig c;
-  c.source_name = source_name;
-  c.source_text = text;
-  c.overrides = overrides;
-  const std::string_view file = c.source_name;
-  toml::table root;
-  try {
-    root = toml::parse(text, source_name);
-  } catch (const toml::parse_error& e) {
-    throw ConfigError(fmt::format("{}:{}:{}: {}", file, e.source().begin.line, e.source().begin.column,
-                                  e.description()));
-  }
-  for (const auto& o : overrides) apply_override(root, o, file);
-
-  for (const auto& [k, v] : root) {
-    static const std::set<std::string> known{"model", "layers", "integrator", "initial", "schedule", "output"};
-    if (!known.count(std::string(k.str())))
-      throw ConfigError(fmt::format("{}: key '{}': unknown key; allowed tables: {}", file, k.str(),
-                                    fmt::join(known, ", ")));
-  }
-
+// [model], [layers], [integrator] and [initial]: shared by every command.
+void parse_common(const toml::table& root, std::string_view file, CommonConfig& c) {
   {  // [model]: ranges that depend on each other are checked by physics::validate below.
     Reader r(subtable(root, "model", file), "model", file);
     physics::Parameters& p = c.model.p;
@@ -268,6 +245,46 @@ RunConfig parse_run_config(std::string_view text, std::string_view source_name,
     }
     r.reject_unknown();
   }
+}
+
+// The file parsed, the overrides applied, and the top-level tables checked against `known`.
+toml::table parse_root(std::string_view text, std::string_view file, const std::vector<std::string>& overrides,
+                       const std::set<std::string>& known) {
+  toml::table root;
+  try {
+    root = toml::parse(text, file);
+  } catch (const toml::parse_error& e) {
+    throw ConfigError(fmt::format("{}:{}:{}: {}", file, e.source().begin.line, e.source().begin.column,
+                                  e.description()));
+  }
+  for (const auto& o : overrides) apply_override(root, o, file);
+  for (const auto& [k, v] : root)
+    if (!known.count(std::string(k.str())))
+      throw ConfigError(fmt::format("{}: key '{}': unknown key; allowed tables: {}", file, k.str(),
+                                    fmt::join(known, ", ")));
+  return root;
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ConfigError(fmt::format("{}: cannot open the configuration file", path));
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+}  // namespace
+
+RunConfig parse_run_config(std::string_view text, std::string_view source_name,
+                           const std::vector<std::string>& overrides) {
+  RunConfig c;
+  c.source_name = source_name;
+  c.source_text = text;
+  c.overrides = overrides;
+  const std::string_view file = c.source_name;
+  const toml::table root =
+      parse_root(text, file, overrides, {"model", "layers", "integrator", "initial", "schedule", "output"});
+  parse_common(root, file, c);
   c.schedule = parse_schedule(root, file);
   {
     Reader r(subtable(root, "output", file), "output", file);
@@ -279,11 +296,7 @@ RunConfig parse_run_config(std::string_view text, std::string_view source_name,
 }
 
 RunConfig load_run_config(const std::string& path, const std::vector<std::string>& overrides) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ConfigError(fmt::format("{}: cannot open the configuration file", path));
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_run_config(ss.str(), path, overrides);
+  return parse_run_config(read_file(path), path, overrides);
 }
 
 }  // namespace ajx::config

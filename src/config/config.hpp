@@ -32,14 +32,19 @@ struct OutputSpec {
   double sample_interval = 0.01;  // [s]
 };
 
-struct RunConfig {
+// The sections every command reads: [model], [layers], [integrator], [initial].
+struct CommonConfig {
   std::string source_name;               // file name, for messages and provenance
   std::string source_text;               // the file verbatim
   std::vector<std::string> overrides;    // "key=value" as given on the command line
   physics::Model model;
-  std::vector<physics::DriveSegment> schedule;
   sim::RunOptions run;
   InitialSpec initial;
+};
+
+// astrojax run: plus [[schedule]] and [output].
+struct RunConfig : CommonConfig {
+  std::vector<physics::DriveSegment> schedule;
   OutputSpec output;
 };
 
