@@ -27,6 +27,8 @@ class Reader {
   }
   std::string full(std::string_view key) const { return prefix_.empty() ? std::string(key) : prefix_ + "." + std::string(key); }
   bool has(std::string_view key) const { return t_.contains(key); }
+  // A key read elsewhere, not to be reported as unknown.
+  void known(std::string_view key) { used_.insert(std::string(key)); }
 
   // A number within [lo, hi] (open ends when the flags say so).
   double number(std::string_view key, double fallback, double lo, double hi, bool lo_open = false,
@@ -297,6 +299,165 @@ RunConfig parse_run_config(std::string_view text, std::string_view source_name,
 
 RunConfig load_run_config(const std::string& path, const std::vector<std::string>& overrides) {
   return parse_run_config(read_file(path), path, overrides);
+}
+
+namespace {
+
+// A value list: an array of numbers, or {start, stop, num} (num >= 1, both ends included).
+std::vector<double> value_list(const toml::node& n, const std::string& key, std::string_view file) {
+  std::vector<double> out;
+  if (const toml::array* a = n.as_array()) {
+    for (std::size_t i = 0; i < a->size(); ++i) {
+      const auto v = (*a)[i].value<double>();
+      if (!v || !std::isfinite(*v))
+        throw ConfigError(fmt::format("{}: key '{}[{}]': expected a number", file, key, i));
+      out.push_back(*v);
+    }
+  } else if (const toml::table* t = n.as_table()) {
+    Reader r(*t, key, file);
+    for (const char* k : {"start", "stop", "num"})
+      if (!r.has(k)) r.fail(k, "missing: give start, stop and num (num >= 1)");
+    const double a = r.number("start", 0.0, -1e12, 1e12), b = r.number("stop", 0.0, -1e12, 1e12);
+    const int num = int(r.number("num", 1.0, 1.0, 1e5));
+    r.reject_unknown();
+    for (int i = 0; i < num; ++i) out.push_back(num == 1 ? a : a + (b - a) * i / (num - 1));
+  } else {
+    throw ConfigError(fmt::format("{}: key '{}': expected an array of numbers or {{start, stop, num}}", file, key));
+  }
+  if (out.empty()) throw ConfigError(fmt::format("{}: key '{}': the list is empty", file, key));
+  return out;
+}
+
+std::vector<sweep::Segment> parse_protocol(const toml::table& root, std::string_view file, SweepConfig& c) {
+  const toml::table& pt = subtable(root, "protocol", file);
+  Reader r(pt, "protocol", file);
+  c.start_omega = r.number("start_omega", 0.0, 0.0, 2000.0);
+  c.windows_per_task = int(r.number("windows_per_task", 10.0, 1.0, 1e6));
+  c.sample_rate = r.number("sample_rate", 100.0, 0.0, 1e5, true);
+  const toml::array* arr = pt.get_as<toml::array>("segment");
+  r.known("segment");  // its content is checked below
+  if (!arr || arr->empty())
+    throw ConfigError(fmt::format(
+        "{}: key 'protocol.segment': the protocol is empty; give at least one [[protocol.segment]] "
+        "(kind = \"ramp\" with from, to, rate, window; or kind = \"steps\" with from, to, num, settle, measure)",
+        file));
+  r.reject_unknown();
+  constexpr double w_max = 2000.0;
+  std::vector<sweep::Segment> out;
+  for (std::size_t i = 0; i < arr->size(); ++i) {
+    const toml::table* t = (*arr)[i].as_table();
+    const std::string prefix = fmt::format("protocol.segment[{}]", i);
+    if (!t) throw ConfigError(fmt::format("{}: key '{}': expected a table", file, prefix));
+    Reader s(*t, prefix, file);
+    const std::string kind = s.word("kind", "", {"ramp", "steps"});
+    if (kind.empty()) s.fail("kind", "missing; allowed: ramp, steps");
+    for (const char* k : {"from", "to"})
+      if (!s.has(k)) s.fail(k, "missing (ω_m at the start and end [rad/s])");
+    sweep::Segment seg{};
+    if (kind == "ramp") {
+      seg.kind = sweep::Segment::Kind::Ramp;
+      seg.ramp.from = s.number("from", 0.0, 0.0, w_max);
+      seg.ramp.to = s.number("to", 0.0, 0.0, w_max);
+      if (seg.ramp.from == seg.ramp.to) s.fail("to", "a ramp needs to != from");
+      if (!s.has("rate")) s.fail("rate", "missing (|dω_m/dt| [rad/s²])");
+      seg.ramp.rate = s.number("rate", 0.0, 0.0, 1e4, true);
+      seg.ramp.window = s.number("window", 5.0, 0.0, 1e6, true);
+    } else {
+      seg.kind = sweep::Segment::Kind::Steps;
+      seg.steps.from = s.number("from", 0.0, 0.0, w_max);
+      seg.steps.to = s.number("to", 0.0, 0.0, w_max);
+      if (!s.has("num")) s.fail("num", "missing (number of levels, >= 1)");
+      seg.steps.num = int(s.number("num", 1.0, 1.0, 1e5));
+      if (!s.has("measure")) s.fail("measure", "missing (measured hold at each level [s])");
+      seg.steps.settle = s.number("settle", 0.0, 0.0, 1e6);
+      seg.steps.measure = s.number("measure", 0.0, 0.0, 1e6, true);
+      seg.steps.step_rate = s.number("step_rate", 1.0, 0.0, 1e4, true);
+    }
+    s.reject_unknown();
+    out.push_back(seg);
+  }
+  return out;
+}
+
+}  // namespace
+
+SweepConfig parse_sweep_config(std::string_view text, std::string_view source_name,
+                               const std::vector<std::string>& overrides) {
+  SweepConfig c;
+  c.source_name = source_name;
+  c.source_text = text;
+  c.overrides = overrides;
+  const std::string_view file = c.source_name;
+  const toml::table root =
+      parse_root(text, file, overrides, {"model", "layers", "integrator", "initial", "protocol", "grid", "output"});
+  parse_common(root, file, c);
+  c.protocol = parse_protocol(root, file, c);
+  {
+    static const std::vector<std::string> axes{"drive_radius", "contact_distance", "string_length", "mass",
+                                               "mu_static", "mu_kinetic", "drag", "ramp_rate"};
+    for (const auto& [k, v] : subtable(root, "grid", file)) {
+      const std::string key(k.str());
+      if (std::find(axes.begin(), axes.end(), key) == axes.end())
+        throw ConfigError(fmt::format("{}: key 'grid.{}': unknown key; allowed: {}", file, key, fmt::join(axes, ", ")));
+      c.grid.push_back({key, value_list(v, "grid." + key, file)});
+    }
+  }
+  {
+    Reader r(subtable(root, "output", file), "output", file);
+    c.output_path = r.text("path", c.output_path);
+    r.reject_unknown();
+  }
+  expand_grid(c);  // every grid point is checked before any work
+  try {
+    sweep::compile(c.protocol, c.start_omega);
+  } catch (const std::invalid_argument& e) {
+    throw ConfigError(fmt::format("{}: key 'protocol': {}", file, e.what()));
+  }
+  return c;
+}
+
+SweepConfig load_sweep_config(const std::string& path, const std::vector<std::string>& overrides) {
+  return parse_sweep_config(read_file(path), path, overrides);
+}
+
+std::vector<GridPoint> expand_grid(const SweepConfig& c) {
+  std::vector<GridPoint> points;
+  std::vector<std::size_t> at(c.grid.size(), 0);
+  for (;;) {
+    GridPoint g{{}, c.model, c.protocol};
+    for (std::size_t a = 0; a < c.grid.size(); ++a) {
+      const double v = c.grid[a].values[at[a]];
+      g.values.push_back(v);
+      physics::Parameters& p = g.model.p;
+      const std::string& k = c.grid[a].key;
+      if (k == "drive_radius") p.drive_radius = v;
+      else if (k == "contact_distance") p.contact_distance = v;
+      else if (k == "string_length") p.string_length = v;
+      else if (k == "mass") p.bead_mass = p.ball_mass = v;
+      else if (k == "mu_static") p.mu_static = v;
+      else if (k == "mu_kinetic") p.mu_kinetic = v;
+      else if (k == "drag") p.drag = v;
+      else if (k == "ramp_rate") {
+        if (!(v > 0.0))
+          throw ConfigError(fmt::format("{}: key 'grid.ramp_rate[{}]': {} is out of range; allowed > 0 rad/s²",
+                                        c.source_name, at[a], v));
+        for (auto& seg : g.protocol)
+          if (seg.kind == sweep::Segment::Kind::Ramp) seg.ramp.rate = v;
+      }
+    }
+    for (const auto& issue : physics::validate(g.model)) {
+      std::string where;
+      for (std::size_t a = 0; a < c.grid.size(); ++a) where += fmt::format(" grid.{}[{}]", c.grid[a].key, at[a]);
+      throw ConfigError(fmt::format("{}: key '{}' at grid point{}: {} is out of range; allowed {}", c.source_name,
+                                    issue.key, where.empty() ? " (no grid)" : where, issue.value, issue.allowed));
+    }
+    points.push_back(std::move(g));
+    // Next index, the last axis fastest.
+    std::size_t a = c.grid.size();
+    while (a > 0 && ++at[a - 1] == c.grid[a - 1].values.size()) at[--a] = 0;
+    if (a == 0) break;
+  }
+  return points;
 }
 
 }  // namespace ajx::config

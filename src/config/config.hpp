@@ -11,6 +11,7 @@
 #include "physics/model.hpp"
 #include "physics/state.hpp"
 #include "sim/simulation.hpp"
+#include "sweep/protocol.hpp"
 
 namespace ajx::config {
 
@@ -47,6 +48,38 @@ struct RunConfig : CommonConfig {
   std::vector<physics::DriveSegment> schedule;
   OutputSpec output;
 };
+
+// astrojax sweep: plus [protocol] with [[protocol.segment]], an optional [grid] and [output].
+// Every grid point runs the whole protocol from the initial state: one chain each.
+struct GridAxis {
+  std::string key;             // "drive_radius", "contact_distance", "string_length", "mass",
+                               // "mu_static", "mu_kinetic", "drag" or "ramp_rate"
+  std::vector<double> values;  // in SI units
+};
+
+struct SweepConfig : CommonConfig {
+  std::vector<sweep::Segment> protocol;
+  double start_omega = 0.0;   // ω_m at t = 0 [rad/s]
+  int windows_per_task = 10;  // granularity of the farm's tasks
+  double sample_rate = 100.0; // samples per second stored for every window [1/s]
+  std::vector<GridAxis> grid;
+  std::string output_path = "out/sweep.h5";
+};
+
+// One chain of a sweep: its parameters and protocol.
+struct GridPoint {
+  std::vector<double> values;  // one per grid axis, in the order of SweepConfig::grid
+  physics::Model model;
+  std::vector<sweep::Segment> protocol;
+};
+// The Cartesian product of the axes, taken in alphabetical order of their keys (the first
+// varies slowest, the last fastest); one point if there is no grid.
+// Every point is validated; errors name the file and the grid key.
+std::vector<GridPoint> expand_grid(const SweepConfig& c);
+
+SweepConfig parse_sweep_config(std::string_view text, std::string_view source_name,
+                               const std::vector<std::string>& overrides = {});
+SweepConfig load_sweep_config(const std::string& path, const std::vector<std::string>& overrides = {});
 
 // Parse and validate. Overrides are "dotted.key=value" with a TOML value (a bare word is
 // taken as a string). Throws ConfigError.

@@ -1,0 +1,84 @@
+// Sweep files: the protocol and grid parse, the grid expands to one chain per point with its
+// parameters, and bad input is rejected before any work with file, key and allowed range.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "config/config.hpp"
+
+using namespace ajx::config;
+
+namespace {
+std::string quick() {
+  std::ifstream in(std::string(ASTROJAX_SOURCE_DIR) + "/sweeps/quick.toml");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+std::string error_of(const std::vector<std::string>& overrides) {
+  try {
+    parse_sweep_config(quick(), "sweeps/quick.toml", overrides);
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+}  // namespace
+
+TEST(SweepConfig, TheShippedQuickSweepParses) {
+  const SweepConfig c = parse_sweep_config(quick(), "sweeps/quick.toml");
+  ASSERT_EQ(c.protocol.size(), 2u);
+  EXPECT_EQ(c.protocol[0].kind, ajx::sweep::Segment::Kind::Ramp);
+  ASSERT_EQ(c.grid.size(), 1u);
+  const auto points = expand_grid(c);
+  ASSERT_EQ(points.size(), 2u);
+  EXPECT_DOUBLE_EQ(points[0].model.p.drive_radius, 0.01);
+  EXPECT_DOUBLE_EQ(points[1].model.p.drive_radius, 0.02);
+}
+
+TEST(SweepConfig, GridsAreCartesianProductsLastAxisFastest) {
+  const SweepConfig c = parse_sweep_config(
+      quick(), "q.toml", {"grid.contact_distance={start=0.02,stop=0.04,num=3}", "grid.mass=[0.018,0.1]", "grid.ramp_rate=[0.25]"});
+  const auto points = expand_grid(c);
+  ASSERT_EQ(points.size(), 2u * 3u * 2u * 1u);
+  // Axes in alphabetical order: contact_distance (slowest), drive_radius, mass, ramp_rate.
+  EXPECT_DOUBLE_EQ(points[0].model.p.contact_distance, 0.02);
+  EXPECT_DOUBLE_EQ(points[0].model.p.drive_radius, 0.01);
+  EXPECT_DOUBLE_EQ(points[0].model.p.bead_mass, 0.018);
+  EXPECT_DOUBLE_EQ(points[1].model.p.bead_mass, 0.1);
+  EXPECT_DOUBLE_EQ(points[1].model.p.ball_mass, 0.1);
+  EXPECT_DOUBLE_EQ(points[2].model.p.drive_radius, 0.02);
+  EXPECT_DOUBLE_EQ(points[4].model.p.contact_distance, 0.03);
+  EXPECT_DOUBLE_EQ(points[11].model.p.contact_distance, 0.04);
+  EXPECT_EQ(points[11].values, (std::vector<double>{0.04, 0.02, 0.1, 0.25}));
+  for (const auto& p : points)
+    for (const auto& s : p.protocol) EXPECT_DOUBLE_EQ(s.ramp.rate, 0.25);
+}
+
+TEST(SweepConfig, BadSweepFilesNameFileKeyAndRange) {
+  const struct {
+    std::vector<std::string> set;
+    std::string key, range;
+  } cases[] = {
+      {{"protocol.colour=1"}, "protocol.colour", "unknown key"},
+      {{"grid.length=[1.0]"}, "grid.length", "allowed: drive_radius"},
+      {{"grid.drive_radius=[0.01, 0.9]"}, "model.drive_radius", "0 <= R < l"},
+      {{"grid.drive_radius=[0.01, 0.9]"}, "grid.drive_radius[1]", ""},
+      {{"grid.contact_distance={start=0.02,stop=0.04}"}, "grid.contact_distance.num", "missing"},
+      {{"grid.mass=[]"}, "grid.mass", "empty"},
+      {{"protocol.segment=[]"}, "protocol.segment", "at least one"},
+      {{"protocol.segment=[{kind=\"ramp\",from=0.0,to=10.0,rate=-1.0}]"}, "protocol.segment[0].rate", "(0, 10000]"},
+      {{"protocol.segment=[{kind=\"steps\",from=1.0,to=2.0,num=0,measure=1.0}]"}, "protocol.segment[0].num", "[1, 100000]"},
+      {{"protocol.segment=[{kind=\"hop\",from=1.0,to=2.0}]"}, "protocol.segment[0].kind", "ramp, steps"},
+      {{"protocol.sample_rate=0"}, "protocol.sample_rate", "(0, 100000]"},
+      {{"grid.ramp_rate=[0.0]"}, "grid.ramp_rate[0]", "> 0"},
+  };
+  for (const auto& c : cases) {
+    const std::string e = error_of(c.set);
+    ASSERT_FALSE(e.empty()) << c.set[0] << " was accepted";
+    EXPECT_NE(e.find("sweeps/quick.toml"), std::string::npos) << e;
+    EXPECT_NE(e.find(c.key), std::string::npos) << e;
+    EXPECT_NE(e.find(c.range), std::string::npos) << e;
+  }
+}
