@@ -1,0 +1,523 @@
+#include "parallel/farm.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <climits>
+#include <cstring>
+#include <deque>
+#include <exception>
+#include <optional>
+#include <set>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <type_traits>
+#include <unordered_set>
+#include <utility>
+
+#include "parallel/mpi_env.hpp"
+
+namespace ajx::parallel {
+
+const char* to_string(FarmStatus status) {
+  switch (status) {
+    case FarmStatus::Completed: return "completed";
+    case FarmStatus::Interrupted: return "interrupted";
+    case FarmStatus::Aborted: return "aborted";
+  }
+  return "unknown";
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// ---------------------------------------------------------------------------------------------
+// Messages. Every message is one MPI_BYTE buffer: a fixed Header, then up to three payloads
+// whose lengths the header carries. One message per direction keeps a task to one round trip.
+//   worker -> master  kTagHello   header only: "I am ready" (first request for work)
+//   worker -> master  kTagResult  output, carry, error text; also asks for the next task
+//   master -> worker  kTagTask    input, carry
+//   master -> worker  kTagStop    header only, code = FarmStatus
+constexpr int kTagHello = 1;
+constexpr int kTagResult = 2;
+constexpr int kTagTask = 3;
+constexpr int kTagStop = 4;
+constexpr std::int32_t kMagic = 0x464a4124;  // catches anything that is not a farm header
+
+struct Header {
+  std::int32_t magic = kMagic;
+  std::int32_t code = 0;  // result: 1 ok / 0 failed; stop: FarmStatus
+  std::int64_t task_id = 0;
+  std::int64_t chain = 0;
+  std::int64_t index = 0;
+  std::uint64_t len[3] = {0, 0, 0};
+  double seconds = 0;  // result: wall time of the work function
+};
+// Sent as raw bytes: ranks are assumed to share one architecture.
+static_assert(std::is_trivially_copyable_v<Header>);
+
+using Part = std::span<const std::byte>;
+
+Part as_part(const std::string& s) { return std::as_bytes(std::span<const char>(s.data(), s.size())); }
+
+Bytes pack(Header h, Part a = {}, Part b = {}, Part c = {}) {
+  const Part parts[3] = {a, b, c};
+  std::size_t size = sizeof(Header);
+  for (int i = 0; i < 3; ++i) {
+    h.len[i] = parts[i].size();
+    size += parts[i].size();
+  }
+  Bytes buf(size);
+  std::memcpy(buf.data(), &h, sizeof h);
+  std::size_t at = sizeof h;
+  for (const Part& p : parts) {
+    if (!p.empty()) std::memcpy(buf.data() + at, p.data(), p.size());
+    at += p.size();
+  }
+  return buf;
+}
+
+struct Message {
+  int source = -1;
+  int tag = -1;
+  Header header;
+  Bytes buf;  // the whole message, header included
+
+  Part part(int i) const {
+    std::size_t at = sizeof(Header);
+    for (int k = 0; k < i; ++k) at += header.len[k];
+    return Part(buf.data() + at, header.len[i]);
+  }
+  Bytes bytes(int i) const {
+    const Part p = part(i);
+    return Bytes(p.begin(), p.end());
+  }
+  std::string text(int i) const {
+    const Part p = part(i);
+    return std::string(reinterpret_cast<const char*>(p.data()), p.size());
+  }
+};
+
+// Owns a duplicate of the caller's communicator, so farm tags never meet the caller's
+// messages, with errors returned as codes (check_mpi turns them into exceptions).
+class FarmComm {
+ public:
+  explicit FarmComm(MPI_Comm parent) {
+    check_mpi(MPI_Comm_dup(parent, &comm_), "MPI_Comm_dup");
+    check_mpi(MPI_Comm_set_errhandler(comm_, MPI_ERRORS_RETURN), "MPI_Comm_set_errhandler");
+  }
+  ~FarmComm() {
+    if (comm_ != MPI_COMM_NULL) MPI_Comm_free(&comm_);  // nothing useful to do on failure here
+  }
+  FarmComm(const FarmComm&) = delete;
+  FarmComm& operator=(const FarmComm&) = delete;
+  MPI_Comm get() const { return comm_; }
+
+  void send(const Bytes& msg, int dest, int tag) const {
+    // MPI counts are ints.
+    if (msg.size() > static_cast<std::size_t>(INT_MAX))
+      throw MpiError("MPI_Send failed: farm message of " + std::to_string(msg.size()) + " bytes exceeds 2 GiB");
+    check_mpi(MPI_Send(msg.data(), static_cast<int>(msg.size()), MPI_BYTE, dest, tag, comm_), "MPI_Send");
+  }
+
+  // Blocking wait for the next message from `source`.
+  MPI_Status probe(int source) const {
+    MPI_Status st;
+    check_mpi(MPI_Probe(source, MPI_ANY_TAG, comm_, &st), "MPI_Probe");
+    return st;
+  }
+
+  // Non-blocking: a message from anyone, if one is waiting.
+  std::optional<MPI_Status> iprobe() const {
+    MPI_Status st;
+    int flag = 0;
+    check_mpi(MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, comm_, &flag, &st), "MPI_Iprobe");
+    if (!flag) return std::nullopt;
+    return st;
+  }
+
+  // Receives the probed message (sizes vary: MPI_Get_count says how much to allocate).
+  Message receive(const MPI_Status& probed) const {
+    int count = 0;
+    check_mpi(MPI_Get_count(&probed, MPI_BYTE, &count), "MPI_Get_count");
+    Message m;
+    m.source = probed.MPI_SOURCE;
+    m.tag = probed.MPI_TAG;
+    m.buf.resize(static_cast<std::size_t>(count));
+    check_mpi(MPI_Recv(m.buf.data(), count, MPI_BYTE, m.source, m.tag, comm_, MPI_STATUS_IGNORE), "MPI_Recv");
+    const auto bad = [&](const char* why) {
+      return std::runtime_error("farm: malformed message (tag " + std::to_string(m.tag) + ") from rank " +
+                                std::to_string(m.source) + ": " + why);
+    };
+    if (m.buf.size() < sizeof(Header)) throw bad("shorter than the header");
+    std::memcpy(&m.header, m.buf.data(), sizeof(Header));
+    if (m.header.magic != kMagic) throw bad("bad magic");
+    std::uint64_t payload = 0;
+    for (std::uint64_t l : m.header.len) {
+      if (l > m.buf.size()) throw bad("payload length out of range");
+      payload += l;
+    }
+    if (payload != m.buf.size() - sizeof(Header)) throw bad("payload lengths do not add up");
+    return m;
+  }
+
+ private:
+  MPI_Comm comm_ = MPI_COMM_NULL;
+};
+
+// Runs the work function on one task, timing it and turning exceptions into a failed task.
+TaskResult execute(const WorkFunction& work, const Task& task, const Bytes& carry, int rank) {
+  TaskResult r;
+  r.task_id = task.id;
+  r.chain = task.chain;
+  r.index = task.index;
+  r.ran = true;
+  r.rank = rank;
+  const auto t0 = Clock::now();
+  try {
+    Outcome o = work(task, carry);
+    r.ok = o.ok;
+    r.output = std::move(o.output);
+    if (o.ok) r.carry = std::move(o.carry);
+    r.error = std::move(o.error);
+  } catch (const std::exception& e) {
+    r.ok = false;
+    r.error = std::string("exception: ") + e.what();
+  } catch (...) {
+    r.ok = false;
+    r.error = "exception of unknown type";
+  }
+  r.wall_seconds = seconds_since(t0);
+  return r;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The master's bookkeeping, shared by the in-process (1 rank) and the distributed drivers:
+// chain states, the ready set, result delivery, counts and progress. A throwing callback or
+// invalid input is recorded in error_ (the drivers then wind down and rethrow).
+class Scheduler {
+ public:
+  Scheduler(std::vector<Chain> chains, const FarmOptions& options, Clock::time_point start)
+      : options_(options), start_(start), last_progress_(start) {
+    try {
+      validate(chains);
+    } catch (...) {
+      error_ = std::current_exception();
+      return;
+    }
+    std::sort(chains.begin(), chains.end(), [](const Chain& a, const Chain& b) { return a.id < b.id; });
+    states_.reserve(chains.size());
+    for (Chain& c : chains) {
+      total_ += static_cast<std::int64_t>(c.tasks.size());
+      states_.push_back(State{std::move(c), 0, false});
+      // Sorted positions = sorted chain ids: the set's first element is the lowest chain id.
+      if (!states_.back().chain.tasks.empty()) ready_.insert(states_.size() - 1);
+    }
+  }
+
+  bool failed() const { return error_ != nullptr; }
+  void rethrow_if_failed() const {
+    if (error_) std::rethrow_exception(error_);
+  }
+  bool has_ready() const { return !failed() && !ready_.empty(); }
+
+  // Takes the ready task of the lowest chain id; its chain is in flight until finish().
+  std::size_t take() {
+    const std::size_t c = *ready_.begin();
+    ready_.erase(ready_.begin());
+    states_[c].in_flight = true;
+    ++in_flight_;
+    return c;
+  }
+  const Task& task(std::size_t c) const { return states_[c].chain.tasks[states_[c].next]; }
+  const Bytes& carry(std::size_t c) const { return states_[c].chain.carry; }
+
+  // The result of chain c's task in flight: delivered, then the chain advances or ends.
+  void finish(std::size_t c, TaskResult&& r) {
+    State& s = states_[c];
+    s.in_flight = false;
+    --in_flight_;
+    ++done_;
+    if (!r.ok) ++failed_;
+    if (failed()) return;  // winding down after an error: nothing more is delivered
+    deliver(r);
+    Bytes().swap(s.chain.tasks[s.next].input);  // the input is no longer needed
+    if (r.ok) {
+      s.chain.carry = std::move(r.carry);
+      if (++s.next < s.chain.tasks.size()) ready_.insert(c);
+      return;
+    }
+    // A failed task ends its chain: report the rest as not run.
+    const std::string why = "not run: task " + std::to_string(r.task_id) + " of this chain failed";
+    for (std::size_t k = s.next + 1; k < s.chain.tasks.size(); ++k) {
+      const Task& t = s.chain.tasks[k];
+      TaskResult nr;
+      nr.task_id = t.id;
+      nr.chain = t.chain;
+      nr.index = t.index;
+      nr.error = why;
+      ++not_run_;
+      deliver(nr);
+    }
+    s.next = s.chain.tasks.size();
+  }
+
+  // Calls on_progress if the interval has passed since the last call (or the start).
+  void tick() {
+    if (!options_.on_progress || failed()) return;
+    if (seconds_since(last_progress_) < options_.progress_interval) return;
+    last_progress_ = Clock::now();
+    try {
+      options_.on_progress(progress());
+    } catch (...) {
+      error_ = std::current_exception();
+    }
+  }
+
+  Progress progress() const {
+    return Progress{done_, failed_, not_run_, total_, in_flight_, seconds_since(start_)};
+  }
+
+  FarmSummary summary(int ranks) const {
+    FarmSummary s;
+    s.ranks = ranks;
+    s.total = total_;
+    s.done = done_;
+    s.failed = failed_;
+    s.not_run = not_run_;
+    s.unstarted = total_ - done_ - not_run_ - in_flight_;
+    s.status = failed() ? FarmStatus::Aborted : s.unstarted > 0 ? FarmStatus::Interrupted : FarmStatus::Completed;
+    s.busy_seconds.assign(static_cast<std::size_t>(ranks), 0.0);
+    s.tasks_per_rank.assign(static_cast<std::size_t>(ranks), 0);
+    return s;
+  }
+
+ private:
+  struct State {
+    Chain chain;
+    std::size_t next = 0;  // first task of the chain not finished yet
+    bool in_flight = false;
+  };
+
+  static void validate(const std::vector<Chain>& chains) {
+    std::unordered_set<std::int64_t> chain_ids, task_ids;
+    for (const Chain& c : chains) {
+      const std::string where = "run_farm: chain " + std::to_string(c.id);
+      if (!chain_ids.insert(c.id).second) throw std::invalid_argument(where + " appears twice");
+      for (std::size_t k = 0; k < c.tasks.size(); ++k) {
+        const Task& t = c.tasks[k];
+        const std::string what = where + ", task " + std::to_string(t.id);
+        if (!task_ids.insert(t.id).second) throw std::invalid_argument(what + ": task id used twice");
+        if (t.chain != c.id) throw std::invalid_argument(what + ": its chain field is " + std::to_string(t.chain));
+        if (t.index < 0) throw std::invalid_argument(what + ": negative index");
+        if (k > 0 && t.index != c.tasks[k - 1].index + 1)
+          throw std::invalid_argument(what + ": index " + std::to_string(t.index) + " does not follow " +
+                                      std::to_string(c.tasks[k - 1].index));
+      }
+    }
+  }
+
+  void deliver(const TaskResult& r) {
+    if (!options_.on_result || failed()) return;
+    try {
+      options_.on_result(r);
+    } catch (...) {
+      error_ = std::current_exception();
+    }
+  }
+
+  const FarmOptions& options_;
+  Clock::time_point start_, last_progress_;
+  std::vector<State> states_;
+  std::set<std::size_t> ready_;  // chains whose next task may start
+  std::int64_t total_ = 0, done_ = 0, failed_ = 0, not_run_ = 0, in_flight_ = 0;
+  std::exception_ptr error_;
+};
+
+bool stop_requested(const FarmOptions& o) { return o.stop != nullptr && o.stop->load(std::memory_order_acquire); }
+
+// The master's wait between polls: yield first (a tiny task answers within microseconds),
+// then sleep longer and longer up to 1 ms so that an idle master leaves the cores to workers.
+class Backoff {
+ public:
+  void reset() { polls_ = 0; }
+  void wait() {
+    ++polls_;
+    if (polls_ <= 200) {
+      std::this_thread::yield();
+      return;
+    }
+    const int doublings = std::min((polls_ - 200) / 8, 5);
+    std::this_thread::sleep_for(std::chrono::microseconds(std::min(1000, 50 << doublings)));
+  }
+
+ private:
+  int polls_ = 0;
+};
+
+// One rank: the master runs every task itself.
+FarmSummary run_in_process(std::vector<Chain> chains, const WorkFunction& work, const FarmOptions& options,
+                           Clock::time_point start) {
+  Scheduler sched(std::move(chains), options, start);
+  double busy = 0;
+  std::int64_t ran = 0;
+  while (sched.has_ready() && !stop_requested(options)) {
+    const std::size_t c = sched.take();
+    TaskResult r = execute(work, sched.task(c), sched.carry(c), 0);
+    busy += r.wall_seconds;
+    ++ran;
+    sched.finish(c, std::move(r));
+    sched.tick();
+  }
+  sched.rethrow_if_failed();
+  FarmSummary s = sched.summary(1);
+  s.busy_seconds[0] = busy;
+  s.tasks_per_rank[0] = ran;
+  return s;
+}
+
+FarmSummary run_master(const FarmComm& comm, int size, std::vector<Chain> chains, const FarmOptions& options,
+                       Clock::time_point start) {
+  Scheduler sched(std::move(chains), options, start);
+  const int workers = size - 1;
+  std::vector<double> busy(static_cast<std::size_t>(size), 0.0);
+  std::vector<std::int64_t> ran(static_cast<std::size_t>(size), 0);
+  std::vector<std::optional<std::size_t>> assigned(static_cast<std::size_t>(size));  // chain per worker
+  std::deque<int> idle;  // workers waiting for a task, in the order they asked
+  std::uint64_t sent = 0, received = 0;
+  bool stopping = false;
+  Backoff backoff;
+
+  while (true) {
+    // A stop request or an error: no new task; results in flight still come back.
+    if (!stopping && (stop_requested(options) || sched.failed())) stopping = true;
+    while (!stopping && !idle.empty() && sched.has_ready()) {
+      const int w = idle.front();
+      idle.pop_front();
+      const std::size_t c = sched.take();
+      const Task& t = sched.task(c);
+      Header h;
+      h.task_id = t.id;
+      h.chain = t.chain;
+      h.index = t.index;
+      const Bytes msg = pack(h, t.input, sched.carry(c));
+      comm.send(msg, w, kTagTask);
+      sent += msg.size();
+      assigned[static_cast<std::size_t>(w)] = c;
+    }
+    // Done when every worker is waiting (so none has a message still on its way) and there is
+    // nothing more to hand out.
+    if (static_cast<int>(idle.size()) == workers && (stopping || !sched.has_ready())) break;
+
+    const std::optional<MPI_Status> st = comm.iprobe();
+    if (!st) {
+      sched.tick();
+      backoff.wait();
+      continue;
+    }
+    backoff.reset();
+    Message m = comm.receive(*st);
+    received += m.buf.size();
+    const int w = m.source;
+    if (m.tag == kTagResult) {
+      std::optional<std::size_t>& slot = assigned[static_cast<std::size_t>(w)];
+      if (!slot || m.header.task_id != sched.task(*slot).id)
+        throw std::runtime_error("farm: rank " + std::to_string(w) + " returned task " +
+                                 std::to_string(m.header.task_id) + ", which it was not given");
+      const std::size_t c = *slot;
+      slot.reset();
+      TaskResult r;
+      r.task_id = m.header.task_id;
+      r.chain = m.header.chain;
+      r.index = m.header.index;
+      r.ran = true;
+      r.ok = m.header.code == 1;
+      r.output = m.bytes(0);
+      r.carry = m.bytes(1);
+      r.error = m.text(2);
+      r.wall_seconds = m.header.seconds;
+      r.rank = w;
+      busy[static_cast<std::size_t>(w)] += r.wall_seconds;
+      ++ran[static_cast<std::size_t>(w)];
+      sched.finish(c, std::move(r));
+    } else if (m.tag != kTagHello) {
+      throw std::runtime_error("farm: unexpected message tag " + std::to_string(m.tag) + " from rank " +
+                               std::to_string(w));
+    }
+    idle.push_back(w);
+    sched.tick();
+  }
+
+  FarmSummary s = sched.summary(size);
+  Header stop;
+  stop.code = static_cast<std::int32_t>(s.status);
+  const Bytes msg = pack(stop);
+  for (int w = 1; w < size; ++w) {
+    comm.send(msg, w, kTagStop);
+    sent += msg.size();
+  }
+  sched.rethrow_if_failed();
+  s.busy_seconds = std::move(busy);
+  s.tasks_per_rank = std::move(ran);
+  s.bytes_sent = sent;
+  s.bytes_received = received;
+  return s;
+}
+
+FarmSummary run_worker(const FarmComm& comm, int rank, int size, const WorkFunction& work) {
+  FarmSummary s;
+  s.ranks = size;
+  s.busy_seconds.assign(static_cast<std::size_t>(size), 0.0);
+  s.tasks_per_rank.assign(static_cast<std::size_t>(size), 0);
+  comm.send(pack(Header{}), 0, kTagHello);
+  while (true) {
+    const Message m = comm.receive(comm.probe(0));
+    if (m.tag == kTagStop) {
+      if (m.header.code < 0 || m.header.code > static_cast<std::int32_t>(FarmStatus::Aborted))
+        throw std::runtime_error("farm: stop message with unknown status " + std::to_string(m.header.code));
+      s.status = static_cast<FarmStatus>(m.header.code);
+      return s;
+    }
+    if (m.tag != kTagTask) throw std::runtime_error("farm: unexpected message tag " + std::to_string(m.tag) + " from the master");
+    Task t;
+    t.id = m.header.task_id;
+    t.chain = m.header.chain;
+    t.index = m.header.index;
+    t.input = m.bytes(0);
+    const TaskResult r = execute(work, t, m.bytes(1), rank);
+    s.busy_seconds[static_cast<std::size_t>(rank)] += r.wall_seconds;
+    ++s.tasks_per_rank[static_cast<std::size_t>(rank)];
+    Header h;
+    h.task_id = t.id;
+    h.chain = t.chain;
+    h.index = t.index;
+    h.code = r.ok ? 1 : 0;
+    h.seconds = r.wall_seconds;
+    comm.send(pack(h, r.output, r.carry, as_part(r.error)), 0, kTagResult);
+  }
+}
+
+}  // namespace
+
+FarmSummary run_farm(std::vector<Chain> chains, const WorkFunction& work, const FarmOptions& options) {
+  const auto start = Clock::now();
+  const FarmComm comm(options.comm);
+  const int rank = comm_rank(comm.get());
+  const int size = comm_size(comm.get());
+  FarmSummary s;
+  if (size == 1)
+    s = run_in_process(std::move(chains), work, options, start);
+  else if (rank == 0)
+    s = run_master(comm, size, std::move(chains), options, start);
+  else
+    s = run_worker(comm, rank, size, work);
+  s.wall_seconds = seconds_since(start);
+  if (rank == 0 && s.wall_seconds > 0) s.tasks_per_second = static_cast<double>(s.done) / s.wall_seconds;
+  return s;
+}
+
+}  // namespace ajx::parallel
