@@ -18,4 +18,16 @@ struct RunArgs {
 };
 int run_command(const RunArgs& args);
 
+inline constexpr int kExitInterrupted = 4;
+
+struct SweepArgs {
+  std::string config_path;
+  std::vector<std::string> overrides;
+  std::string output;
+  bool quiet = false;
+  std::string command_line;
+};
+// Collective: every rank of MPI_COMM_WORLD calls it (rank 0 is the master).
+int sweep_command(const SweepArgs& args);
+
 }  // namespace ajx::app

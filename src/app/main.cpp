@@ -1,8 +1,10 @@
-// astrojax: the driven-Astrojax explorer. Subcommands: run (one trajectory into HDF5).
+// astrojax: the driven-Astrojax explorer. Subcommands: run (one trajectory into HDF5) and
+// sweep (the MPI farm over a sweep file's chains).
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include "app/commands.hpp"
+#include "parallel/mpi_env.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"astrojax: bifurcation explorer for the motor-driven Astrojax pendulum"};
@@ -20,11 +22,25 @@ int main(int argc, char** argv) {
   run_cmd->add_option("-o,--output", run.output, "HDF5 output path (overrides output.path)");
   run_cmd->add_flag("-q,--quiet", run.quiet, "Print only errors");
 
+  ajx::app::SweepArgs sweep;
+  sweep.command_line = command_line;
+  CLI::App* sweep_cmd = app.add_subcommand(
+      "sweep", "Run a sweep file (sweeps/*.toml) on all MPI ranks: mpirun -n N astrojax sweep FILE");
+  sweep_cmd->add_option("config", sweep.config_path, "TOML file with [protocol], [grid] and the [model] sections")
+      ->required();
+  sweep_cmd->add_option("-s,--set", sweep.overrides, "Override a key, e.g. --set grid.drive_radius=[0.005,0.01]");
+  sweep_cmd->add_option("-o,--output", sweep.output, "HDF5 output path (overrides output.path)");
+  sweep_cmd->add_flag("-q,--quiet", sweep.quiet, "No progress lines");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : ajx::app::kExitBadInput;
   }
   if (*run_cmd) return ajx::app::run_command(run);
+  if (*sweep_cmd) {
+    ajx::parallel::MpiEnvironment mpi(argc, argv);
+    return ajx::app::sweep_command(sweep);
+  }
   return 0;
 }
