@@ -1,6 +1,8 @@
 #include "io/hdf5_file.hpp"
 
 #include <gtest/gtest.h>
+
+#include <cmath>
 #include <unistd.h>
 
 #include <array>
@@ -505,4 +507,32 @@ TEST_F(Hdf5FileTest, H5dumpReadsTheFile) {
   EXPECT_NE(dump.find("4.75"), std::string::npos) << dump;
   EXPECT_NE(dump.find("\"m\""), std::string::npos) << dump;
   EXPECT_NE(dump.find("t_end = 10.0"), std::string::npos) << dump;
+}
+
+TEST_F(Hdf5FileTest, FilledDatasetsTakeRegionsAndReadFillElsewhere) {
+  const fs::path p = file("filled.h5");
+  {
+    File f = File::create(p);
+    auto d = f.create_filled("r/x", {3, 4, 2}, DType::Float64, std::numeric_limits<double>::quiet_NaN(), {1, 4, 2}, 4);
+    const std::vector<double> block{1, 2, 3, 4, 5, 6};  // one (1, 3, 2) block
+    d.write_region({1, 1, 0}, {1, 3, 2}, std::span<const double>(block));
+    auto c = f.create_filled("r/c", {3, 4}, DType::Int32, -1.0, {1, 4});
+    const std::vector<std::int32_t> row{7, 8, 9, 10};
+    c.write_region({2, 0}, {1, 4}, std::span<const std::int32_t>(row));
+    EXPECT_THROW(c.write_region({0, 0}, {1, 3}, std::span<const std::int32_t>(row)), std::invalid_argument);
+    f.flush();
+  }
+  File f = File::open_read(p);
+  const auto x = f.read_doubles("r/x");
+  ASSERT_EQ(x.dims, (Dims{3, 4, 2}));
+  for (std::size_t i = 0; i < x.data.size(); ++i) {
+    const std::size_t a = i / 8, b = (i / 2) % 4, k = i % 2;
+    if (a == 1 && b >= 1) {
+      EXPECT_EQ(x.data[i], double(2 * (b - 1) + k + 1)) << i;
+    } else {
+      EXPECT_TRUE(std::isnan(x.data[i])) << i;
+    }
+  }
+  const auto c = f.read_int32s("r/c");
+  EXPECT_EQ(c.data, (std::vector<std::int32_t>{-1, -1, -1, -1, -1, -1, -1, -1, 7, 8, 9, 10}));
 }

@@ -501,6 +501,60 @@ Group Group::open_group(std::string_view path) const {
 
 Group Group::require_group(std::string_view path) { return exists(path) ? open_group(path) : create_group(path); }
 
+Dataset Group::create_filled(std::string_view path, const Dims& dims, DType dtype, double fill, const Dims& chunk,
+                             int deflate) {
+  std::string full = child_path(path);
+  Where w{file_name(), full};
+  if (chunk.size() != dims.size() || dims.empty())
+    throw std::invalid_argument(fmt::format("create_filled '{}' in {}: chunk and dims need the same, non-zero rank",
+                                            full, file_name()));
+  Handle space = make_space(dims, w);
+  Handle dcpl = own(H5Pcreate(H5P_DATASET_CREATE), Kind::PropertyList, "H5Pcreate", w);
+  auto c = to_hsize(chunk);
+  for (std::size_t i = 0; i < c.size(); ++i) c[i] = std::max<hsize_t>(1, std::min<hsize_t>(c[i], dims[i]));
+  check(H5Pset_chunk(dcpl.get(), static_cast<int>(c.size()), c.data()), "H5Pset_chunk", w);
+  check(H5Pset_fill_value(dcpl.get(), H5T_NATIVE_DOUBLE, &fill), "H5Pset_fill_value", w);
+  check(H5Pset_fill_time(dcpl.get(), H5D_FILL_TIME_ALLOC), "H5Pset_fill_time", w);
+  if (deflate > 0) {
+    check(H5Pset_shuffle(dcpl.get()), "H5Pset_shuffle", w);
+    check(H5Pset_deflate(dcpl.get(), static_cast<unsigned>(std::min(deflate, 9))), "H5Pset_deflate", w);
+  }
+  Handle lcpl = intermediate_lcpl(w);
+  std::string p(path);
+  Handle ds = own(H5Dcreate2(handle_.get(), p.c_str(), file_type_of(dtype), space.get(), lcpl.get(), dcpl.get(),
+                             H5P_DEFAULT),
+                  Kind::Dataset, "H5Dcreate2", w);
+  return Dataset(std::move(ds), file_, std::move(full));
+}
+
+namespace {
+void write_region_impl(const Dataset& d, hid_t native, const Dims& offset, const Dims& count, const void* data,
+                       std::size_t n, hid_t mem_type) {
+  Where w{d.file_name(), d.path()};
+  if (offset.size() != count.size() || element_count(count) != n)
+    throw std::invalid_argument(fmt::format("write_region '{}' in {}: {} values do not fill a block [{}] at [{}]",
+                                            d.path(), d.file_name(), n, fmt::join(count, ", "),
+                                            fmt::join(offset, ", ")));
+  if (n == 0) return;
+  Handle file_space = own(H5Dget_space(native), Kind::Dataspace, "H5Dget_space", w);
+  const auto start = to_hsize(offset), cnt = to_hsize(count);
+  check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr, cnt.data(), nullptr),
+        "H5Sselect_hyperslab", w);
+  Handle mem_space = make_space(count, w);
+  check(H5Dwrite(native, mem_type, mem_space.get(), file_space.get(), H5P_DEFAULT, data), "H5Dwrite", w);
+}
+}  // namespace
+
+void Dataset::write_region(const Dims& offset, const Dims& count, std::span<const double> data) {
+  write_region_impl(*this, handle_.get(), offset, count, data.data(), data.size(), H5T_NATIVE_DOUBLE);
+}
+void Dataset::write_region(const Dims& offset, const Dims& count, std::span<const std::int32_t> data) {
+  write_region_impl(*this, handle_.get(), offset, count, data.data(), data.size(), H5T_NATIVE_INT32);
+}
+void Dataset::write_region(const Dims& offset, const Dims& count, std::span<const std::int64_t> data) {
+  write_region_impl(*this, handle_.get(), offset, count, data.data(), data.size(), H5T_NATIVE_INT64);
+}
+
 Dataset Group::write_dataset(std::string_view path, std::span<const double> data, const Dims& dims) {
   std::string full = child_path(path);
   Handle ds = create_and_write(*this, path, full, data.data(), data.size(), dims, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE);

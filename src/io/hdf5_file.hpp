@@ -142,6 +142,12 @@ class Dataset : public Object {
   // Scalar (or single-element) string dataset, variable- or fixed-length.
   std::string read_string() const;
 
+  // Write a row-major block of shape `count` at `offset` (both of the dataset's rank): results
+  // that arrive piece by piece, into a dataset made by Group::create_filled.
+  void write_region(const Dims& offset, const Dims& count, std::span<const double> data);
+  void write_region(const Dims& offset, const Dims& count, std::span<const std::int32_t> data);
+  void write_region(const Dims& offset, const Dims& count, std::span<const std::int64_t> data);
+
  protected:
   friend class Group;
   using Object::Object;
@@ -170,6 +176,11 @@ class Group : public Object {
   Dataset write_dataset(std::string_view path, std::span<const std::int32_t> data) { return write_dataset(path, data, {data.size()}); }
   // Scalar variable-length UTF-8 string dataset, for long texts (e.g. a configuration file).
   Dataset write_string_dataset(std::string_view path, std::string_view text);
+  // A chunked dataset of shape `dims` whose unwritten elements read as `fill` (NaN marks
+  // results not computed yet), written later with Dataset::write_region. `chunk` has the
+  // rank of `dims`; deflate 0 (none) to 9.
+  Dataset create_filled(std::string_view path, const Dims& dims, DType dtype, double fill, const Dims& chunk,
+                        int deflate = 0);
 
   Dataset open_dataset(std::string_view path) const;
   Array<double> read_doubles(std::string_view path) const { return open_dataset(path).read_doubles(); }
