@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # The sweep's result depends on its tasks alone: the file from 1 rank (the master computes)
-# and from 3 ranks (a master and 2 workers) are identical in everything but /provenance.
+# and from 3 ranks (a master and 2 workers) are identical in everything but /provenance; and a
+# sweep stopped part-way (--max-tasks, as an interruption) and resumed (--resume) gives the
+# same file as one run straight through.
 # Usage: sweep_mpi_test.sh ASTROJAX MPIEXEC SOURCE_DIR
 set -u
 bin=$1; mpiexec=$2; src=$3
@@ -18,6 +20,23 @@ check "3 ranks: exit 0 (got $rc3)" "[ $rc3 -eq 0 ]"
 for g in /config /chains /windows /samples /tasks; do
   check "$g identical for 1 and 3 ranks" "h5diff '$work/one.h5' '$work/three.h5' $g > '$work/diff' 2>&1"
 done
+"$mpiexec" --oversubscribe -n 3 "$bin" sweep "$src/tests/data/tiny_sweep.toml" -o "$work/resumed.h5" -q --max-tasks 3 \
+  > "$work/part.out" 2>&1
+rcp=$?
+check "stopped part-way: exit 4 (got $rcp)" "[ $rcp -eq 4 ]"
+check "stopped part-way: the .part file holds the finished tasks" "[ -s '$work/resumed.h5.part' ] && [ ! -e '$work/resumed.h5' ]"
+check "stopped part-way: says how to resume" "grep -q -- '--resume' '$work/part.out'"
+"$mpiexec" --oversubscribe -n 3 "$bin" sweep "$src/tests/data/tiny_sweep.toml" -o "$work/resumed.h5" -q --resume \
+  > "$work/resume.out" 2>&1
+rcr=$?
+check "resumed: exit 0 (got $rcr)" "[ $rcr -eq 0 ] && [ -s '$work/resumed.h5' ] && [ ! -e '$work/resumed.h5.part' ]"
+for g in /config /chains /windows /samples /tasks; do
+  check "$g of the resumed sweep identical to the straight run" "h5diff '$work/one.h5' '$work/resumed.h5' $g > '$work/diff' 2>&1"
+done
+"$mpiexec" --oversubscribe -n 1 "$bin" sweep "$src/tests/data/tiny_sweep.toml" -o "$work/resumed.h5" -q --resume \
+  > "$work/again.out" 2>&1
+rca=$?
+check "nothing left to resume: exit 2 with the reason (got $rca)" "[ $rca -eq 2 ] && grep -q 'nothing to resume' '$work/again.out'"
 check "every window classified" "! h5dump -A 0 -d /windows/class '$work/three.h5' | grep -q -- '-1'"
 check "ranks recorded" "h5dump -a /provenance/ranks '$work/three.h5' | grep -q '(0): 3'"
 echo "sweep_mpi: $pass passed, $fail failed"

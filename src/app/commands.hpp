@@ -25,6 +25,8 @@ struct SweepArgs {
   std::vector<std::string> overrides;
   std::string output;
   bool quiet = false;
+  bool resume = false;  // continue an interrupted sweep from <output>.part
+  long max_tasks = 0;   // stop (resumably) after this many task results; 0: no limit
   std::string command_line;
 };
 // Collective: every rank of MPI_COMM_WORLD calls it (rank 0 is the master).

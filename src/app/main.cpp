@@ -31,6 +31,11 @@ int main(int argc, char** argv) {
   sweep_cmd->add_option("-s,--set", sweep.overrides, "Override a key, e.g. --set grid.drive_radius=[0.005,0.01]");
   sweep_cmd->add_option("-o,--output", sweep.output, "HDF5 output path (overrides output.path)");
   sweep_cmd->add_flag("-q,--quiet", sweep.quiet, "No progress lines");
+  sweep_cmd->add_flag("--resume", sweep.resume,
+                      "Continue an interrupted sweep from <output>.part (same file and overrides)");
+  sweep_cmd->add_option("--max-tasks", sweep.max_tasks,
+                        "Stop after this many task results, as an interruption would (resume later with --resume)")
+      ->check(CLI::NonNegativeNumber);
 
   try {
     app.parse(argc, argv);
