@@ -37,6 +37,13 @@ done
   > "$work/again.out" 2>&1
 rca=$?
 check "nothing left to resume: exit 2 with the reason (got $rca)" "[ $rca -eq 2 ] && grep -q 'nothing to resume' '$work/again.out'"
+"$bin" thresholds "$work/one.h5" --csv "$work/th.csv" > "$work/th.out" 2>&1
+rct=$?
+check "thresholds: exit 0 (got $rct)" "[ $rct -eq 0 ]"
+check "thresholds: four per chain, paper values printed" "[ \$(grep -c 'omega_' '$work/th.out') -eq 8 ] && grep -q '12.63' '$work/th.out'"
+check "thresholds: CSV with a header and 8 rows" "[ \$(wc -l < '$work/th.csv') -eq 9 ]"
+"$bin" thresholds "$work/missing.h5" > /dev/null 2>&1
+check "thresholds of a missing file: exit 2" "[ $? -eq 2 ]"
 check "every window classified" "! h5dump -A 0 -d /windows/class '$work/three.h5' | grep -q -- '-1'"
 check "ranks recorded" "h5dump -a /provenance/ranks '$work/three.h5' | grep -q '(0): 3'"
 echo "sweep_mpi: $pass passed, $fail failed"

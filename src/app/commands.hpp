@@ -32,4 +32,10 @@ struct SweepArgs {
 // Collective: every rank of MPI_COMM_WORLD calls it (rank 0 is the master).
 int sweep_command(const SweepArgs& args);
 
+struct ThresholdsArgs {
+  std::string input;  // a sweep's HDF5 file
+  std::string csv;    // also write the table as CSV here, when non-empty
+};
+int thresholds_command(const ThresholdsArgs& args);
+
 }  // namespace ajx::app

@@ -37,12 +37,19 @@ int main(int argc, char** argv) {
                         "Stop after this many task results, as an interruption would (resume later with --resume)")
       ->check(CLI::NonNegativeNumber);
 
+  ajx::app::ThresholdsArgs thresholds;
+  CLI::App* thresholds_cmd = app.add_subcommand(
+      "thresholds", "ω_rise, ω_fall, ω1, ω2 of every chain of a sweep file, as brackets next to the paper's values");
+  thresholds_cmd->add_option("file", thresholds.input, "HDF5 file written by astrojax sweep")->required();
+  thresholds_cmd->add_option("--csv", thresholds.csv, "Also write the table as CSV");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : ajx::app::kExitBadInput;
   }
   if (*run_cmd) return ajx::app::run_command(run);
+  if (*thresholds_cmd) return ajx::app::thresholds_command(thresholds);
   if (*sweep_cmd) {
     ajx::parallel::MpiEnvironment mpi(argc, argv);
     return ajx::app::sweep_command(sweep);

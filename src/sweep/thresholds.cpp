@@ -1,0 +1,65 @@
+#include "sweep/thresholds.hpp"
+
+#include <numbers>
+
+namespace ajx::sweep {
+
+std::string_view to_string(Threshold t) {
+  switch (t) {
+    case Threshold::Rise: return "omega_rise";
+    case Threshold::Fall: return "omega_fall";
+    case Threshold::Omega1: return "omega_1";
+    case Threshold::Omega2: return "omega_2";
+  }
+  return "?";
+}
+
+double paper_value(Threshold t) {
+  constexpr double pi = std::numbers::pi;
+  switch (t) {
+    case Threshold::Rise: return 12.63 * pi;
+    case Threshold::Fall: return 3.24 * pi;
+    case Threshold::Omega1: return 4.80 * pi;
+    case Threshold::Omega2: return 15.00 * pi;
+  }
+  return 0.0;
+}
+
+namespace {
+bool circular(OrbitClass c) { return c == OrbitClass::LockedCircular || c == OrbitClass::LaggingCircular; }
+}  // namespace
+
+std::optional<Bracket> find_threshold(Threshold t, const std::vector<ClassedWindow>& w) {
+  const std::size_t n = w.size();
+  std::optional<Bracket> found;
+  for (std::size_t i = 0; i + 1 < n; ++i) {
+    const ClassedWindow &a = w[i], &b = w[i + 1];
+    if (a.cls == OrbitClass::Failed || b.cls == OrbitClass::Failed) continue;
+    switch (t) {
+      case Threshold::Rise:  // the first climb from fallen on a rising ramp
+        if (a.direction > 0 && b.direction > 0 && a.cls == OrbitClass::Fallen && b.cls != OrbitClass::Fallen)
+          return Bracket{a.omega_mean(), b.omega_mean()};
+        break;
+      case Threshold::Fall:  // the first fall onto the ball after a circular orbit, on the way down
+        if (a.direction < 0 && circular(a.cls)) {
+          std::size_t j = i + 1;
+          while (j < n && w[j].direction < 0 && w[j].cls == OrbitClass::NotSettled) ++j;
+          if (j < n && w[j].direction < 0 && w[j].cls == OrbitClass::Fallen)
+            return Bracket{a.omega_mean(), w[j].omega_mean()};
+        }
+        break;
+      case Threshold::Omega1:  // the last loss of the locked orbit on the way up
+        if (a.direction > 0 && b.direction > 0 && a.cls == OrbitClass::LockedCircular &&
+            b.cls != OrbitClass::LockedCircular)
+          found = Bracket{a.omega_mean(), b.omega_mean()};
+        break;
+      case Threshold::Omega2:  // the last loss of a steady circular orbit on the way up
+        if (a.direction > 0 && b.direction > 0 && circular(a.cls) && !circular(b.cls) && b.cls != OrbitClass::Fallen)
+          found = Bracket{a.omega_mean(), b.omega_mean()};
+        break;
+    }
+  }
+  return found;
+}
+
+}  // namespace ajx::sweep
