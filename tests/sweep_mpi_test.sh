@@ -44,6 +44,16 @@ check "thresholds: four per chain, paper values printed" "[ \$(grep -c 'omega_' 
 check "thresholds: CSV with a header and 8 rows" "[ \$(wc -l < '$work/th.csv') -eq 9 ]"
 "$bin" thresholds "$work/missing.h5" > /dev/null 2>&1
 check "thresholds of a missing file: exit 2" "[ $? -eq 2 ]"
+cp "$work/one.h5" "$work/re.h5"
+"$bin" classify "$work/re.h5" > "$work/re.out" 2>&1
+check "classify with the defaults: 0 changed" "grep -q ' 0 changed class' '$work/re.out'"
+for d in class confidence omega_ball rotation_number L1_mean mode_fraction; do
+  check "classify reproduces /windows/$d from the stored samples" "h5diff '$work/one.h5' '$work/re.h5' /windows/$d > /dev/null 2>&1"
+done
+"$bin" classify "$work/re.h5" --set fallen_fraction=7 --set on_ball_tol=1e-9 > "$work/re2.out" 2>&1
+check "classify with other settings changes classes" "! grep -q ' 0 changed class' '$work/re2.out'"
+"$bin" classify "$work/re.h5" --set nonsense=1 > /dev/null 2>&1
+check "classify with an unknown setting: exit 2" "[ $? -eq 2 ]"
 check "every window classified" "! h5dump -A 0 -d /windows/class '$work/three.h5' | grep -q -- '-1'"
 check "ranks recorded" "h5dump -a /provenance/ranks '$work/three.h5' | grep -q '(0): 3'"
 echo "sweep_mpi: $pass passed, $fail failed"

@@ -38,4 +38,10 @@ struct ThresholdsArgs {
 };
 int thresholds_command(const ThresholdsArgs& args);
 
+struct ClassifyArgs {
+  std::string input;                  // a sweep's HDF5 file, rewritten in place
+  std::vector<std::string> settings;  // "name=value" of ClassifierSettings fields
+};
+int classify_command(const ClassifyArgs& args);
+
 }  // namespace ajx::app

@@ -43,6 +43,14 @@ int main(int argc, char** argv) {
   thresholds_cmd->add_option("file", thresholds.input, "HDF5 file written by astrojax sweep")->required();
   thresholds_cmd->add_option("--csv", thresholds.csv, "Also write the table as CSV");
 
+  ajx::app::ClassifyArgs classify;
+  CLI::App* classify_cmd = app.add_subcommand(
+      "classify", "Classify every window of a sweep file again from its stored samples (no integration)");
+  classify_cmd->add_option("file", classify.input, "HDF5 file written by astrojax sweep (rewritten in place)")
+      ->required();
+  classify_cmd->add_option("-s,--set", classify.settings,
+                           "A classifier setting, e.g. --set locked_tol=0.05 (see src/sweep/orbit_classifier.hpp)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -50,6 +58,7 @@ int main(int argc, char** argv) {
   }
   if (*run_cmd) return ajx::app::run_command(run);
   if (*thresholds_cmd) return ajx::app::thresholds_command(thresholds);
+  if (*classify_cmd) return ajx::app::classify_command(classify);
   if (*sweep_cmd) {
     ajx::parallel::MpiEnvironment mpi(argc, argv);
     return ajx::app::sweep_command(sweep);

@@ -1,0 +1,121 @@
+// astrojax classify: classify every window of a sweep file again from its stored samples,
+// with other classifier settings, without integrating again.
+#include <cmath>
+#include <cstdio>
+#include <fmt/format.h>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "app/commands.hpp"
+#include "app/sweep_file.hpp"
+
+namespace ajx::app {
+
+namespace {
+
+// The settings a user may change, by the names of ClassifierSettings' fields.
+std::vector<std::pair<const char*, double sweep::ClassifierSettings::*>> tunable() {
+  using S = sweep::ClassifierSettings;
+  return {{"radius_floor", &S::radius_floor},
+          {"min_samples_per_turn", &S::min_samples_per_turn},
+          {"on_ball_tol", &S::on_ball_tol},
+          {"fallen_fraction", &S::fallen_fraction},
+          {"radius_drift_tol", &S::radius_drift_tol},
+          {"omega_drift_tol", &S::omega_drift_tol},
+          {"L1_drift_tol", &S::L1_drift_tol},
+          {"spread_drift_tol", &S::spread_drift_tol},
+          {"min_cycles", &S::min_cycles},
+          {"max_rate_in_drag_units", &S::max_rate_in_drag_units},
+          {"circular_max_rel_amplitude", &S::circular_max_rel_amplitude},
+          {"locked_tol", &S::locked_tol},
+          {"free_swing_band", &S::free_swing_band}};
+}
+
+}  // namespace
+
+int classify_command(const ClassifyArgs& args) {
+  sweep::ClassifierSettings settings;
+  std::string used;
+  for (const std::string& kv : args.settings) {
+    const auto eq = kv.find('=');
+    const std::string key = kv.substr(0, eq);
+    std::string names;
+    bool found = false;
+    for (const auto& [name, member] : tunable()) {
+      names += std::string(names.empty() ? "" : ", ") + name;
+      if (key != name) continue;
+      double v = NAN;
+      try {
+        v = std::stod(kv.substr(eq + 1));
+      } catch (...) {
+      }
+      if (eq == std::string::npos || !(v > 0.0) || !std::isfinite(v)) {
+        std::fprintf(stderr, "error: --set %s: expected %s=<number > 0>\n", kv.c_str(), name);
+        return kExitBadInput;
+      }
+      settings.*member = v;
+      found = true;
+    }
+    if (!found) {
+      std::fprintf(stderr, "error: --set %s: unknown classifier setting; allowed: %s\n", kv.c_str(), names.c_str());
+      return kExitBadInput;
+    }
+    used += (used.empty() ? "" : "\n") + kv;
+  }
+
+  try {
+    io::File f = io::File::open_rw(args.input);
+    const auto cls = f.read_int32s("windows/class"), count = f.read_int32s("samples/count");
+    const auto model = f.read_doubles("chains/model");
+    const auto t = f.read_doubles("samples/t"), om = f.read_doubles("samples/omega_m"), L1 = f.read_doubles("samples/L1");
+    const auto T1 = f.read_doubles("samples/T1"), T2 = f.read_doubles("samples/T2"), mode = f.read_doubles("samples/mode");
+    const auto r1 = f.read_doubles("samples/r1"), r2 = f.read_doubles("samples/r2");
+    const std::size_t C = cls.rows(), W = cls.cols(), cap = t.dims.at(2);
+    SweepFile out(std::move(f), C, W, cap, 0);
+    long changed = 0, total = 0;
+    for (std::size_t c = 0; c < C; ++c) {
+      physics::Parameters p;
+      p.string_length = model(c, 0);
+      p.bead_mass = model(c, 1);
+      p.ball_mass = model(c, 2);
+      p.drag = model(c, 3);
+      p.gravity = model(c, 6);
+      p.contact_distance = model(c, 8);
+      const sweep::OrbitScales scales = sweep::orbit_scales(p);
+      for (std::size_t k = 0; k < W; ++k) {
+        const auto n = std::size_t(count(c, k));
+        if (cls(c, k) < 0 || n == 0) continue;  // never computed
+        const std::size_t o = (c * W + k) * cap;
+        std::vector<int> modes(n);
+        for (std::size_t i = 0; i < n; ++i) modes[i] = int(mode.data[o + i]);
+        sweep::OrbitWindow w;
+        w.t = std::span<const double>(&t.data[o], n);
+        w.omega_m = std::span<const double>(&om.data[o], n);
+        w.r1 = std::span<const double>(&r1.data[3 * o], 3 * n);
+        w.r2 = std::span<const double>(&r2.data[3 * o], 3 * n);
+        w.L1 = std::span<const double>(&L1.data[o], n);
+        w.T1 = std::span<const double>(&T1.data[o], n);
+        w.T2 = std::span<const double>(&T2.data[o], n);
+        w.mode = modes;
+        // A window the integration failed in stays failed: the samples cannot say why.
+        w.failed = cls(c, k) == static_cast<std::int32_t>(sweep::OrbitClass::Failed);
+        w.failure = "the integration failed (see /tasks)";
+        const sweep::OrbitClassification r = sweep::classify_orbit(w, scales, settings);
+        changed += static_cast<std::int32_t>(r.cls) != cls(c, k);
+        ++total;
+        out.write_classification(c, k, r);
+      }
+    }
+    io::Group wg = out.file().open_group("windows");
+    wg.set_attribute("classifier_settings", used.empty() ? std::string("defaults") : used);
+    out.file().close();
+    std::printf("classified %ld windows again in %s: %ld changed class\n", total, args.input.c_str(), changed);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s: %s\n", args.input.c_str(), e.what());
+    return kExitBadInput;
+  }
+  return 0;
+}
+
+}  // namespace ajx::app

@@ -1,0 +1,263 @@
+// The HDF5 file of a sweep (layout in README, "Sweep output"): made at the start with every
+// result "not computed", filled task by task, reopened to resume or to reclassify.
+#pragma once
+#include <cstdint>
+#include <limits>
+#include <algorithm>
+#include <fmt/format.h>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "config/config.hpp"
+#include "io/hdf5_file.hpp"
+#include "sweep/orbit_classifier.hpp"
+#include "sweep/task.hpp"
+
+namespace ajx::app {
+
+inline constexpr double kNotComputed = std::numeric_limits<double>::quiet_NaN();
+
+// The sweep's file on rank 0, written while the sweep runs: every result dataset is made at
+// the start, filled with "not computed" (NaN, class -1, status 0), and each finished task
+// writes its windows and its final state and flushes. An interrupted sweep keeps all that.
+class SweepFile {
+ public:
+  // The per-window statistics, in the order of kStats.
+  static constexpr const char* kStats[][3] = {
+      {"confidence", "1", "confidence of the class, in [0, 1]"},
+      {"omega_ball", "rad/s", "mean ω_ball of the balls with a reliable azimuth"},
+      {"omega_ball_bead", "rad/s", "ω_ball of the bead (NaN when unreliable)"},
+      {"omega_ball_bottom", "rad/s", "ω_ball of the bottom ball (NaN when unreliable)"},
+      {"rotation_number", "1", "ω_ball / mean ω_m"},
+      {"radius_bead_mean", "m", "mean horizontal radius of the bead"},
+      {"radius_bead_std", "m", "its standard deviation"},
+      {"radius_bottom_mean", "m", "mean horizontal radius of the bottom ball"},
+      {"radius_bottom_std", "m", "its standard deviation"},
+      {"height_bead_mean", "m", "mean height of the bead"},
+      {"height_bottom_mean", "m", "mean height of the bottom ball"},
+      {"L1_mean", "m", "mean bead position s = L1"},
+      {"L1_std", "m", "its standard deviation"},
+      {"L1_min", "m", "smallest L1"},
+      {"L1_max", "m", "largest L1"},
+      {"T1_mean", "N", "mean tension above the bead"},
+      {"T2_mean", "N", "mean tension below the bead"},
+  };
+  static constexpr std::size_t kNumStats = sizeof(kStats) / sizeof(kStats[0]);
+  static constexpr const char* kSamples[] = {"t", "omega_m", "L1", "T1", "T2", "mode"};
+  static constexpr std::size_t kStateCols = physics::idx::dim + 5;
+
+  SweepFile(io::File file, std::size_t chains, std::size_t windows, std::size_t cap, std::size_t tasks)
+      : f_(std::move(file)), C_(chains), W_(windows), cap_(cap), T_(tasks) {}
+
+  // A new file: the configuration, the layout and the empty result datasets.
+  void create(const config::SweepConfig& cfg, const std::vector<config::GridPoint>& points,
+              const std::vector<sweep::ChainSetup>& setups, const std::vector<std::vector<sweep::TaskSpan>>& spans) {
+    auto config = f_.write_string_dataset("config", cfg.source_text);
+    config.set_attribute("source", cfg.source_name);
+    config.set_attribute("overrides", joined_overrides(cfg));
+    write_chains(cfg, points);
+    write_window_layout(setups);
+    io::Group wg = f_.open_group("windows");
+    const io::Dims dims{C_, W_}, chunk{1, W_};
+    auto cls = wg.create_filled("class", dims, io::DType::Int32, -1.0, chunk);
+    cls.set_attribute("description", "orbit class; -1 = not computed (the task never ran)");
+    cls.set_attribute("names", "0 fallen,1 locked-circular,2 lagging-circular,3 flower,4 not-settled,5 failed");
+    for (const auto& st : kStats) {
+      auto d = wg.create_filled(st[0], dims, io::DType::Float64, kNotComputed, chunk);
+      d.set_attribute("units", st[1]);
+      d.set_attribute("description", st[2]);
+    }
+    wg.create_filled("mode_fraction", {C_, W_, 5}, io::DType::Float64, kNotComputed, {1, W_, 5})
+        .set_attribute("description", "time fraction in modes 0 sliding, 1 bottom stop, 2 stuck, 3 top stop, 4 slack");
+    io::Group sg = f_.create_group("samples");
+    sg.set_attribute("sample_rate", cfg.sample_rate);
+    sg.set_attribute("description", "every window's samples, padded with NaN beyond count");
+    sg.create_filled("count", dims, io::DType::Int32, 0.0, chunk);
+    for (const char* name : kSamples) sg.create_filled(name, {C_, W_, cap_}, io::DType::Float64, kNotComputed, {1, 1, cap_}, 4);
+    for (const char* name : {"r1", "r2"}) sg.create_filled(name, {C_, W_, cap_, 3}, io::DType::Float64, kNotComputed, {1, 1, cap_, 3}, 4);
+    io::Group tg = f_.create_group("tasks");
+    std::vector<std::int64_t> chain, index;
+    std::vector<double> tb, te;
+    for (std::size_t c = 0; c < C_; ++c)
+      for (std::size_t k = 0; k < spans[c].size(); ++k) {
+        chain.push_back(std::int64_t(c));
+        index.push_back(std::int64_t(k));
+        tb.push_back(spans[c][k].t_begin);
+        te.push_back(spans[c][k].t_end);
+      }
+    tg.write_dataset("chain", std::span<const std::int64_t>(chain));
+    tg.write_dataset("index", std::span<const std::int64_t>(index));
+    tg.write_dataset("t_begin", std::span<const double>(tb)).set_attribute("units", "s");
+    tg.write_dataset("t_end", std::span<const double>(te)).set_attribute("units", "s");
+    tg.create_filled("status", {T_}, io::DType::Int32, 0.0, {T_})
+        .set_attribute("names", "0 never ran,1 ok,2 failed,3 not run (an earlier task of its chain failed)");
+    tg.create_filled("steps", {T_}, io::DType::Int64, 0.0, {T_});
+    tg.create_filled("final_state", {T_, kStateCols}, io::DType::Float64, kNotComputed, {1, kStateCols})
+        .set_attribute("columns", "t, mode, sigma, s_star, impact_loss, then r1, r2, v1, v2, motor_work, drag_loss, "
+                                  "friction_loss (SI units)");
+    f_.flush();
+  }
+
+  // An existing file, to resume: it must come from the same configuration.
+  void check_same(const config::SweepConfig& cfg) const {
+    const io::Dataset config = f_.open_dataset("config");
+    if (config.read_string() != cfg.source_text || config.read_string_attribute("overrides") != joined_overrides(cfg))
+      throw config::ConfigError(fmt::format(
+          "{}: key 'output.path': {} was written by a different sweep file or overrides; resume it with the same "
+          "ones, or remove it to start afresh",
+          cfg.source_name, f_.disk_path().string()));
+  }
+
+  std::vector<std::int32_t> status() const { return f_.read_int32s("tasks/status").data; }
+  physics::State state(std::size_t task) const {
+    const auto all = f_.read_doubles("tasks/final_state");
+    const double* st = &all.data[task * kStateCols];
+    physics::State s;
+    s.t = st[0];
+    s.contact.mode = static_cast<physics::Mode>(int(st[1]));
+    s.contact.sigma = int(st[2]);
+    s.contact.s_star = st[3];
+    s.impact_loss = st[4];
+    for (int k = 0; k < physics::idx::dim; ++k) s.y(k) = st[5 + k];
+    return s;
+  }
+
+  void write_not_run(std::size_t task) {
+    const std::int32_t v = 3;
+    f_.open_dataset("tasks/status").write_region({task}, {1}, std::span<const std::int32_t>(&v, 1));
+    f_.flush();
+  }
+
+  void write_task(std::size_t task, std::size_t chain, const sweep::TaskOutput& out,
+                  const std::vector<sweep::OrbitClassification>& classes) {
+    for (std::size_t i = 0; i < out.windows.size(); ++i) write_window(chain, out.windows[i], classes[i]);
+    const std::int32_t st = out.ok ? 1 : 2;
+    f_.open_dataset("tasks/status").write_region({task}, {1}, std::span<const std::int32_t>(&st, 1));
+    const std::int64_t steps = out.steps;
+    f_.open_dataset("tasks/steps").write_region({task}, {1}, std::span<const std::int64_t>(&steps, 1));
+    const physics::State& s = out.final_state;
+    std::vector<double> row{s.t, double(s.contact.mode), double(s.contact.sigma), s.contact.s_star, s.impact_loss};
+    row.insert(row.end(), s.y.data(), s.y.data() + s.y.size());
+    f_.open_dataset("tasks/final_state").write_region({task, 0}, {1, kStateCols}, std::span<const double>(row));
+    f_.flush();
+  }
+
+  // Failures of this run join those of earlier runs of the same sweep (one line each, sorted).
+  void finish(std::vector<std::string> failures, const std::function<void(io::Group&)>& provenance) {
+    io::Group tg = f_.open_group("tasks");
+    if (tg.has_attribute("failures")) {
+      const std::string old = tg.read_string_attribute("failures");
+      for (std::size_t a = 0, b; a < old.size(); a = b + 1) {
+        b = old.find('\n', a);
+        if (b == std::string::npos) b = old.size();
+        if (b > a) failures.push_back(old.substr(a, b - a));
+      }
+    }
+    std::sort(failures.begin(), failures.end());
+    failures.erase(std::unique(failures.begin(), failures.end()), failures.end());
+    tg.set_attribute("failures", fmt::format("{}", fmt::join(failures, "\n")));
+    io::Group prov = f_.require_group("provenance");
+    provenance(prov);
+    f_.close();
+  }
+
+ private:
+  static std::string joined_overrides(const config::SweepConfig& cfg) {
+    return fmt::format("{}", fmt::join(cfg.overrides, "\n"));
+  }
+
+  void write_chains(const config::SweepConfig& cfg, const std::vector<config::GridPoint>& points) {
+    io::Group cg = f_.create_group("chains");
+    std::vector<std::string> names;
+    for (const auto& a : cfg.grid) names.push_back(a.key);
+    cg.set_attribute("axes", fmt::format("{}", fmt::join(names, ",")));
+    std::vector<double> values, model;
+    for (const auto& g : points) {
+      values.insert(values.end(), g.values.begin(), g.values.end());
+      const physics::Parameters& p = g.model.p;
+      for (double v : {p.string_length, p.bead_mass, p.ball_mass, p.drag, p.mu_static, p.mu_kinetic, p.gravity,
+                       p.drive_radius, p.contact_distance, p.top_stop})
+        model.push_back(v);
+    }
+    if (!names.empty()) cg.write_dataset("grid_values", std::span<const double>(values), io::Dims{C_, names.size()});
+    cg.write_dataset("model", std::span<const double>(model), io::Dims{C_, 10})
+        .set_attribute("columns", "string_length [m],bead_mass [kg],ball_mass [kg],drag [kg/s],mu_static,mu_kinetic,"
+                                  "gravity [m/s^2],drive_radius [m],contact_distance [m],top_stop [m]");
+  }
+
+  void write_window_layout(const std::vector<sweep::ChainSetup>& setups) {
+    io::Group wg = f_.create_group("windows");
+    std::vector<double> tb(C_ * W_, kNotComputed), te(C_ * W_, kNotComputed), wb(C_ * W_, kNotComputed), we(C_ * W_, kNotComputed);
+    std::vector<std::int32_t> dir(C_ * W_, 0), seg(C_ * W_, -1);
+    for (std::size_t c = 0; c < C_; ++c)
+      for (std::size_t k = 0; k < setups[c].protocol.windows.size(); ++k) {
+        const auto& w = setups[c].protocol.windows[k];
+        const std::size_t i = c * W_ + k;
+        tb[i] = w.t_begin;
+        te[i] = w.t_end;
+        wb[i] = w.omega_begin;
+        we[i] = w.omega_end;
+        dir[i] = w.direction;
+        seg[i] = w.segment;
+      }
+    const io::Dims dims{C_, W_};
+    const auto put = [&](const char* name, const std::vector<double>& v, const char* unit, const char* what) {
+      auto d = wg.write_dataset(name, std::span<const double>(v), dims);
+      d.set_attribute("units", unit);
+      d.set_attribute("description", what);
+    };
+    put("t_begin", tb, "s", "window start");
+    put("t_end", te, "s", "window end");
+    put("omega_m_begin", wb, "rad/s", "motor ω_m at the window start");
+    put("omega_m_end", we, "rad/s", "motor ω_m at the window end");
+    wg.write_dataset("direction", std::span<const std::int32_t>(dir), dims)
+        .set_attribute("description", "+1 ω_m rising, -1 falling, 0 held");
+    wg.write_dataset("segment", std::span<const std::int32_t>(seg), dims)
+        .set_attribute("description", "protocol segment index");
+  }
+
+  void write_window(std::size_t chain, const sweep::WindowRecord& rec, const sweep::OrbitClassification& c) {
+    write_classification(chain, std::size_t(rec.index), c);
+    const io::Dims at{chain, std::size_t(rec.index)}, one{1, 1};
+    const std::size_t n = std::min(rec.size(), cap_);
+    const std::int32_t count = std::int32_t(n);
+    f_.open_dataset("samples/count").write_region(at, one, std::span<const std::int32_t>(&count, 1));
+    if (n == 0) return;
+    std::vector<double> mode(rec.mode.begin(), rec.mode.begin() + long(n));
+    const std::vector<double>* columns[] = {&rec.t, &rec.omega_m, &rec.L1, &rec.T1, &rec.T2, &mode};
+    for (std::size_t k = 0; k < 6; ++k)
+      f_.open_dataset(std::string("samples/") + kSamples[k])
+          .write_region({chain, std::size_t(rec.index), 0}, {1, 1, n}, std::span<const double>(columns[k]->data(), n));
+    f_.open_dataset("samples/r1").write_region({chain, std::size_t(rec.index), 0, 0}, {1, 1, n, 3},
+                                               std::span<const double>(rec.r1.data(), 3 * n));
+    f_.open_dataset("samples/r2").write_region({chain, std::size_t(rec.index), 0, 0}, {1, 1, n, 3},
+                                               std::span<const double>(rec.r2.data(), 3 * n));
+  }
+
+ public:
+  // The class and statistics of one window (also what astrojax classify rewrites).
+  void write_classification(std::size_t chain, std::size_t window, const sweep::OrbitClassification& c) {
+    const io::Dims at{chain, window}, one{1, 1};
+    const std::int32_t cls = static_cast<std::int32_t>(c.cls);
+    f_.open_dataset("windows/class").write_region(at, one, std::span<const std::int32_t>(&cls, 1));
+    const auto& s = c.stats;
+    const double stats[kNumStats] = {c.confidence,     s.omega_ball,     s.ball[0].omega,  s.ball[1].omega,
+                                     s.rotation_number, s.ball[0].rho.mean, s.ball[0].rho.std, s.ball[1].rho.mean,
+                                     s.ball[1].rho.std, s.ball[0].z.mean, s.ball[1].z.mean, s.L1.mean,
+                                     s.L1.std,         s.L1.min,         s.L1.max,         s.T1.mean,
+                                     s.T2.mean};
+    for (std::size_t k = 0; k < kNumStats; ++k)
+      f_.open_dataset(std::string("windows/") + kStats[k][0]).write_region(at, one, std::span<const double>(&stats[k], 1));
+    f_.open_dataset("windows/mode_fraction")
+        .write_region({chain, window, 0}, {1, 1, 5}, std::span<const double>(s.mode_fraction));
+  }
+
+  io::File& file() { return f_; }
+
+ private:
+  io::File f_;
+  std::size_t C_, W_, cap_, T_;
+};
+
+}  // namespace ajx::app
