@@ -135,6 +135,8 @@ int run_command(const RunArgs& args) {
 
   io::File& f = *file;
   f.set_attribute("program", "astrojax-explorer");
+  f.set_attribute("version", ASTROJAX_VERSION);
+  f.set_attribute("git_commit", ASTROJAX_GIT_COMMIT);
   f.set_attribute("command_line", args.command_line);
   auto config = f.write_string_dataset("config", cfg.source_text);
   config.set_attribute("source", cfg.source_name);

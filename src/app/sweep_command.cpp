@@ -250,9 +250,8 @@ int sweep_command(const SweepArgs& args) {
     prov.set_attribute(args.resume ? "resume_wall_time" : "wall_time", wall);
     prov.set_attribute("farm_status", parallel::to_string(fs.status));
     prov.set_attribute("tasks_per_second", fs.tasks_per_second);
-#ifdef ASTROJAX_GIT_COMMIT
-    prov.set_attribute("git_commit", ASTROJAX_GIT_COMMIT);
-#endif
+    prov.set_attribute("version", ASTROJAX_VERSION);
+    prov.set_attribute("git_commit", ASTROJAX_GIT_COMMIT);  // at configure time
   });
   const bool complete = std::none_of(status.begin(), status.end(), [](std::int32_t v) { return v == 0; });
   if (complete) std::filesystem::rename(part_path, final_path);
