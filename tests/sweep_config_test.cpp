@@ -82,3 +82,26 @@ TEST(SweepConfig, BadSweepFilesNameFileKeyAndRange) {
     EXPECT_NE(e.find(c.range), std::string::npos) << e;
   }
 }
+
+TEST(SweepConfig, HoldModeParsesAndRejectsBadSeeds) {
+  std::ifstream in(std::string(ASTROJAX_SOURCE_DIR) + "/tests/data/tiny_hold.toml");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const SweepConfig c = parse_sweep_config(ss.str(), "tests/data/tiny_hold.toml");
+  ASSERT_TRUE(c.hold);
+  EXPECT_EQ(c.hold->omega.size(), 2u);
+  EXPECT_EQ(c.hold->seeds, (std::vector<std::string>{"hanging", "circular_high"}));
+  EXPECT_EQ(c.hold->perturbations, 1);
+  const auto err = [&](const std::vector<std::string>& set) {
+    try {
+      parse_sweep_config(ss.str(), "tests/data/tiny_hold.toml", set);
+    } catch (const ConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(err({"hold.seeds=[\"spinning\"]"}).find("hold.seeds[0]"), std::string::npos);
+  EXPECT_NE(err({"hold.omega=[-1.0]"}).find("hold.omega[0]"), std::string::npos);
+  EXPECT_NE(err({"hold.measure=0"}).find("hold.measure"), std::string::npos);
+  EXPECT_NE(err({"protocol.start_omega=1.0"}).find("either [protocol]"), std::string::npos);
+}

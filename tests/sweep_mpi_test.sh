@@ -54,6 +54,16 @@ done
 check "classify with other settings changes classes" "! grep -q ' 0 changed class' '$work/re2.out'"
 "$bin" classify "$work/re.h5" --set nonsense=1 > /dev/null 2>&1
 check "classify with an unknown setting: exit 2" "[ $? -eq 2 ]"
+# The hold mode: the same on 1 and 3 ranks (the seeds' random kicks included).
+"$mpiexec" --oversubscribe -n 1 "$bin" sweep "$src/tests/data/tiny_hold.toml" -o "$work/hold1.h5" -q > /dev/null 2>&1
+rh1=$?
+"$mpiexec" --oversubscribe -n 3 "$bin" sweep "$src/tests/data/tiny_hold.toml" -o "$work/hold3.h5" -q > /dev/null 2>&1
+rh3=$?
+check "hold: exit 0 on 1 and 3 ranks ($rh1, $rh3)" "[ $rh1 -eq 0 ] && [ $rh3 -eq 0 ]"
+for g in /chains /windows /samples /tasks; do
+  check "hold: $g identical for 1 and 3 ranks" "h5diff '$work/hold1.h5' '$work/hold3.h5' $g > /dev/null 2>&1"
+done
+check "hold: 8 chains with their ω_m and seeds" "h5dump -A 0 -d /chains/seed '$work/hold1.h5' | grep -q '0, 0, 1, 1, 0, 0, 1, 1'"
 check "every window classified" "! h5dump -A 0 -d /windows/class '$work/three.h5' | grep -q -- '-1'"
 check "ranks recorded" "h5dump -a /provenance/ranks '$work/three.h5' | grep -q '(0): 3'"
 echo "sweep_mpi: $pass passed, $fail failed"

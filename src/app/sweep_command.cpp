@@ -27,6 +27,7 @@
 #include "sim/simulation.hpp"
 #include "sweep/codec.hpp"
 #include "sweep/orbit_classifier.hpp"
+#include "sweep/seeds.hpp"
 #include "sweep/task.hpp"
 
 namespace ajx::app {
@@ -71,17 +72,44 @@ int sweep_command(const SweepArgs& args) {
     error = e.what();
   }
 
-  // Chains: one per grid point, each split into tasks on window boundaries.
+  // Chains: one per grid point running the protocol, or in the hold mode one per grid point,
+  // held ω_m, seed and perturbation; each split into tasks on window boundaries.
+  struct Start {
+    std::string seed = "hanging";
+    double omega = 0.0;
+    int perturbation = 0;
+  };
+  std::vector<Start> starts;
+  std::vector<config::GridPoint> chain_points;
+  if (error.empty()) {
+    for (const auto& g : points) {
+      if (!cfg.hold) {
+        starts.push_back({});
+        chain_points.push_back(g);
+        continue;
+      }
+      for (double w : cfg.hold->omega)
+        for (const std::string& seed : cfg.hold->seeds)
+          for (int k = 0; k <= cfg.hold->perturbations; ++k) {
+            starts.push_back({seed, w, k});
+            config::GridPoint held = g;
+            sweep::Segment hold{sweep::Segment::Kind::Steps, {}, {w, w, 1, cfg.hold->settle, cfg.hold->measure, 1.0}};
+            held.protocol = {hold};
+            chain_points.push_back(std::move(held));
+          }
+    }
+  }
   std::vector<sweep::ChainSetup> setups;
   std::vector<std::vector<sweep::TaskSpan>> spans;
   std::vector<std::size_t> first_task;  // id of each chain's task 0
   std::size_t n_windows = 0, cap = 0, n_tasks = 0;
   double total_sim = 0.0;
   if (error.empty()) {
-    for (const auto& g : points) {
+    for (std::size_t i = 0; i < chain_points.size(); ++i) {
+      const auto& g = chain_points[i];
       sweep::ChainSetup c;
       c.model = g.model;
-      c.protocol = sweep::compile(g.protocol, cfg.start_omega);
+      c.protocol = sweep::compile(g.protocol, cfg.hold ? starts[i].omega : cfg.start_omega);
       c.run = cfg.run;
       c.sample_rate = cfg.sample_rate;
       spans.push_back(sweep::split(c.protocol, cfg.windows_per_task));
@@ -118,7 +146,23 @@ int sweep_command(const SweepArgs& args) {
         std::error_code ec;
         if (final_path.has_parent_path()) std::filesystem::create_directories(final_path.parent_path(), ec);
         file.emplace(io::File::create(part_path), setups.size(), n_windows, cap, n_tasks);
-        file->create(cfg, points, setups, spans);
+        file->create(cfg, chain_points, setups, spans);
+        if (cfg.hold) {  // which ω_m, seed and perturbation each chain holds
+          std::vector<double> w;
+          std::vector<std::int32_t> seed, pert;
+          for (const Start& s : starts) {
+            w.push_back(s.omega);
+            seed.push_back(std::int32_t(std::find(cfg.hold->seeds.begin(), cfg.hold->seeds.end(), s.seed) -
+                                        cfg.hold->seeds.begin()));
+            pert.push_back(s.perturbation);
+          }
+          io::Group cg = file->file().open_group("chains");
+          cg.write_dataset("hold_omega", std::span<const double>(w)).set_attribute("units", "rad/s");
+          cg.write_dataset("seed", std::span<const std::int32_t>(seed))
+              .set_attribute("names", fmt::format("{}", fmt::join(cfg.hold->seeds, ",")));
+          cg.write_dataset("perturbation", std::span<const std::int32_t>(pert))
+              .set_attribute("description", "0: the seed itself; k >= 1: the seed with velocity kick k");
+        }
         status.assign(n_tasks, 0);
       }
     } catch (const io::Hdf5Error& e) {
@@ -159,7 +203,9 @@ int sweep_command(const SweepArgs& args) {
       parallel::Chain ch;
       ch.id = std::int64_t(c);
       const physics::MotorSchedule sched(setups[c].protocol.schedule);
-      ch.carry = sweep::encode(k == 0 ? sim::hanging_at_rest(setups[c].model, sched)
+      ch.carry = sweep::encode(k == 0 ? sweep::seed_state(setups[c].model, sched, starts[c].seed, starts[c].omega,
+                                                          starts[c].perturbation,
+                                                          cfg.hold ? cfg.hold->perturbation : 0.0)
                                       : file->state(first_task[c] + k - 1));
       for (std::size_t j = k; j < spans[c].size(); ++j) {
         sweep::ByteWriter w;

@@ -389,9 +389,45 @@ SweepConfig parse_sweep_config(std::string_view text, std::string_view source_na
   c.overrides = overrides;
   const std::string_view file = c.source_name;
   const toml::table root =
-      parse_root(text, file, overrides, {"model", "layers", "integrator", "initial", "protocol", "grid", "output"});
+      parse_root(text, file, overrides, {"model", "layers", "integrator", "initial", "protocol", "grid", "hold", "output"});
   parse_common(root, file, c);
-  c.protocol = parse_protocol(root, file, c);
+  if (root.contains("hold")) {
+    if (root.contains("protocol"))
+      throw ConfigError(fmt::format("{}: key 'hold': a sweep has either [protocol] (ramps) or [hold], not both", file));
+    const toml::table& ht = subtable(root, "hold", file);
+    Reader r(ht, "hold", file);
+    HoldSpec h;
+    if (!r.has("omega")) r.fail("omega", "missing: the held ω_m values [rad/s], a list or {start, stop, num}");
+    r.known("omega");
+    h.omega = value_list(*ht.get("omega"), "hold.omega", file);
+    for (std::size_t i = 0; i < h.omega.size(); ++i)
+      if (!(h.omega[i] >= 0.0 && h.omega[i] <= 2000.0))
+        throw ConfigError(fmt::format("{}: key 'hold.omega[{}]': {} is out of range; allowed [0, 2000]", file, i,
+                                      h.omega[i]));
+    h.settle = r.number("settle", h.settle, 0.0, 1e6);
+    h.measure = r.number("measure", h.measure, 0.0, 1e6, true);
+    if (const toml::array* seeds = ht.get_as<toml::array>("seeds")) {
+      r.known("seeds");
+      h.seeds.clear();
+      for (std::size_t i = 0; i < seeds->size(); ++i) {
+        const auto v = (*seeds)[i].value<std::string>();
+        if (!v || (*v != "hanging" && *v != "circular_high"))
+          throw ConfigError(fmt::format("{}: key 'hold.seeds[{}]': allowed: hanging, circular_high", file, i));
+        h.seeds.push_back(*v);
+      }
+      if (h.seeds.empty()) r.fail("seeds", "the list is empty; allowed: hanging, circular_high");
+    } else if (ht.contains("seeds")) {
+      r.fail("seeds", "expected an array of names (hanging, circular_high)");
+    }
+    h.perturbations = int(r.number("perturbations", 0.0, 0.0, 1000.0));
+    h.perturbation = r.number("perturbation", h.perturbation, 0.0, 10.0, true);
+    c.sample_rate = r.number("sample_rate", 100.0, 0.0, 1e5, true);
+    r.reject_unknown();
+    c.windows_per_task = 1;
+    c.hold = h;
+  } else {
+    c.protocol = parse_protocol(root, file, c);
+  }
   {
     static const std::vector<std::string> axes{"drive_radius", "contact_distance", "string_length", "mass",
                                                "mu_static", "mu_kinetic", "drag", "ramp_rate"};
@@ -408,6 +444,7 @@ SweepConfig parse_sweep_config(std::string_view text, std::string_view source_na
     r.reject_unknown();
   }
   expand_grid(c);  // every grid point is checked before any work
+  if (c.hold) return c;
   try {
     sweep::compile(c.protocol, c.start_omega);
   } catch (const std::invalid_argument& e) {

@@ -3,6 +3,7 @@
 // key and the allowed range.
 #pragma once
 #include <stdexcept>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -57,12 +58,24 @@ struct GridAxis {
   std::vector<double> values;  // in SI units
 };
 
+// The hold mode: every ω_m of a list held fixed, from several seed states each, to find which
+// orbits coexist at one ω_m without ramping. Replaces [protocol] when present.
+struct HoldSpec {
+  std::vector<double> omega;                // ω_m values [rad/s]
+  double settle = 60.0;                     // transient before measuring [s]
+  double measure = 10.0;                    // the measured window [s]
+  std::vector<std::string> seeds{"hanging"};  // "hanging", "circular_high"
+  int perturbations = 0;                    // extra copies of each seed with random velocity kicks
+  double perturbation = 0.01;               // size of a kick [m/s]
+};
+
 struct SweepConfig : CommonConfig {
   std::vector<sweep::Segment> protocol;
   double start_omega = 0.0;   // ω_m at t = 0 [rad/s]
   int windows_per_task = 10;  // granularity of the farm's tasks
   double sample_rate = 100.0; // samples per second stored for every window [1/s]
   std::vector<GridAxis> grid;
+  std::optional<HoldSpec> hold;
   std::string output_path = "out/sweep.h5";
 };
 
