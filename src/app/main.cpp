@@ -1,6 +1,8 @@
 // astrojax: the driven-Astrojax explorer. Subcommands: run (one trajectory into HDF5) and
 // sweep (the MPI farm over a sweep file's chains).
 #include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
 #include <fmt/format.h>
 
 #include "app/commands.hpp"
@@ -61,7 +63,14 @@ int main(int argc, char** argv) {
   if (*classify_cmd) return ajx::app::classify_command(classify);
   if (*sweep_cmd) {
     ajx::parallel::MpiEnvironment mpi(argc, argv);
-    return ajx::app::sweep_command(sweep);
+    try {
+      return ajx::app::sweep_command(sweep);
+    } catch (const std::exception& e) {
+      // An MPI or I/O failure on one rank: the others cannot go on, so the whole job ends.
+      std::fprintf(stderr, "error on rank %d: %s\n", mpi.rank(), e.what());
+      if (mpi.size() > 1) mpi.abort(1);
+      return 1;
+    }
   }
   return 0;
 }
