@@ -275,18 +275,26 @@ std::string read_file(const std::string& path) {
   return ss.str();
 }
 
+// What every command does first: keep the source, parse it with the overrides, check the
+// top-level tables against `known` and read the shared sections.
+toml::table begin(CommonConfig& c, std::string_view text, std::string_view source_name,
+                  const std::vector<std::string>& overrides, const std::set<std::string>& known) {
+  c.source_name = source_name;
+  c.source_text = text;
+  c.overrides = overrides;
+  toml::table root = parse_root(text, c.source_name, overrides, known);
+  parse_common(root, c.source_name, c);
+  return root;
+}
+
 }  // namespace
 
 RunConfig parse_run_config(std::string_view text, std::string_view source_name,
                            const std::vector<std::string>& overrides) {
   RunConfig c;
-  c.source_name = source_name;
-  c.source_text = text;
-  c.overrides = overrides;
-  const std::string_view file = c.source_name;
   const toml::table root =
-      parse_root(text, file, overrides, {"model", "layers", "integrator", "initial", "schedule", "output"});
-  parse_common(root, file, c);
+      begin(c, text, source_name, overrides, {"model", "layers", "integrator", "initial", "schedule", "output"});
+  const std::string_view file = c.source_name;
   c.schedule = parse_schedule(root, file);
   {
     Reader r(subtable(root, "output", file), "output", file);
@@ -384,13 +392,9 @@ std::vector<sweep::Segment> parse_protocol(const toml::table& root, std::string_
 SweepConfig parse_sweep_config(std::string_view text, std::string_view source_name,
                                const std::vector<std::string>& overrides) {
   SweepConfig c;
-  c.source_name = source_name;
-  c.source_text = text;
-  c.overrides = overrides;
+  const toml::table root = begin(c, text, source_name, overrides,
+                                 {"model", "layers", "integrator", "initial", "protocol", "grid", "hold", "output"});
   const std::string_view file = c.source_name;
-  const toml::table root =
-      parse_root(text, file, overrides, {"model", "layers", "integrator", "initial", "protocol", "grid", "hold", "output"});
-  parse_common(root, file, c);
   if (root.contains("hold")) {
     if (root.contains("protocol"))
       throw ConfigError(fmt::format("{}: key 'hold': a sweep has either [protocol] (ramps) or [hold], not both", file));
