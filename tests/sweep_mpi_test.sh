@@ -64,6 +64,12 @@ for g in /chains /windows /samples /tasks; do
   check "hold: $g identical for 1 and 3 ranks" "h5diff '$work/hold1.h5' '$work/hold3.h5' $g > /dev/null 2>&1"
 done
 check "hold: 8 chains with their ω_m and seeds" "h5dump -A 0 -d /chains/seed '$work/hold1.h5' | grep -q '0, 0, 1, 1, 0, 0, 1, 1'"
+# The classifier on simulated orbits: at 6π (R = 1 cm, d = 3 cm) the hanging seed stays
+# fallen, and the Table 1 seed settles on a locked circular orbit with the bead high.
+"$mpiexec" --oversubscribe -n 1 "$bin" sweep "$src/tests/data/tiny_hold.toml" -o "$work/six.h5" -q \
+  --set "hold.omega=[18.84955592153876]" --set hold.settle=60.0 --set hold.measure=10.0 > /dev/null 2>&1
+check "simulated at 6π: fallen from hanging, locked-circular from the bead high" \
+  "h5dump -y -w 0 -A 0 -d /windows/class '$work/six.h5' | sed -n '/DATA {/,/}/p' | tr -d ' \\n' | grep -q 'DATA{0,0,1,1}'"
 check "every window classified" "! h5dump -A 0 -d /windows/class '$work/three.h5' | grep -q -- '-1'"
 check "ranks recorded" "h5dump -a /provenance/ranks '$work/three.h5' | grep -q '(0): 3'"
 echo "sweep_mpi: $pass passed, $fail failed"
