@@ -102,6 +102,23 @@ const toml::table& subtable(const toml::table& root, std::string_view name, std:
   return *n->as_table();
 }
 
+// ω_m bound of every schedule, protocol and hold: far above any motor [rad/s].
+constexpr double kOmegaMax = 2000.0;
+
+// Each table of an array of segments, read with the key prefix `name[i]`; its unknown keys
+// are rejected once `read` has taken what it knows.
+template <class Read>
+void each_table(const toml::array& arr, std::string_view name, std::string_view file, Read&& read) {
+  for (std::size_t i = 0; i < arr.size(); ++i) {
+    const std::string prefix = fmt::format("{}[{}]", name, i);
+    const toml::table* t = arr[i].as_table();
+    if (!t) throw ConfigError(fmt::format("{}: key '{}': expected a table", file, prefix));
+    Reader r(*t, prefix, file);
+    read(r);
+    r.reject_unknown();
+  }
+}
+
 // "a.b.c=value" into the table, creating tables on the way.
 void apply_override(toml::table& root, const std::string& kv, std::string_view file) {
   const auto eq = kv.find('=');
@@ -133,26 +150,21 @@ std::vector<physics::DriveSegment> parse_schedule(const toml::table& root, std::
         "{}: key 'schedule': the motor schedule is empty; give at least one [[schedule]] segment "
         "(kind = \"hold\" with omega and duration, or kind = \"ramp\" with from, to and rate or duration)",
         file));
-  constexpr double w_max = 2000.0;  // [rad/s], far above any motor
   std::vector<physics::DriveSegment> out;
-  for (std::size_t i = 0; i < arr->size(); ++i) {
-    const toml::table* t = (*arr)[i].as_table();
-    const std::string prefix = fmt::format("schedule[{}]", i);
-    if (!t) throw ConfigError(fmt::format("{}: key '{}': expected a table", file, prefix));
-    Reader r(*t, prefix, file);
+  each_table(*arr, "schedule", file, [&](Reader& r) {
     const std::string kind = r.word("kind", "", {"hold", "ramp"});
     if (kind.empty()) r.fail("kind", "missing; allowed: hold, ramp");
     physics::DriveSegment s{};
     if (kind == "hold") {
-      s.omega_begin = s.omega_end = r.number("omega", NAN, 0.0, w_max);
+      s.omega_begin = s.omega_end = r.number("omega", NAN, 0.0, kOmegaMax);
       if (!r.has("omega")) r.fail("omega", "missing (ω_m of the hold [rad/s])");
       if (!r.has("duration")) r.fail("duration", "missing (length of the hold [s])");
       s.duration = r.number("duration", NAN, 0.0, 1e7, true);
     } else {
       for (const char* k : {"from", "to"})
         if (!r.has(k)) r.fail(k, "missing (ω_m at the ramp's start and end [rad/s])");
-      s.omega_begin = r.number("from", NAN, 0.0, w_max);
-      s.omega_end = r.number("to", NAN, 0.0, w_max);
+      s.omega_begin = r.number("from", NAN, 0.0, kOmegaMax);
+      s.omega_end = r.number("to", NAN, 0.0, kOmegaMax);
       if (r.has("rate") == r.has("duration"))
         r.fail("rate", "give exactly one of rate (|dω_m/dt| > 0 [rad/s²]) and duration (> 0 [s])");
       if (s.omega_end == s.omega_begin) r.fail("to", "a ramp needs to != from; use kind = \"hold\"");
@@ -161,9 +173,8 @@ std::vector<physics::DriveSegment> parse_schedule(const toml::table& root, std::
       else
         s.duration = r.number("duration", NAN, 0.0, 1e7, true);
     }
-    r.reject_unknown();
     out.push_back(s);
-  }
+  });
   return out;
 }
 
@@ -339,7 +350,7 @@ std::vector<double> value_list(const toml::node& n, const std::string& key, std:
 std::vector<sweep::Segment> parse_protocol(const toml::table& root, std::string_view file, SweepConfig& c) {
   const toml::table& pt = subtable(root, "protocol", file);
   Reader r(pt, "protocol", file);
-  c.start_omega = r.number("start_omega", 0.0, 0.0, 2000.0);
+  c.start_omega = r.number("start_omega", 0.0, 0.0, kOmegaMax);
   c.windows_per_task = int(r.number("windows_per_task", 10.0, 1.0, 1e6));
   c.sample_rate = r.number("sample_rate", 100.0, 0.0, 1e5, true);
   const toml::array* arr = pt.get_as<toml::array>("segment");
@@ -350,13 +361,8 @@ std::vector<sweep::Segment> parse_protocol(const toml::table& root, std::string_
         "(kind = \"ramp\" with from, to, rate, window; or kind = \"steps\" with from, to, num, settle, measure)",
         file));
   r.reject_unknown();
-  constexpr double w_max = 2000.0;
   std::vector<sweep::Segment> out;
-  for (std::size_t i = 0; i < arr->size(); ++i) {
-    const toml::table* t = (*arr)[i].as_table();
-    const std::string prefix = fmt::format("protocol.segment[{}]", i);
-    if (!t) throw ConfigError(fmt::format("{}: key '{}': expected a table", file, prefix));
-    Reader s(*t, prefix, file);
+  each_table(*arr, "protocol.segment", file, [&](Reader& s) {
     const std::string kind = s.word("kind", "", {"ramp", "steps"});
     if (kind.empty()) s.fail("kind", "missing; allowed: ramp, steps");
     for (const char* k : {"from", "to"})
@@ -364,16 +370,16 @@ std::vector<sweep::Segment> parse_protocol(const toml::table& root, std::string_
     sweep::Segment seg{};
     if (kind == "ramp") {
       seg.kind = sweep::Segment::Kind::Ramp;
-      seg.ramp.from = s.number("from", 0.0, 0.0, w_max);
-      seg.ramp.to = s.number("to", 0.0, 0.0, w_max);
+      seg.ramp.from = s.number("from", 0.0, 0.0, kOmegaMax);
+      seg.ramp.to = s.number("to", 0.0, 0.0, kOmegaMax);
       if (seg.ramp.from == seg.ramp.to) s.fail("to", "a ramp needs to != from");
       if (!s.has("rate")) s.fail("rate", "missing (|dω_m/dt| [rad/s²])");
       seg.ramp.rate = s.number("rate", 0.0, 0.0, 1e4, true);
       seg.ramp.window = s.number("window", 5.0, 0.0, 1e6, true);
     } else {
       seg.kind = sweep::Segment::Kind::Steps;
-      seg.steps.from = s.number("from", 0.0, 0.0, w_max);
-      seg.steps.to = s.number("to", 0.0, 0.0, w_max);
+      seg.steps.from = s.number("from", 0.0, 0.0, kOmegaMax);
+      seg.steps.to = s.number("to", 0.0, 0.0, kOmegaMax);
       if (!s.has("num")) s.fail("num", "missing (number of levels, >= 1)");
       seg.steps.num = int(s.number("num", 1.0, 1.0, 1e5));
       if (!s.has("measure")) s.fail("measure", "missing (measured hold at each level [s])");
@@ -381,9 +387,8 @@ std::vector<sweep::Segment> parse_protocol(const toml::table& root, std::string_
       seg.steps.measure = s.number("measure", 0.0, 0.0, 1e6, true);
       seg.steps.step_rate = s.number("step_rate", 1.0, 0.0, 1e4, true);
     }
-    s.reject_unknown();
     out.push_back(seg);
-  }
+  });
   return out;
 }
 
@@ -405,9 +410,9 @@ SweepConfig parse_sweep_config(std::string_view text, std::string_view source_na
     r.known("omega");
     h.omega = value_list(*ht.get("omega"), "hold.omega", file);
     for (std::size_t i = 0; i < h.omega.size(); ++i)
-      if (!(h.omega[i] >= 0.0 && h.omega[i] <= 2000.0))
-        throw ConfigError(fmt::format("{}: key 'hold.omega[{}]': {} is out of range; allowed [0, 2000]", file, i,
-                                      h.omega[i]));
+      if (!(h.omega[i] >= 0.0 && h.omega[i] <= kOmegaMax))
+        throw ConfigError(fmt::format("{}: key 'hold.omega[{}]': {} is out of range; allowed [0, {}]", file, i,
+                                      h.omega[i], kOmegaMax));
     h.settle = r.number("settle", h.settle, 0.0, 1e6);
     h.measure = r.number("measure", h.measure, 0.0, 1e6, true);
     if (const toml::array* seeds = ht.get_as<toml::array>("seeds")) {
