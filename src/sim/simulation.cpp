@@ -213,10 +213,16 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
     ++sum.impacts;
   };
   const double on_surface = 1e-10 * p.string_length;  // a state this close sits on a surface [m]
-  // The bead lands on a stop: a plastic impact onto the two-link set.
-  const auto land = [&](Mode stop) {
+  // The bead meets a stop (the bottom ball, or the top). In free flight: a plastic collision,
+  // and the string stays slack. On a taut string: a plastic landing onto the two-link set.
+  const auto meet_stop = [&](bool bottom) {
+    if (contact.mode == Mode::Slack) {
+      impact_account(bottom ? physics::collide_with_ball(model_, s.y, 0.0)
+                            : physics::collide_with_top(model_, top_at(s.t), s.y, 0.0));
+      return;
+    }
     const double w0 = s.y(physics::idx::motor_work), l0 = s.impact_loss;
-    enter({stop, 0, 0.0}, 0.0);
+    enter({bottom ? Mode::BottomStop : Mode::TopStop, 0, 0.0}, 0.0);
     if (s.y(physics::idx::motor_work) != w0 || s.impact_loss != l0) ++sum.impacts;
   };
   // The slack string pulls taut: one simultaneous impact with restitution e onto the active set,
@@ -269,11 +275,7 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
       const bool into_ball = layers.bottom_stop && g.L2 - p.contact_distance <= on_surface && g.L2_dot < 0.0;
       const bool into_top = layers.top_stop && g.L1 - p.top_stop <= on_surface && g.L1_dot < 0.0;
       if (free && (into_ball || into_top)) {
-        if (contact.mode == Mode::Slack)
-          impact_account(into_ball ? physics::collide_with_ball(model_, s.y, 0.0)
-                                   : physics::collide_with_top(model_, top, s.y, 0.0));
-        else
-          land(into_ball ? Mode::BottomStop : Mode::TopStop);
+        meet_stop(into_ball);
         continue;
       }
       if (contact.mode == Mode::Slack) {
@@ -356,11 +358,7 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
       switch (g) {
         case Guard::LandBottom:
         case Guard::LandTop:
-          if (contact.mode == Mode::Slack)  // a collision in free flight; the string stays slack
-            impact_account(g == Guard::LandBottom ? physics::collide_with_ball(model_, s.y, 0.0)
-                                                  : physics::collide_with_top(model_, top, s.y, 0.0));
-          else
-            land(g == Guard::LandBottom ? Mode::BottomStop : Mode::TopStop);
+          meet_stop(g == Guard::LandBottom);
           break;
         case Guard::Rest:
           // The kinetic layer has no static coefficient: where μ_s would have held the bead,
