@@ -27,7 +27,7 @@
 #include "sim/simulation.hpp"
 #include "sweep/codec.hpp"
 #include "sweep/orbit_classifier.hpp"
-#include "sweep/seeds.hpp"
+#include "sweep/plan.hpp"
 #include "sweep/task.hpp"
 
 namespace ajx::app {
@@ -59,69 +59,23 @@ int sweep_command(const SweepArgs& args) {
   // Every rank parses the same file: the chains are then known everywhere and only task ids,
   // states and results travel. Rank 0 reports errors; all ranks stop on them.
   config::SweepConfig cfg;
-  std::vector<config::GridPoint> points;
+  sweep::SweepPlan plan;
   std::string error;
   try {
     cfg = config::load_sweep_config(args.config_path, args.overrides);
     if (!args.output.empty()) cfg.output_path = args.output;
-    points = config::expand_grid(cfg);
     if (cfg.initial.preset != "hanging")
       throw config::ConfigError(fmt::format("{}: key 'initial.preset': sweeps start every chain from 'hanging'",
                                             cfg.source_name));
+    plan = sweep::make_plan(cfg);  // chains, each split into tasks on window boundaries
   } catch (const config::ConfigError& e) {
     error = e.what();
   }
-
-  // Chains: one per grid point running the protocol, or in the hold mode one per grid point,
-  // held ω_m, seed and perturbation; each split into tasks on window boundaries.
-  struct Start {
-    std::string seed = "hanging";
-    double omega = 0.0;
-    int perturbation = 0;
-  };
-  std::vector<Start> starts;
-  std::vector<config::GridPoint> chain_points;
-  if (error.empty()) {
-    for (const auto& g : points) {
-      if (!cfg.hold) {
-        starts.push_back({});
-        chain_points.push_back(g);
-        continue;
-      }
-      for (double w : cfg.hold->omega)
-        for (const std::string& seed : cfg.hold->seeds)
-          for (int k = 0; k <= cfg.hold->perturbations; ++k) {
-            starts.push_back({seed, w, k});
-            config::GridPoint held = g;
-            sweep::Segment hold{sweep::Segment::Kind::Steps, {}, {w, w, 1, cfg.hold->settle, cfg.hold->measure, 1.0}};
-            held.protocol = {hold};
-            chain_points.push_back(std::move(held));
-          }
-    }
-  }
-  std::vector<sweep::ChainSetup> setups;
-  std::vector<std::vector<sweep::TaskSpan>> spans;
-  std::vector<std::size_t> first_task;  // id of each chain's task 0
-  std::size_t n_windows = 0, cap = 0, n_tasks = 0;
-  double total_sim = 0.0;
-  if (error.empty()) {
-    for (std::size_t i = 0; i < chain_points.size(); ++i) {
-      const auto& g = chain_points[i];
-      sweep::ChainSetup c;
-      c.model = g.model;
-      c.protocol = sweep::compile(g.protocol, cfg.hold ? starts[i].omega : cfg.start_omega);
-      c.run = cfg.run;
-      c.sample_rate = cfg.sample_rate;
-      spans.push_back(sweep::split(c.protocol, cfg.windows_per_task));
-      first_task.push_back(n_tasks);
-      n_tasks += spans.back().size();
-      n_windows = std::max(n_windows, c.protocol.windows.size());
-      for (const auto& w : c.protocol.windows)
-        cap = std::max(cap, std::size_t(std::ceil((w.t_end - w.t_begin) * c.sample_rate)) + 1);
-      total_sim += c.protocol.duration;
-      setups.push_back(std::move(c));
-    }
-  }
+  const std::vector<sweep::ChainSetup>& setups = plan.setups;
+  const auto& spans = plan.spans;
+  const auto& first_task = plan.first_task;
+  const std::size_t n_tasks = plan.n_tasks;
+  const double total_sim = plan.total_duration;
 
   // Rank 0 opens the file: "<path>.part" while the sweep runs, renamed to <path> when every
   // task has finished. --resume reopens the .part of an interrupted sweep.
@@ -136,7 +90,7 @@ int sweep_command(const SweepArgs& args) {
               "{}: key 'output.path': nothing to resume: {} does not exist{}", cfg.source_name, part_path.string(),
               std::filesystem::exists(final_path) ? fmt::format(" ({} is complete)", final_path.string()) : ""));
         }
-        file.emplace(io::File::open_rw(part_path), setups.size(), n_windows, cap, n_tasks);
+        file.emplace(io::File::open_rw(part_path), setups.size(), plan.max_windows, plan.max_samples, n_tasks);
         file->check_same(cfg);
         status = file->status();
         if (status.size() != n_tasks)
@@ -145,12 +99,12 @@ int sweep_command(const SweepArgs& args) {
       } else {
         std::error_code ec;
         if (final_path.has_parent_path()) std::filesystem::create_directories(final_path.parent_path(), ec);
-        file.emplace(io::File::create(part_path), setups.size(), n_windows, cap, n_tasks);
-        file->create(cfg, chain_points, setups, spans);
+        file.emplace(io::File::create(part_path), setups.size(), plan.max_windows, plan.max_samples, n_tasks);
+        file->create(cfg, plan.points, setups, spans);
         if (cfg.hold) {  // which ω_m, seed and perturbation each chain holds
           std::vector<double> w;
           std::vector<std::int32_t> seed, pert;
-          for (const Start& s : starts) {
+          for (const sweep::ChainStart& s : plan.starts) {
             w.push_back(s.omega);
             seed.push_back(std::int32_t(std::find(cfg.hold->seeds.begin(), cfg.hold->seeds.end(), s.seed) -
                                         cfg.hold->seeds.begin()));
@@ -202,11 +156,7 @@ int sweep_command(const SweepArgs& args) {
       if (k == spans[c].size() || status[first_task[c] + k] != 0) continue;
       parallel::Chain ch;
       ch.id = std::int64_t(c);
-      const physics::MotorSchedule sched(setups[c].protocol.schedule);
-      ch.carry = sweep::encode(k == 0 ? sweep::seed_state(setups[c].model, sched, starts[c].seed, starts[c].omega,
-                                                          starts[c].perturbation,
-                                                          cfg.hold ? cfg.hold->perturbation : 0.0)
-                                      : file->state(first_task[c] + k - 1));
+      ch.carry = sweep::encode(k == 0 ? plan.start_state(c) : file->state(first_task[c] + k - 1));
       for (std::size_t j = k; j < spans[c].size(); ++j) {
         sweep::ByteWriter w;
         w.put<std::int64_t>(std::int64_t(c));

@@ -1,0 +1,44 @@
+// The plan of a sweep: its chains, each with its model, compiled protocol and split into tasks.
+// A chain is one grid point running the protocol, or in the hold mode one (grid point, held
+// ω_m, seed, perturbation). Built the same way by the sweep and by everything that later
+// re-runs part of a chain from a sweep file (threshold refinement), so both agree.
+#pragma once
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "config/config.hpp"
+#include "physics/state.hpp"
+#include "sweep/protocol.hpp"
+#include "sweep/task.hpp"
+
+namespace ajx::sweep {
+
+// Where a chain starts: a seed state (see seeds.hpp) at ω_m = omega.
+struct ChainStart {
+  std::string seed = "hanging";
+  double omega = 0.0;     // [rad/s]
+  int perturbation = 0;   // 0: the seed itself; k >= 1: the seed with velocity kick k
+};
+
+struct SweepPlan {
+  std::vector<config::GridPoint> points;  // per chain: parameters and protocol segments
+  std::vector<ChainStart> starts;         // per chain
+  std::vector<ChainSetup> setups;         // per chain
+  std::vector<std::vector<TaskSpan>> spans;  // per chain: its tasks in order
+  std::vector<std::size_t> first_task;    // per chain: the global id of its task 0
+  std::size_t n_tasks = 0;
+  std::size_t max_windows = 0;            // the most windows of any chain
+  std::size_t max_samples = 0;            // the most samples of any window
+  double total_duration = 0.0;            // simulated seconds of all chains [s]
+  double kick = 0.0;                      // size of a perturbation's velocity kick [m/s]
+
+  std::size_t chains() const { return setups.size(); }
+  // The state chain c starts from at t = 0.
+  physics::State start_state(std::size_t c) const;
+};
+
+// Throws config::ConfigError (grid points) or std::invalid_argument (protocols).
+SweepPlan make_plan(const config::SweepConfig& cfg);
+
+}  // namespace ajx::sweep
