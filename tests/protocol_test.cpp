@@ -53,7 +53,7 @@ TEST(Protocol, StepsHoldWhereTheyMeasure) {
     const Window& w = p.windows[std::size_t(i)];
     EXPECT_DOUBLE_EQ(w.omega_begin, 10.0 + 2.0 * i);
     EXPECT_DOUBLE_EQ(w.t_end - w.t_begin, 10.0);
-    EXPECT_EQ(w.direction, 0);
+    EXPECT_EQ(w.direction, +1);  // the staircase rises
     double phi, om, od;
     sched.phase(0.5 * (w.t_begin + w.t_end), phi, om, od);
     EXPECT_DOUBLE_EQ(om, w.omega_begin);
@@ -64,6 +64,9 @@ TEST(Protocol, StepsHoldWhereTheyMeasure) {
   }
   // Five 2 rad/s steps at 1 rad/s² between six 40 s holds.
   EXPECT_NEAR(p.duration, 6 * 40.0 + 5 * 2.0, 1e-9);
+  // A falling staircase falls; a single held level has no direction.
+  EXPECT_EQ(compile({Segment{Segment::Kind::Steps, {}, {20.0, 10.0, 3, 1.0, 1.0, 1.0}}}, 20.0).windows[1].direction, -1);
+  EXPECT_EQ(compile({Segment{Segment::Kind::Steps, {}, {15.0, 15.0, 1, 1.0, 1.0, 1.0}}}, 15.0).windows[0].direction, 0);
 }
 
 TEST(Protocol, TasksTileTheChain) {

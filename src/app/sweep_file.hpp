@@ -212,7 +212,7 @@ class SweepFile {
     put("omega_m_begin", wb, "rad/s", "motor ω_m at the window start");
     put("omega_m_end", we, "rad/s", "motor ω_m at the window end");
     wg.write_dataset("direction", std::span<const std::int32_t>(dir), dims)
-        .set_attribute("description", "+1 ω_m rising, -1 falling, 0 held");
+        .set_attribute("description", "+1 ω_m rising, -1 falling (ramp or staircase), 0 a single held level");
     wg.write_dataset("segment", std::span<const std::int32_t>(seg), dims)
         .set_attribute("description", "protocol segment index");
   }

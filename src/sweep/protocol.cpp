@@ -62,13 +62,15 @@ CompiledProtocol compile(const std::vector<Segment>& segments, double omega_star
       require(st.num >= 1 && st.measure > 0.0 && st.settle >= 0.0 && st.step_rate > 0.0 && st.from >= 0.0 &&
                   st.to >= 0.0,
               "protocol: steps need num >= 1, measure > 0, settle >= 0, step_rate > 0, from/to >= 0");
+      // A staircase has the direction of its levels (thresholds need it); a single level none.
+      const int dir = st.to > st.from ? 1 : (st.to < st.from ? -1 : 0);
       for (int i = 0; i < st.num; ++i) {
         const double level = st.num == 1 ? st.from : st.from + (st.to - st.from) * i / (st.num - 1);
         b.ramp_to(level, st.step_rate);
         b.hold(st.settle);
         const double t0 = b.t;
         b.hold(st.measure);
-        b.out.windows.push_back({t0, b.t, level, level, int(k), 0});
+        b.out.windows.push_back({t0, b.t, level, level, int(k), st.num > 1 ? dir : 0});
       }
     }
   }

@@ -40,7 +40,7 @@ struct Window {
   double t_begin, t_end;        // [s]
   double omega_begin, omega_end;  // ω_m at its ends [rad/s]
   int segment;                  // index of the protocol segment it belongs to
-  int direction;                // +1 ω_m rising, -1 falling, 0 held
+  int direction;                // +1 ω_m rising, -1 falling (ramps and staircases), 0 one held level
 };
 
 // One piece of a chain for the farm: consecutive windows, integrated from t_begin to t_end.

@@ -21,7 +21,7 @@ namespace ajx::sweep {
 
 struct ClassedWindow {
   double omega_begin, omega_end;  // ω_m at the window's ends [rad/s]
-  int direction;                  // +1 rising, -1 falling, 0 held
+  int direction;                  // +1 rising, -1 falling, 0 a single held level
   OrbitClass cls;
   double omega_mean() const { return 0.5 * (omega_begin + omega_end); }
 };
