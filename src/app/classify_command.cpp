@@ -12,57 +12,15 @@
 
 namespace ajx::app {
 
-namespace {
-
-// The settings a user may change, by the names of ClassifierSettings' fields.
-std::vector<std::pair<const char*, double sweep::ClassifierSettings::*>> tunable() {
-  using S = sweep::ClassifierSettings;
-  return {{"radius_floor", &S::radius_floor},
-          {"min_samples_per_turn", &S::min_samples_per_turn},
-          {"on_ball_tol", &S::on_ball_tol},
-          {"fallen_fraction", &S::fallen_fraction},
-          {"radius_drift_tol", &S::radius_drift_tol},
-          {"omega_drift_tol", &S::omega_drift_tol},
-          {"L1_drift_tol", &S::L1_drift_tol},
-          {"spread_drift_tol", &S::spread_drift_tol},
-          {"min_cycles", &S::min_cycles},
-          {"max_rate_in_drag_units", &S::max_rate_in_drag_units},
-          {"circular_max_rel_amplitude", &S::circular_max_rel_amplitude},
-          {"locked_tol", &S::locked_tol},
-          {"free_swing_band", &S::free_swing_band}};
-}
-
-}  // namespace
-
 int classify_command(const ClassifyArgs& args) {
   sweep::ClassifierSettings settings;
-  std::string used;
-  for (const std::string& kv : args.settings) {
-    const auto eq = kv.find('=');
-    const std::string key = kv.substr(0, eq);
-    std::string names;
-    bool found = false;
-    for (const auto& [name, member] : tunable()) {
-      names += std::string(names.empty() ? "" : ", ") + name;
-      if (key != name) continue;
-      double v = NAN;
-      try {
-        v = std::stod(kv.substr(eq + 1));
-      } catch (...) {
-      }
-      if (eq == std::string::npos || !(v > 0.0) || !std::isfinite(v)) {
-        std::fprintf(stderr, "error: --set %s: expected %s=<number > 0>\n", kv.c_str(), name);
-        return kExitBadInput;
-      }
-      settings.*member = v;
-      found = true;
-    }
-    if (!found) {
-      std::fprintf(stderr, "error: --set %s: unknown classifier setting; allowed: %s\n", kv.c_str(), names.c_str());
-      return kExitBadInput;
-    }
-    used += (used.empty() ? "" : "\n") + kv;
+  try {
+    settings = sweep::parse_classifier_settings(args.settings);
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "error: --set %s\n", e.what());
+    return kExitBadInput;
   }
+  const std::string used = fmt::format("{}", fmt::join(args.settings, "\n"));
 
   try {
     io::File f = io::File::open_rw(args.input);

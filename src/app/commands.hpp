@@ -35,6 +35,8 @@ int sweep_command(const SweepArgs& args);
 struct ThresholdsArgs {
   std::string input;  // a sweep's HDF5 file
   std::string csv;    // also write the table as CSV here, when non-empty
+  int refine = 0;     // re-run each bracket this many times slower (0: no refinement)
+  int jobs = 1;       // threads for the refinements
 };
 int thresholds_command(const ThresholdsArgs& args);
 

@@ -44,6 +44,11 @@ int main(int argc, char** argv) {
       "thresholds", "ω_rise, ω_fall, ω1, ω2 of every chain of a sweep file, as brackets next to the paper's values");
   thresholds_cmd->add_option("file", thresholds.input, "HDF5 file written by astrojax sweep")->required();
   thresholds_cmd->add_option("--csv", thresholds.csv, "Also write the table as CSV");
+  thresholds_cmd->add_option("--refine", thresholds.refine,
+                             "Re-run each bracket from the stored state before it, this many times slower "
+                             "(ramps: rate/F; staircases: F times more levels)")
+      ->check(CLI::Range(1, 1000));
+  thresholds_cmd->add_option("-j,--jobs", thresholds.jobs, "Threads for --refine")->check(CLI::Range(1, 1024));
 
   ajx::app::ClassifyArgs classify;
   CLI::App* classify_cmd = app.add_subcommand(

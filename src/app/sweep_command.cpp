@@ -194,25 +194,7 @@ int sweep_command(const SweepArgs& args) {
     simulated += out.simulated;
     if (!out.ok) failures.push_back(fmt::format("task {} (chain {}, part {}): {}", r.task_id, r.chain, r.index, out.failure));
     const auto chain = std::size_t(r.chain);
-    const sweep::OrbitScales scales = sweep::orbit_scales(setups[chain].model.p);
-    std::vector<sweep::OrbitClassification> classes;
-    for (const auto& rec : out.windows) {
-      // A window the failed integration did not finish is recorded as failed.
-      const double t_end = setups[chain].protocol.windows[std::size_t(rec.index)].t_end;
-      const bool complete = out.ok || (rec.size() > 0 && rec.t.back() >= t_end - 2.0 / cfg.sample_rate);
-      sweep::OrbitWindow w;
-      w.t = rec.t;
-      w.omega_m = rec.omega_m;
-      w.r1 = rec.r1;
-      w.r2 = rec.r2;
-      w.L1 = rec.L1;
-      w.T1 = rec.T1;
-      w.T2 = rec.T2;
-      w.mode = std::span<const int>(reinterpret_cast<const int*>(rec.mode.data()), rec.mode.size());
-      w.failed = !complete;
-      w.failure = out.failure;
-      classes.push_back(sweep::classify_orbit(w, scales));
-    }
+    const std::vector<sweep::OrbitClassification> classes = sweep::classify_windows(setups[chain], out);
     file->write_task(id, chain, out, classes);  // written and flushed at once
   };
   const auto wall0 = std::chrono::steady_clock::now();

@@ -5,7 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "physics/model.hpp"
@@ -484,6 +487,46 @@ OrbitClassification classify_orbit(const OrbitWindow& w, const OrbitScales& sc, 
                            : fmt::format("flower: radius oscillation {:.1f}% over {:g} cycles, pattern rotation undefined",
                                          100 * rel_amp, sb.rho_cycles);
   return out;
+}
+
+ClassifierSettings parse_classifier_settings(const std::vector<std::string>& name_values) {
+  using S = ClassifierSettings;
+  static const std::pair<const char*, double S::*> tunable[] = {
+      {"radius_floor", &S::radius_floor},
+      {"min_samples_per_turn", &S::min_samples_per_turn},
+      {"on_ball_tol", &S::on_ball_tol},
+      {"fallen_fraction", &S::fallen_fraction},
+      {"radius_drift_tol", &S::radius_drift_tol},
+      {"omega_drift_tol", &S::omega_drift_tol},
+      {"L1_drift_tol", &S::L1_drift_tol},
+      {"spread_drift_tol", &S::spread_drift_tol},
+      {"min_cycles", &S::min_cycles},
+      {"max_rate_in_drag_units", &S::max_rate_in_drag_units},
+      {"circular_max_rel_amplitude", &S::circular_max_rel_amplitude},
+      {"locked_tol", &S::locked_tol},
+      {"free_swing_band", &S::free_swing_band}};
+  S settings;
+  for (const std::string& kv : name_values) {
+    const auto eq = kv.find('=');
+    const std::string key = kv.substr(0, eq);
+    std::string names;
+    bool found = false;
+    for (const auto& [name, member] : tunable) {
+      names += std::string(names.empty() ? "" : ", ") + name;
+      if (key != name) continue;
+      double v = std::numeric_limits<double>::quiet_NaN();
+      try {
+        v = std::stod(kv.substr(eq + 1));
+      } catch (const std::exception&) {
+      }
+      if (eq == std::string::npos || !(v > 0.0) || !std::isfinite(v))
+        throw std::invalid_argument(fmt::format("{}: expected {}=<number > 0>", kv, name));
+      settings.*member = v;
+      found = true;
+    }
+    if (!found) throw std::invalid_argument(fmt::format("{}: unknown classifier setting; allowed: {}", kv, names));
+  }
+  return settings;
 }
 
 }  // namespace ajx::sweep

@@ -99,6 +99,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <vector>
 #include <string_view>
 
 namespace ajx::physics {
@@ -223,6 +224,11 @@ struct OrbitClassification {
   std::string reason;       // one line, ASCII
   OrbitStats stats;
 };
+
+// Settings from "name=value" strings, by the names of the tunable fields above (the
+// tolerances and floors; values > 0). Throws std::invalid_argument naming the string and the
+// allowed names.
+ClassifierSettings parse_classifier_settings(const std::vector<std::string>& name_values);
 
 // Pure: no I/O, no state. Throws std::invalid_argument when the array sizes disagree
 // (r1, r2: 3N; omega_m, L1: N; T1, T2, mode: N or empty).

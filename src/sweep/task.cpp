@@ -44,6 +44,30 @@ TaskOutput run_task(const ChainSetup& chain, const TaskSpan& span, physics::Stat
   return out;
 }
 
+std::vector<OrbitClassification> classify_windows(const ChainSetup& chain, const TaskOutput& out,
+                                                  const ClassifierSettings& settings) {
+  const OrbitScales scales = orbit_scales(chain.model.p);
+  std::vector<OrbitClassification> classes;
+  for (const WindowRecord& rec : out.windows) {
+    // Finished when its samples reach the window's end (to within the sampling grid).
+    const double t_end = chain.protocol.windows[std::size_t(rec.index)].t_end;
+    const bool complete = out.ok || (rec.size() > 0 && rec.t.back() >= t_end - 2.0 / chain.sample_rate);
+    OrbitWindow w;
+    w.t = rec.t;
+    w.omega_m = rec.omega_m;
+    w.r1 = rec.r1;
+    w.r2 = rec.r2;
+    w.L1 = rec.L1;
+    w.T1 = rec.T1;
+    w.T2 = rec.T2;
+    w.mode = std::span<const int>(reinterpret_cast<const int*>(rec.mode.data()), rec.mode.size());
+    w.failed = !complete;
+    w.failure = out.failure;
+    classes.push_back(classify_orbit(w, scales, settings));
+  }
+  return classes;
+}
+
 namespace {
 void put_state(ByteWriter& w, const physics::State& s) {
   w.put(s.t);

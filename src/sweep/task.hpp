@@ -9,6 +9,7 @@
 #include "physics/model.hpp"
 #include "physics/state.hpp"
 #include "sim/simulation.hpp"
+#include "sweep/orbit_classifier.hpp"
 #include "sweep/protocol.hpp"
 
 namespace ajx::sweep {
@@ -39,6 +40,11 @@ struct TaskOutput {
 };
 
 TaskOutput run_task(const ChainSetup& chain, const TaskSpan& span, physics::State start);
+
+// The class of every window a task recorded. A window the failed integration did not finish
+// is classified as failed.
+std::vector<OrbitClassification> classify_windows(const ChainSetup& chain, const TaskOutput& out,
+                                                  const ClassifierSettings& settings = {});
 
 // The carry and the output as bytes for the farm; decode(encode(x)) == x exactly.
 std::vector<std::byte> encode(const physics::State& s);

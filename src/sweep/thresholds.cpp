@@ -27,6 +27,9 @@ double paper_value(Threshold t) {
 
 namespace {
 bool circular(OrbitClass c) { return c == OrbitClass::LockedCircular || c == OrbitClass::LaggingCircular; }
+Bracket bracket(const ClassedWindow& a, const ClassedWindow& b) {
+  return {a.omega_mean(), b.omega_mean(), a.index, b.index};
+}
 }  // namespace
 
 std::optional<Bracket> find_threshold(Threshold t, const std::vector<ClassedWindow>& w) {
@@ -38,24 +41,24 @@ std::optional<Bracket> find_threshold(Threshold t, const std::vector<ClassedWind
     switch (t) {
       case Threshold::Rise:  // the first climb from fallen on a rising ramp
         if (a.direction > 0 && b.direction > 0 && a.cls == OrbitClass::Fallen && b.cls != OrbitClass::Fallen)
-          return Bracket{a.omega_mean(), b.omega_mean()};
+          return bracket(a, b);
         break;
       case Threshold::Fall:  // the first fall onto the ball after a circular orbit, on the way down
         if (a.direction < 0 && circular(a.cls)) {
           std::size_t j = i + 1;
           while (j < n && w[j].direction < 0 && w[j].cls == OrbitClass::NotSettled) ++j;
           if (j < n && w[j].direction < 0 && w[j].cls == OrbitClass::Fallen)
-            return Bracket{a.omega_mean(), w[j].omega_mean()};
+            return bracket(a, w[j]);
         }
         break;
       case Threshold::Omega1:  // the last loss of the locked orbit on the way up
         if (a.direction > 0 && b.direction > 0 && a.cls == OrbitClass::LockedCircular &&
             b.cls != OrbitClass::LockedCircular)
-          found = Bracket{a.omega_mean(), b.omega_mean()};
+          found = bracket(a, b);
         break;
       case Threshold::Omega2:  // the last loss of a steady circular orbit on the way up
         if (a.direction > 0 && b.direction > 0 && circular(a.cls) && !circular(b.cls) && b.cls != OrbitClass::Fallen)
-          found = Bracket{a.omega_mean(), b.omega_mean()};
+          found = bracket(a, b);
         break;
     }
   }

@@ -23,12 +23,14 @@ struct ClassedWindow {
   double omega_begin, omega_end;  // ω_m at the window's ends [rad/s]
   int direction;                  // +1 rising, -1 falling, 0 a single held level
   OrbitClass cls;
+  int index = -1;                 // the window's index in its chain
   double omega_mean() const { return 0.5 * (omega_begin + omega_end); }
 };
 
 struct Bracket {
   double before;  // mean ω_m of the last window of the old class [rad/s]
   double after;   // mean ω_m of the first window of the new class [rad/s]
+  int window_before = -1, window_after = -1;  // their indices in the chain
   double mid() const { return 0.5 * (before + after); }
 };
 
