@@ -325,33 +325,49 @@ def read_run(path):
     return out
 
 
-def motor_phase(t, omega_m, r1, L1, R):
-    """The motor phase φ(t) of samples that do not store it (a sweep's windows).
+def _string_misfit(r1, L1, phi, R):
+    """mean (|r1 − a|² − L1²)² with the top a = (R cos φ, R sin φ, 0): zero on the string."""
+    d2 = (r1[:, 0] - R * np.cos(phi)) ** 2 + (r1[:, 1] - R * np.sin(phi)) ** 2 + r1[:, 2] ** 2
+    return np.mean((d2 - L1 ** 2) ** 2)
 
-    φ(t) = φ0 + ∫ω_m dt (trapezoid; exact on a linear ramp). φ0 follows from the string:
-    the top a = (R cos φ, R sin φ, 0) is at distance L1 = |r1 − a| from the bead, so φ0
-    minimises Σ (|r1 − a(φ)| − L1)², found on a grid of 720 and refined by golden section.
-    """
-    rel = np.concatenate([[0.0], np.cumsum(0.5 * (omega_m[1:] + omega_m[:-1]) * np.diff(t))])
-    if R <= 0:
-        return rel  # no drive circle: every phase is the same picture
 
-    def cost(phi0):
-        phi = phi0 + rel
-        d = np.hypot(np.hypot(r1[:, 0] - R * np.cos(phi), r1[:, 1] - R * np.sin(phi)), r1[:, 2])
-        return np.mean((d - L1) ** 2)
-
-    grid = np.linspace(-PI, PI, 720, endpoint=False)
-    best = grid[int(np.argmin([cost(p) for p in grid]))]
-    lo, hi = best - 2 * PI / 720, best + 2 * PI / 720
+def _golden(cost, lo, hi, iterations=80):
     g = (np.sqrt(5) - 1) / 2
-    for _ in range(60):
+    for _ in range(iterations):
         a, b = hi - g * (hi - lo), lo + g * (hi - lo)
         if cost(a) < cost(b):
             hi = b
         else:
             lo = a
-    return 0.5 * (lo + hi) + rel
+    return 0.5 * (lo + hi)
+
+
+def _scan_and_refine(cost, lo, hi, n):
+    grid = np.linspace(lo, hi, n)
+    i = int(np.argmin([cost(x) for x in grid]))
+    step = grid[1] - grid[0]
+    return _golden(cost, grid[max(i - 1, 0)], grid[min(i + 1, n - 1)]) if step > 0 else grid[i]
+
+
+def motor_phase(t, omega_m, r1, L1, R):
+    """The motor phase φ(t) of samples that do not store it (a sweep's windows).
+
+    φ(t) = φ0 + ∫ω_m dt (trapezoid; exact on a linear ramp). φ0 follows from the string:
+    the top a = (R cos φ, R sin φ, 0) is at distance L1 = |r1 − a| from the bead, so φ0
+    minimises the misfit of that equation, scanned on 720 phases and refined by golden
+    section.
+    """
+    rel = np.concatenate([[0.0], np.cumsum(0.5 * (omega_m[1:] + omega_m[:-1]) * np.diff(t))])
+    if R <= 0:
+        return rel  # no drive circle: every phase gives the same picture
+    return _scan_and_refine(lambda p0: _string_misfit(r1, L1, p0 + rel, R), -PI, PI, 721) + rel
+
+
+def drive_radius(phi, r1, L1):
+    """The drive radius R of a run file (which stores φ but not R): the R in [0, min L1]
+    that puts the top a(φ) at distance L1 from the bead, scanned in 0.1 mm and refined."""
+    top = float(np.min(L1))
+    return _scan_and_refine(lambda R: _string_misfit(r1, L1, phi, R), 0.0, top, int(top / 1e-4) + 2)
 
 
 def corotating(r, phi):
@@ -442,5 +458,5 @@ def panels(fig, rows, cols, n_legend=0, **kw):
 
 def legend(leg_ax, handles):
     """The legend in its strip, as many columns as the figure's width holds."""
-    ncol = legend_columns(leg_ax.figure.get_size_inches()[0])
+    ncol = legend_columns(leg_ax.figure.figure.get_size_inches()[0])  # .figure.figure: the root figure
     leg_ax.legend(handles=handles, loc="center", ncol=min(len(handles), ncol), fontsize=7.5, frameon=False)
