@@ -48,10 +48,13 @@ MODE_NAMES = {0: "sliding", 1: "on bottom ball", 2: "stuck", 3: "top stop", 4: "
 MODE_COLOURS = {0: "tab:blue", 1: "tab:grey", 2: "tab:orange", 3: "tab:red", 4: "tab:green"}
 
 
-def text_attr(obj, name, default=""):
-    """A string attribute, whether h5py returns it as str or bytes."""
-    value = obj.attrs.get(name, default)
+def as_text(value):
+    """An HDF5 string, whether h5py returns it as str or bytes."""
     return value.decode() if isinstance(value, bytes) else str(value)
+
+
+def text_attr(obj, name, default=""):
+    return as_text(obj.attrs.get(name, default))
 
 
 def parse_names(text):
@@ -313,14 +316,14 @@ def threshold_legend_handles(rows, paper=True):
 # ---- run files and the motor's frame ---------------------------------------------------
 
 def read_run(path):
-    """A run file's trajectory: dict of t, omega_m, phi, L1, mode (n), r1, r2 (n × 3), and R."""
+    """A run file's trajectory: dict of t, omega_m, phi, L1, mode (n), r1, r2 (n × 3), and
+    the /summary attributes as 'summary'."""
     if file_kind(path) != "run":
         fail(f"{path}: not a run file (no /trajectory): make one with `astrojax run`")
     with h5py.File(path, "r") as f:
         tr = f["trajectory"]
         out = {name: tr[name][:] for name in ("t", "omega_m", "phi", "L1", "mode", "r1", "r2")}
         out["summary"] = {k: f["summary"].attrs[k] for k in f["summary"].attrs}
-        out["config"] = f["config"][()].decode() if isinstance(f["config"][()], bytes) else str(f["config"][()])
     out["mode"] = out["mode"].astype(int)
     return out
 

@@ -19,7 +19,10 @@ PI = ajx.PI
 
 
 def draw_panel(ax, sweep, chains, rows, paper):
-    top = max(np.nanmax(sweep.omega_mean[c][sweep.valid[c]]) for c in chains) / PI * 1.05
+    top = max(np.nanmax(sweep.omega_mean[c][sweep.valid[c]]) for c in chains)
+    if paper:  # every paper value in view
+        top = max([top] + list(ajx.paper_values(rows).values()))
+    top = top / PI * 1.05
     ajx.draw_thresholds(ax, rows, chains, paper=paper)
     ax.plot([0, top], [0, top], "k:", lw=0.8)
     for c in chains:
