@@ -99,7 +99,8 @@ class Sweep:
             self.omega_end = w["omega_m_end"][:]
             self.direction = w["direction"][:]
             self.segment = w["segment"][:]
-            self.stats = {name: w[name][:] for name in w if w[name].ndim == 2 and name not in ("class", "direction", "segment")}
+            layout = ("class", "direction", "segment")
+            self.stats = {name: w[name][:] for name in w if w[name].ndim == 2 and name not in layout}
             ch = f["chains"]
             self.model = ch["model"][:]
             self.model_columns = [c.split(" [")[0] for c in text_attr(ch["model"], "columns").split(",")]
@@ -111,7 +112,8 @@ class Sweep:
             self.seed_names = text_attr(ch["seed"], "names").split(",") if "seed" in ch else []
             self.perturbation = ch["perturbation"][:] if "perturbation" in ch else None
             self.sample_rate = float(f["samples"].attrs.get("sample_rate", np.nan))
-            self.provenance = {k: text_attr(f["provenance"], k) for k in f["provenance"].attrs} if "provenance" in f else {}
+            prov = f["provenance"] if "provenance" in f else None
+            self.provenance = {k: text_attr(prov, k) for k in prov.attrs} if prov is not None else {}
         self.n_chains, self.n_windows = self.cls.shape
         self.omega_mean = 0.5 * (self.omega_begin + self.omega_end)
         self.valid = self.cls >= 0

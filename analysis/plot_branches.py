@@ -10,7 +10,6 @@ Threshold brackets from `astrojax thresholds` are shaded.
 
 usage: /usr/bin/python3 analysis/plot_branches.py out/quick.h5 -o out/quick_branches.png
 """
-import numpy as np
 
 import astrojax_analysis as ajx
 

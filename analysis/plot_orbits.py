@@ -45,9 +45,11 @@ def sweep_orbits(args):
     want = {"up": 1, "down": -1, "held": 0}.get(args.direction)
     ks = [k for k in sweep.windows(c) if want is None or sweep.direction[c, k] == want]
     if not ks:
-        ajx.fail(f"{args.input}: chain {c} has no classified window" + (f" with direction {args.direction}" if want is not None else ""))
+        which = f" with direction {args.direction}" if want is not None else ""
+        ajx.fail(f"{args.input}: chain {c} has no classified window{which}")
     if args.omega:
-        chosen = [min(ks, key=lambda k: abs(sweep.omega_mean[c, k] - w * PI)) for w in number_list(args.omega, "--omega")]
+        chosen = [min(ks, key=lambda k: abs(sweep.omega_mean[c, k] - w * PI))
+                  for w in number_list(args.omega, "--omega")]
     else:
         by_class = {}
         for k in ks:
@@ -101,8 +103,8 @@ def run_orbits(args):
             ajx.fail(f"{args.input}: fewer than 3 samples in the {tail:g} s before t = {end:g} s")
         s = {n: run[n][keep] for n in ("t", "omega_m", "phi", "L1", "mode", "r1", "r2")}
         R = ajx.drive_radius(s["phi"], s["r1"], s["L1"])
-        title = (f"t = {s['t'][0]:.1f}–{s['t'][-1]:.1f} s, ω_m {s['omega_m'][0] / PI:.2f}–{s['omega_m'][-1] / PI:.2f}π "
-                 f"rad/s, R = {R * 1000:.3g} mm")
+        w0, w1 = s["omega_m"][0] / PI, s["omega_m"][-1] / PI
+        title = f"t = {s['t'][0]:.1f}–{s['t'][-1]:.1f} s, ω_m {w0:.2f}–{w1:.2f}π rad/s, R = {R * 1000:.3g} mm"
         out.append((title, s, R))
     return out
 
@@ -162,7 +164,8 @@ def main(argv=None):
     legend_h = ajx.legend_height(13, len(handles))
     fig = ajx.new_figure(args, (13, 0.6 + 3.1 * len(orbits) + legend_h))
     height = fig.get_size_inches()[1]
-    subs = fig.subfigures(len(orbits) + 1, 1, height_ratios=[(height - legend_h) / len(orbits)] * len(orbits) + [legend_h])
+    ratios = [(height - legend_h) / len(orbits)] * len(orbits) + [legend_h]
+    subs = fig.subfigures(len(orbits) + 1, 1, height_ratios=ratios)
     for sub, (title, s, R) in zip(subs, orbits):
         row = sub.subplots(1, 4)
         draw_orbit(row, s, R)

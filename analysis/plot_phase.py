@@ -11,7 +11,8 @@ the same ω_m, two orbits coexist: that hysteresis region is hatched over the wh
 Grid axes other than the one drawn must be fixed with --where if they vary.
 
 usage: /usr/bin/python3 analysis/plot_phase.py out/paper.h5 -o out/paper_phase.png --axis drive_radius
-       /usr/bin/python3 analysis/plot_phase.py out/grid.h5 -o phase.pdf --axis contact_distance --where drive_radius=0.01
+       /usr/bin/python3 analysis/plot_phase.py out/grid.h5 -o phase.pdf --axis contact_distance \
+           --where drive_radius=0.01
 """
 import numpy as np
 

@@ -31,8 +31,16 @@ def percent(text):
     return f"{100 * v:+.1f} %" if np.isfinite(v) else ""
 
 
+def table_row(*cells):
+    return "| " + " | ".join(str(c) for c in cells) + " |"
+
+
+def bracket(r):
+    return f"{pi_units(r['before_rad_s'], 3)} .. {pi_units(r['after_rad_s'], 3)}" if r["mid_rad_s"] else "not reached"
+
+
 def markdown(path, rows, sweep):
-    symbols = ajx.THRESHOLD_SYMBOLS
+    symbol = lambda name: ajx.THRESHOLD_SYMBOLS.get(name, name)  # noqa: E731
     prov = sweep.provenance
     lines = [f"# Thresholds of `{path}`", ""]
     facts = [("command", prov.get("command_line", "")), ("git commit", prov.get("git_commit", "")),
@@ -41,27 +49,28 @@ def markdown(path, rows, sweep):
     lines += [f"- chains: {sweep.n_chains}" + (f", grid axes: {', '.join(sweep.axes)}" if sweep.axes else ""),
               f"- made by `astrojax thresholds {path}`; definitions in README (\"Thresholds and reclassification\").",
               "", "## Every chain", "",
-              "| chain | parameters | threshold | bracket [π rad/s] | midpoint [π rad/s] | paper [π rad/s] | relative difference |",
+              table_row("chain", "parameters", "threshold", "bracket [π rad/s]", "midpoint [π rad/s]",
+                        "paper [π rad/s]", "relative difference"),
               "|---:|---|---|---|---:|---:|---:|"]
     for r in rows:
-        bracket = f"{pi_units(r['before_rad_s'], 3)} .. {pi_units(r['after_rad_s'], 3)}" if r["mid_rad_s"] else "not reached"
-        lines.append(f"| {r['chain']} | {r.get('parameters', '') or '—'} | {symbols.get(r['threshold'], r['threshold'])} | "
-                     f"{bracket} | {pi_units(r['mid_rad_s'], 3)} | {pi_units(r['paper_rad_s'], 2)} | {percent(r['relative_difference'])} |")
+        lines.append(table_row(r["chain"], r.get("parameters", "") or "—", symbol(r["threshold"]), bracket(r),
+                               pi_units(r["mid_rad_s"], 3), pi_units(r["paper_rad_s"], 2),
+                               percent(r["relative_difference"])))
     lines += ["", "## Closest chain per threshold", "",
-              "| threshold | paper [π rad/s] | reached by | closest chain | its bracket [π rad/s] | relative difference |",
+              table_row("threshold", "paper [π rad/s]", "reached by", "closest chain", "its bracket [π rad/s]",
+                        "relative difference"),
               "|---|---:|---:|---:|---|---:|"]
-    chains = sorted({r["chain"] for r in rows}, key=int)
+    n_chains = len({r["chain"] for r in rows})
     for name in dict.fromkeys(r["threshold"] for r in rows):
         mine = [r for r in rows if r["threshold"] == name]
         reached = [r for r in mine if r["relative_difference"]]
         paper = pi_units(mine[0]["paper_rad_s"], 2)
         if reached:
             best = min(reached, key=lambda r: abs(float(r["relative_difference"])))
-            lines.append(f"| {symbols.get(name, name)} | {paper} | {len(reached)} of {len(chains)} | {best['chain']} | "
-                         f"{pi_units(best['before_rad_s'], 3)} .. {pi_units(best['after_rad_s'], 3)} | "
-                         f"{percent(best['relative_difference'])} |")
+            lines.append(table_row(symbol(name), paper, f"{len(reached)} of {n_chains}", best["chain"], bracket(best),
+                                   percent(best["relative_difference"])))
         else:
-            lines.append(f"| {symbols.get(name, name)} | {paper} | 0 of {len(chains)} | — | not reached | |")
+            lines.append(table_row(symbol(name), paper, f"0 of {n_chains}", "—", "not reached", ""))
     return "\n".join(lines) + "\n"
 
 
