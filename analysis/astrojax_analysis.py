@@ -17,11 +17,7 @@ import sys
 import tempfile
 
 import h5py
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+import numpy as np
 
 PI = np.pi
 
@@ -415,17 +411,26 @@ def check_output(path):
         fail(f"-o {path}: the extension must be .png or .pdf")
 
 
+def pyplot():
+    """matplotlib.pyplot without a display, imported only when a figure is made (--help and
+    bad input stay fast)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    return plt
+
+
 def save(fig, args):
     """Writes the figure at exactly its size (W·dpi × H·dpi pixels for a PNG)."""
     os.makedirs(os.path.dirname(os.path.abspath(args.output)), exist_ok=True)
     fig.savefig(args.output, dpi=args.dpi)
-    plt.close(fig)
+    pyplot().close(fig)
     print(f"wrote {args.output}")
 
 
 def new_figure(args, default_size, **kw):
     check_output(args.output)
-    return plt.figure(figsize=figure_size(args, default_size), layout="constrained", **kw)
+    return pyplot().figure(figsize=figure_size(args, default_size), layout="constrained", **kw)
 
 
 def panel_grid(n, max_cols=3):

@@ -53,6 +53,15 @@ def make():
 
 # ---- PNG and PDF without an imaging library ----------------------------------------
 
+def png_size(path):
+    """(width, height) from a PNG's IHDR chunk, which follows the 8-byte signature."""
+    with open(path, "rb") as f:
+        head = f.read(24)
+    if head[:8] != b"\x89PNG\r\n\x1a\n" or head[12:16] != b"IHDR":
+        raise AssertionError(f"{path}: not a PNG")
+    return struct.unpack(">II", head[16:24])
+
+
 def png_pixels(path):
     """(width, height, rows of pixels as bytes tuples) of an 8-bit RGB or RGBA PNG."""
     with open(path, "rb") as f:
@@ -103,8 +112,8 @@ class ImageChecks(unittest.TestCase):
         differ from the background (the corner pixel), and at least 0.03 % are coloured
         (not grey: every script draws classes, paths or thresholds in colour, while empty axes,
         ticks and text are black and grey)."""
+        self.assertEqual(png_size(path), (width, height), f"{path}: pixel size")
         w, h, bpp, rows = png_pixels(path)
-        self.assertEqual((w, h), (width, height), f"{path}: pixel size")
         background = rows[0][:bpp]
         pixels = [row[i:i + bpp] for row in rows[::2] for i in range(0, len(row), 2 * bpp)]
         ink = sum(p != background for p in pixels) / len(pixels)
@@ -152,7 +161,7 @@ class hysteresis(ImageChecks):
         p = subprocess.run([PYTHON, os.path.join(ANALYSIS, "plot_hysteresis.py"), data("phase.h5"), "-o", out],
                            capture_output=True, text=True, env=dict(os.environ, ASTROJAX=ASTROJAX))
         self.assertEqual(p.returncode, 0, p.stderr)
-        w, h, *_ = png_pixels(out)
+        w, h = png_size(out)
         self.assertEqual(w, 1980)  # 3 panels of 5.5 in at 120 dpi
         self.assertGreater(h, 4.5 * 120)  # a row of 4.5 in and the legend
 
@@ -185,9 +194,9 @@ class phase(ImageChecks):
 
 class orbits(ImageChecks):
     def test_png_from_sweep_and_run(self):
-        self.image("plot_orbits.py", "--chain", "2", "--omega", "3,13", size=(12, 7))
-        self.image("plot_orbits.py", "--chain", "2", size=(12, 7), inputs=("hold.h5",))  # circular_high seed
-        self.image("plot_orbits.py", "--omega", "6,14", "--tail", "1.5", size=(12, 7), inputs=("run.h5",))
+        self.image("plot_orbits.py", "--chain", "2", "--omega", "3,13", size=(10, 6), dpi=40)
+        self.image("plot_orbits.py", "--chain", "2", size=(10, 6), dpi=40, inputs=("hold.h5",))  # circular_high seed
+        self.image("plot_orbits.py", "--omega", "6,14", "--tail", "1.5", size=(10, 6), dpi=40, inputs=("run.h5",))
 
     def test_motor_phase_and_radius_recovered_from_the_string(self):
         # A run file stores φ; take the last 5 s (ω_m held: the trapezoid ∫ω_m dt is exact) and
