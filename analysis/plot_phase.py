@@ -7,7 +7,9 @@ sweep one strip per protocol segment (labelled ▲ rising or ▼ falling with th
 index, in protocol order from the top); on a hold sweep one per seed and kick. Each window
 fills its ω_m range in its strip (held points the half-way span to their neighbours).
 Where strips of a row end in different steady classes (fallen, locked, lagging, flower) at
-the same ω_m, two orbits coexist: that hysteresis region is hatched over the whole row.
+the same ω_m, two orbits coexist: that hysteresis region is hatched (////) over the whole
+row. With --omega-ball-tol, where they share a class but their ω_ball differ by more than
+that fraction of ω_m (two orbits of one class), the row is dotted.
 Grid axes other than the one drawn must be fixed with --where if they vary.
 
 usage: /usr/bin/python3 analysis/plot_phase.py out/paper.h5 -o out/paper_phase.png --axis drive_radius
@@ -19,6 +21,7 @@ import numpy as np
 import astrojax_analysis as ajx
 
 PI = ajx.PI
+HATCH = {"class": "////", "omega_ball": "...."}
 
 
 def choose_chains(sweep, axis, where):
@@ -45,7 +48,7 @@ def choose_chains(sweep, axis, where):
 
 
 def strips_of(sweep, chains):
-    """{strip key: [(ω_lo, ω_hi, class name), ...]} for the chains of one row [rad/s]."""
+    """{strip key: [(ω_lo, ω_hi, class name, ω_ball), ...]} for the chains of one row [rad/s]."""
     strips = {}
     if sweep.is_hold:
         held = np.unique(np.concatenate([sweep.omega_mean[c, sweep.windows(c)] for c in chains]))
@@ -55,13 +58,14 @@ def strips_of(sweep, chains):
             for k in sweep.windows(c):
                 i = int(np.searchsorted(held, sweep.omega_mean[c, k]))
                 key = (int(sweep.seed[c]), int(sweep.perturbation[c]))
-                strips.setdefault(key, []).append((edges[i], edges[i + 1], sweep.class_name(c, k)))
+                strips.setdefault(key, []).append((edges[i], edges[i + 1], sweep.class_name(c, k),
+                                                   sweep.stats["omega_ball"][c, k]))
     else:
         for c in chains:
             for k in sweep.windows(c):
                 lo, hi = sorted((sweep.omega_begin[c, k], sweep.omega_end[c, k]))
                 key = (c, int(sweep.segment[c, k]), int(sweep.direction[c, k]))
-                strips.setdefault(key, []).append((lo, hi, sweep.class_name(c, k)))
+                strips.setdefault(key, []).append((lo, hi, sweep.class_name(c, k), sweep.stats["omega_ball"][c, k]))
     return dict(sorted(strips.items()))
 
 
@@ -72,19 +76,29 @@ def strip_label(sweep, key):
     return {1: "▲", -1: "▼", 0: "●"}.get(key[2], "") + str(key[1])
 
 
-def coexistence(strips):
-    """ω_m intervals [rad/s] where strips hold different steady classes."""
-    edges = np.unique([e for windows in strips.values() for lo, hi, _ in windows for e in (lo, hi)])
+def coexistence(strips, omega_ball_tol=None):
+    """ω_m intervals [rad/s] where two orbits coexist: (lo, hi, kind). kind 'class': strips
+    hold different steady classes there. kind 'omega_ball' (only with omega_ball_tol): the
+    same steady class, but ω_ball differing by more than omega_ball_tol × ω_m."""
+    edges = np.unique([e for windows in strips.values() for w in windows for e in w[:2]])
     out = []
     for lo, hi in zip(edges[:-1], edges[1:]):
         mid = 0.5 * (lo + hi)
-        seen = {name for windows in strips.values() for a, b, name in windows
-                if a <= mid <= b and name in ajx.STEADY_CLASSES}
-        if len(seen) > 1:
-            if out and np.isclose(out[-1][1], lo):
-                out[-1] = (out[-1][0], hi)
-            else:
-                out.append((lo, hi))
+        here = [(name, wb) for windows in strips.values() for a, b, name, wb in windows
+                if a <= mid <= b and name in ajx.STEADY_CLASSES]
+        kind = None
+        if len({name for name, _ in here}) > 1:
+            kind = "class"
+        elif omega_ball_tol is not None:
+            wbs = [wb for _, wb in here if np.isfinite(wb)]
+            if wbs and max(wbs) - min(wbs) > omega_ball_tol * mid:
+                kind = "omega_ball"
+        if kind is None:
+            continue
+        if out and out[-1][2] == kind and np.isclose(out[-1][1], lo):
+            out[-1] = (out[-1][0], hi, kind)
+        else:
+            out.append((lo, hi, kind))
     return out
 
 
@@ -93,6 +107,9 @@ def main(argv=None):
     ap.add_argument("input", help="HDF5 file from `astrojax sweep`")
     ajx.add_figure_args(ap, "10 × (1.6 + 0.7 per strip row)")
     ap.add_argument("--axis", help="grid axis along y (default: the first grid axis with several values)")
+    ap.add_argument("--omega-ball-tol", type=float, metavar="FRACTION",
+                    help="also mark where passes share a steady class but their ω_ball differ by more than "
+                         "FRACTION × ω_m (two orbits of one class; off by default)")
     ap.add_argument("--where", action="append", default=[], metavar="AXIS=VALUE",
                     help="fix another grid axis at its value nearest VALUE (repeatable)")
     args = ap.parse_args(argv)
@@ -116,9 +133,12 @@ def main(argv=None):
     n_strips = sum(len(s) for s in row_strips.values())
 
     from matplotlib.patches import Patch, Rectangle
-    used = {name for s in row_strips.values() for windows in s.values() for *_, name in windows}
+    used = {name for s in row_strips.values() for windows in s.values() for _, _, name, _ in windows}
     handles = [Patch(color=ajx.CLASS_COLOURS[n], label=n) for n in ajx.CLASS_COLOURS if n in used]
-    handles.append(Patch(facecolor="none", edgecolor="k", hatch="////", label="coexistence (hysteresis)"))
+    handles.append(Patch(facecolor="none", edgecolor="k", hatch=HATCH["class"], label="coexisting classes (hysteresis)"))
+    if args.omega_ball_tol is not None:
+        handles.append(Patch(facecolor="none", edgecolor="k", hatch=HATCH["omega_ball"],
+                             label=f"one class, ω_ball apart by > {args.omega_ball_tol:g} ω_m"))
     fig = ajx.new_figure(args, (10, 1.6 + 0.35 * n_strips + 0.4 * len(rows) + ajx.legend_height(10, len(handles))))
     axes, leg = ajx.panels(fig, 1, 1, len(handles))
     ax = axes[0, 0]
@@ -127,15 +147,15 @@ def main(argv=None):
         y0, h = i - 0.42, 0.84 / max(len(strips), 1)
         for j, (key, windows) in enumerate(strips.items()):
             y = y0 + (len(strips) - 1 - j) * h  # the first pass on top
-            for lo, hi, name in windows:
+            for lo, hi, name, _ in windows:
                 ax.add_patch(Rectangle((lo / PI, y), (hi - lo) / PI, h, facecolor=ajx.CLASS_COLOURS.get(name, "k"),
                                        edgecolor="none"))
                 top = max(top, hi / PI)
             ax.text(-0.005, y + 0.5 * h, strip_label(sweep, key), transform=ax.get_yaxis_transform(), ha="right",
                     va="center", fontsize=6.5)
-        for lo, hi in coexistence(strips):
-            ax.add_patch(Rectangle((lo / PI, y0), (hi - lo) / PI, 0.84, facecolor="none", edgecolor="k", hatch="////",
-                                   lw=0.8))
+        for lo, hi, kind in coexistence(strips, args.omega_ball_tol):
+            ax.add_patch(Rectangle((lo / PI, y0), (hi - lo) / PI, 0.84, facecolor="none", edgecolor="k",
+                                   hatch=HATCH[kind], lw=0.8))
     ax.set_xlim(0, top * 1.02)
     ax.set_ylim(-0.5, len(rows) - 0.5)
     ax.set_yticks(range(len(rows)), list(rows), fontsize=8)

@@ -173,18 +173,23 @@ class branches(ImageChecks):
 
 class phase(ImageChecks):
     def test_png_over_drive_radius_and_hold(self):
-        self.image("plot_phase.py", "--axis", "drive_radius", size=(8, 6))
+        self.image("plot_phase.py", "--axis", "drive_radius", "--omega-ball-tol", "0.1", size=(8, 6))
         self.image("plot_phase.py", size=(8, 3), inputs=("hold.h5",))
 
     def test_coexistence(self):
-        # Two passes over 0..10 rad/s: fallen throughout, and fallen below 4 then locked.
-        # They coexist (differ in steady class) on [4, 10]; not-settled never counts.
+        # Two passes over 0..10 rad/s (entries: ω_m from, to, class, ω_ball): fallen
+        # throughout; and fallen below 4 (ω_ball 1 rad/s below 2, 3 rad/s from 2 to 4), then
+        # locked. Classes differ on [4, 7]; not-settled never counts, lagging does.
         import plot_phase
-        strips = {"up": [(0, 5, "fallen"), (5, 10, "fallen")],
-                  "down": [(0, 4, "fallen"), (4, 7, "locked-circular"), (7, 10, "not-settled")]}
-        self.assertEqual(plot_phase.coexistence(strips), [(4, 7)])
-        strips["down"][2] = (7, 10, "lagging-circular")
-        self.assertEqual(plot_phase.coexistence(strips), [(4, 10)])
+        strips = {"up": [(0, 5, "fallen", 1.0), (5, 10, "fallen", 1.0)],
+                  "down": [(0, 2, "fallen", 1.0), (2, 4, "fallen", 3.0), (4, 7, "locked-circular", 5.5),
+                           (7, 10, "not-settled", 8.5)]}
+        self.assertEqual(plot_phase.coexistence(strips), [(4, 7, "class")])
+        # ω_ball 1 and 3 rad/s at ω_m ≈ 3 differ by 2/3 ω_m: above a tolerance of 0.5, not of 0.7.
+        self.assertEqual(plot_phase.coexistence(strips, 0.5), [(2, 4, "omega_ball"), (4, 7, "class")])
+        self.assertEqual(plot_phase.coexistence(strips, 0.7), [(4, 7, "class")])
+        strips["down"][3] = (7, 10, "lagging-circular", 8.5)
+        self.assertEqual(plot_phase.coexistence(strips), [(4, 10, "class")])
 
     def test_bad_axis(self):
         rc, out = script("plot_phase.py", data("phase.h5"), "-o", data("x.png"), "--axis", "mass", check=False)
