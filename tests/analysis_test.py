@@ -3,7 +3,8 @@
 
 `analysis_test.py ASTROJAX SOURCE_DIR DATA_DIR make` makes the small files once (the ctest
 fixture analysis_data): a sweep over three drive radii (tests/data/tiny_phase.toml), the
-tiny hold sweep, one trajectory, and the thresholds astrojax prints for the sweep.
+tiny hold sweep, the tiny sweep over R and d, one trajectory, and the thresholds astrojax
+prints for the first sweep.
 `analysis_test.py ASTROJAX SOURCE_DIR DATA_DIR NAME` runs the unittest class NAME on them.
 
 Images are checked without matplotlib or PIL: a PNG's IHDR gives its pixel size, which must
@@ -45,6 +46,8 @@ def make():
     os.makedirs(DATA, exist_ok=True)
     run([ASTROJAX, "sweep", os.path.join(SOURCE, "tests/data/tiny_phase.toml"), "-o", data("phase.h5"), "-q"])
     run([ASTROJAX, "sweep", os.path.join(SOURCE, "tests/data/tiny_hold.toml"), "-o", data("hold.h5"), "-q"])
+    run([ASTROJAX, "sweep", os.path.join(SOURCE, "tests/data/tiny_sweep.toml"), "-o", data("grid2.h5"), "-q",
+         "--set", "grid.contact_distance=[0.03,0.04]"])  # two grid axes: R and d
     run([ASTROJAX, "run", os.path.join(SOURCE, "sweeps/spin_up.toml"), "-o", data("run.h5"), "-q"])
     _, out = run([ASTROJAX, "thresholds", data("phase.h5"), "--csv", data("thresholds.csv")])
     with open(data("thresholds.txt"), "w") as f:
@@ -190,6 +193,13 @@ class phase(ImageChecks):
         self.assertEqual(plot_phase.coexistence(strips, 0.7), [(4, 7, "class")])
         strips["down"][3] = (7, 10, "lagging-circular", 8.5)
         self.assertEqual(plot_phase.coexistence(strips), [(4, 10, "class")])
+
+    def test_two_grid_axes(self):
+        rc, out = script("plot_phase.py", data("grid2.h5"), "-o", data("x.png"), "--axis", "drive_radius", check=False)
+        self.assertEqual(rc, 2)
+        self.assertIn("grid axis 'contact_distance' varies too; fix it with --where contact_distance=VALUE", out)
+        self.image("plot_phase.py", "--axis", "drive_radius", "--where", "contact_distance=0.04", size=(8, 4),
+                   inputs=("grid2.h5",))
 
     def test_bad_axis(self):
         rc, out = script("plot_phase.py", data("phase.h5"), "-o", data("x.png"), "--axis", "mass", check=False)
