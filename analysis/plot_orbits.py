@@ -10,14 +10,15 @@ bottom ball) is drawn in the co-rotating views; the drive circle of radius R in 
 top view.
 
 From a sweep file: one stored window per --omega value (the nearest mean ω_m on --chain,
-optionally only --direction up/down/held); by default one window per orbit class of the
-chain (the middle ω_m among its most confident windows). The sweep does not store the
+optionally only --direction up/down/held; on a hold sweep, among the chains of --chain's
+grid point, seed and kick); by default one window per orbit class (the middle ω_m among
+its most confident windows). The sweep does not store the
 motor phase: it is recovered from the string (the top is at distance L1 from the bead)
 and ∫ω_m dt.
 From a run file (`astrojax run`): the --tail seconds ending at the last time each --omega
 value is reached, or ending at each --time; by default the end of the run.
 
-usage: /usr/bin/python3 analysis/plot_orbits.py out/hold.h5 -o out/hold_orbits.png --chain 10
+usage: /usr/bin/python3 analysis/plot_orbits.py out/hold.h5 -o out/hold_orbits.png --chain 2 --omega 3,6,7.5
        /usr/bin/python3 analysis/plot_orbits.py out/quick.h5 -o orbits.pdf --chain 1 --omega 4,8,12 --direction down
        /usr/bin/python3 analysis/plot_orbits.py out/spin_up.h5 -o out/spin_up_orbits.png --omega 6,14 --tail 3
 """
@@ -41,29 +42,35 @@ def sweep_orbits(args):
     sweep = ajx.Sweep(args.input)
     if not 0 <= args.chain < sweep.n_chains:
         ajx.fail(f"--chain {args.chain}: outside 0..{sweep.n_chains - 1} of {args.input}")
-    c = args.chain
+    c0 = args.chain
+    # A hold sweep has one window per chain: choose among the chains of --chain's grid point,
+    # seed and kick, one per held ω_m.
+    same = [c for c in range(sweep.n_chains) if (sweep.grid[c] == sweep.grid[c0]).all() and
+            sweep.seed[c] == sweep.seed[c0] and sweep.perturbation[c] == sweep.perturbation[c0]] \
+        if sweep.is_hold else [c0]
     want = {"up": 1, "down": -1, "held": 0}.get(args.direction)
-    ks = [k for k in sweep.windows(c) if want is None or sweep.direction[c, k] == want]
-    if not ks:
+    cks = [(c, k) for c in same for k in sweep.windows(c) if want is None or sweep.direction[c, k] == want]
+    if not cks:
         which = f" with direction {args.direction}" if want is not None else ""
-        ajx.fail(f"{args.input}: chain {c} has no classified window{which}")
+        ajx.fail(f"{args.input}: chain {c0} has no classified window{which}")
+    omega = lambda ck: sweep.omega_mean[ck]  # noqa: E731
     if args.omega:
-        chosen = [min(ks, key=lambda k: abs(sweep.omega_mean[c, k] - w * PI))
-                  for w in number_list(args.omega, "--omega")]
+        chosen = [min(cks, key=lambda ck: abs(omega(ck) - w * PI)) for w in number_list(args.omega, "--omega")]
     else:
         by_class = {}
-        for k in ks:
-            by_class.setdefault(sweep.class_name(c, k), []).append(k)
+        for ck in cks:
+            by_class.setdefault(sweep.class_name(*ck), []).append(ck)
         best = {}
         for name, members in by_class.items():  # the middle ω_m among the class's most confident windows
-            conf = sweep.stats["confidence"][c, members]
-            sure = sorted((k for k, q in zip(members, conf) if q >= 0.9 * np.nanmax(conf)),
-                          key=lambda k: sweep.omega_mean[c, k]) if np.isfinite(conf).any() else members
+            conf = np.array([sweep.stats["confidence"][ck] for ck in members])
+            sure = [ck for ck, q in zip(members, conf) if q >= 0.9 * np.nanmax(conf)] if np.isfinite(conf).any() \
+                else members
+            sure.sort(key=omega)
             best[name] = sure[len(sure) // 2]
-        chosen = sorted(best.values(), key=lambda k: sweep.omega_mean[c, k])[:6]
-    R = sweep.parameter(c, "drive_radius")
+        chosen = sorted(best.values(), key=omega)[:6]
     out = []
-    for k in chosen:
+    for c, k in chosen:
+        R = sweep.parameter(c, "drive_radius")
         s = sweep.samples(c, k)
         if len(s["t"]) < 3:
             ajx.fail(f"{args.input}: window {k} of chain {c} stores {len(s['t'])} samples, too few to draw")

@@ -214,7 +214,9 @@ class phase(ImageChecks):
 class orbits(ImageChecks):
     def test_png_from_sweep_and_run(self):
         self.image("plot_orbits.py", "--chain", "2", "--omega", "3,13", size=(10, 6), dpi=40)
-        self.image("plot_orbits.py", "--chain", "2", size=(10, 6), dpi=40, inputs=("hold.h5",))  # circular_high seed
+        # the circular_high seed at both held ω_m (two chains), and by default one per class
+        self.image("plot_orbits.py", "--chain", "2", "--omega", "6,8", size=(10, 6), dpi=40, inputs=("hold.h5",))
+        self.image("plot_orbits.py", "--chain", "2", size=(10, 6), dpi=40, inputs=("hold.h5",))
         self.image("plot_orbits.py", "--omega", "6,14", "--tail", "1.5", size=(10, 6), dpi=40, inputs=("run.h5",))
 
     def test_motor_phase_and_radius_recovered_from_the_string(self):
