@@ -46,7 +46,8 @@ demo() {
   else
     mpirun -n 2 "$BUILD_DIR"/astrojax sweep sweeps/quick.toml
   fi
-  "$PYTHON" analysis/plot_hysteresis.py out/quick.h5 -o out/quick_hysteresis.png
+  ASTROJAX="$BUILD_DIR"/astrojax "$PYTHON" analysis/plot_hysteresis.py out/quick.h5 -o out/quick_hysteresis.png
+  ASTROJAX="$BUILD_DIR"/astrojax "$PYTHON" analysis/threshold_report.py out/quick.h5 -o out/quick_thresholds.md
   "$BUILD_DIR"/astrojax run sweeps/spin_up.toml
   "$PYTHON" analysis/plot_run.py out/spin_up.h5 -o out/spin_up.png
 }

@@ -6,21 +6,13 @@ about the motor axis, averaged over --window seconds), both in units of π rad/s
 position s = L1 along the string with the contact mode; the orbit radius of both balls.
 A last panel shows the top view of both balls over the final --tail seconds.
 
-Run with Debian's interpreter (it has numpy, h5py and matplotlib):
-    /usr/bin/python3 analysis/plot_run.py out/spin_up.h5 -o out/spin_up.png
+usage: /usr/bin/python3 analysis/plot_run.py out/spin_up.h5 -o out/spin_up.png
 """
-import argparse
 import sys
 
-import h5py
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-MODE_NAMES = {0: "sliding", 1: "on bottom ball", 2: "stuck"}
-MODE_COLOURS = {0: "tab:blue", 1: "tab:grey", 2: "tab:orange"}
+import astrojax_analysis as ajx
 
 
 def azimuth_rate(t, xy, window):
@@ -34,27 +26,24 @@ def azimuth_rate(t, xy, window):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap = ajx.parser(__doc__)
     ap.add_argument("input", help="HDF5 file from `astrojax run`")
-    ap.add_argument("-o", "--output", required=True, help="image to write (.png or .pdf)")
+    ajx.add_figure_args(ap, "11,8")
     ap.add_argument("--window", type=float, default=1.0, help="averaging window for ω_ball [s] (default 1)")
     ap.add_argument("--tail", type=float, default=2.0, help="seconds of orbit in the top view (default 2)")
     args = ap.parse_args(argv)
 
-    with h5py.File(args.input, "r") as f:
-        tr = f["trajectory"]
-        t = tr["t"][:]
-        r1, r2 = tr["r1"][:], tr["r2"][:]
-        L1, mode, wm = tr["L1"][:], tr["mode"][:], tr["omega_m"][:]
-        summary = dict(f["summary"].attrs)
+    run = ajx.read_run(args.input)
+    t, r1, r2, L1, mode, wm = (run[k] for k in ("t", "r1", "r2", "L1", "mode", "omega_m"))
+    summary = run["summary"]
     if len(t) < 3:
-        sys.exit(f"{args.input}: fewer than 3 samples, nothing to plot")
+        ajx.fail(f"{args.input}: fewer than 3 samples, nothing to plot")
     dt = np.median(np.diff(t))
     if np.max(np.abs(wm)) * dt > np.pi:
         print(f"warning: sample interval {dt:g} s is too coarse to unwrap the azimuth at ω_m = {np.max(wm):.1f} rad/s",
               file=sys.stderr)
 
-    fig = plt.figure(figsize=(11, 8), constrained_layout=True)
+    fig = ajx.new_figure(args, (11, 8))
     gs = fig.add_gridspec(3, 2, width_ratios=[2.2, 1])
     ax_w = fig.add_subplot(gs[0, 0])
     ax_s = fig.add_subplot(gs[1, 0], sharex=ax_w)
@@ -67,10 +56,10 @@ def main(argv=None):
     ax_w.set_ylabel("angular velocity [π rad/s]")
     ax_w.legend(loc="upper left", fontsize=8)
 
-    for m, name in MODE_NAMES.items():
+    for m, name in ajx.MODE_NAMES.items():
         sel = mode == m
         if sel.any():
-            ax_s.plot(t[sel], L1[sel] * 100, ".", ms=1.5, color=MODE_COLOURS[m], label=name)
+            ax_s.plot(t[sel], L1[sel] * 100, ".", ms=1.5, color=ajx.MODE_COLOURS[m], label=name)
     ax_s.set_ylabel("bead position s = L1 [cm]")
     ax_s.invert_yaxis()  # up the string is up
     ax_s.legend(loc="lower left", fontsize=8, markerscale=6)
@@ -91,12 +80,10 @@ def main(argv=None):
     ax_top.set_title(f"top view, last {args.tail:g} s", fontsize=9)
     ax_top.legend(fontsize=8)
 
-    status = summary.get("status", b"")
-    status = status.decode() if isinstance(status, bytes) else str(status)
-    fig.suptitle(f"{args.input}: {status}, final mode {summary.get('final_mode', '?')}, "
+    status, final_mode = (ajx.as_text(summary.get(k, "?")) for k in ("status", "final_mode"))
+    fig.suptitle(f"{args.input}: {status}, final mode {final_mode}, "
                  f"ω_ball {summary.get('omega_ball', float('nan')) / np.pi:.3f}π rad/s at the end", fontsize=10)
-    fig.savefig(args.output, dpi=120)
-    print(f"wrote {args.output}")
+    ajx.save(fig, args)
 
 
 if __name__ == "__main__":

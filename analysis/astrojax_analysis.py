@@ -1,0 +1,472 @@
+"""Shared code of the analysis scripts: reading sweep and run files, the thresholds that
+`astrojax thresholds` finds, the colours and markers of orbit classes, and figure output.
+
+Every script in analysis/ imports this module (it sits next to them); nothing here draws a
+whole figure. Files read:
+- a sweep file (`astrojax sweep`): /windows/* (chains × windows), /samples/* (chains × windows
+  × samples), /chains/* (grid values, model, hold seeds);
+- a run file (`astrojax run`): /trajectory/*;
+- the CSV of `astrojax thresholds FILE --csv OUT`, the one place where thresholds are found
+  (src/sweep/thresholds.cpp); the scripts never find thresholds themselves.
+"""
+import csv
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+import h5py
+import numpy as np
+
+PI = np.pi
+
+# Orbit classes (the 'names' attribute of /windows/class) and their colours.
+CLASS_COLOURS = {
+    "fallen": "tab:grey",
+    "locked-circular": "tab:blue",
+    "lagging-circular": "tab:green",
+    "flower": "tab:purple",
+    "not-settled": "tab:orange",
+    "failed": "tab:red",
+}
+# Classes of a steady orbit: where two of them meet at one ω_m, two orbits coexist.
+STEADY_CLASSES = ("fallen", "locked-circular", "lagging-circular", "flower")
+# Marker by /windows/direction: ▲ ω_m rising, ▼ falling, ● held.
+DIRECTION_MARKERS = {1: "^", -1: "v", 0: "o"}
+DIRECTION_WORDS = {1: "ω_m rising", -1: "ω_m falling", 0: "ω_m held"}
+# Held windows (hold mode): marker by seed, in the order of /chains/seed@names.
+SEED_MARKERS = ["o", "s", "D", "P", "X", "*"]
+# astrojax thresholds' names (sweep::to_string) and how the figures write them.
+THRESHOLD_SYMBOLS = {"omega_rise": "ω_rise", "omega_fall": "ω_fall", "omega_1": "ω1", "omega_2": "ω2"}
+THRESHOLD_COLOURS = {"omega_rise": "tab:red", "omega_fall": "tab:cyan", "omega_1": "tab:pink", "omega_2": "tab:olive"}
+MODE_NAMES = {0: "sliding", 1: "on bottom ball", 2: "stuck", 3: "top stop", 4: "slack"}
+MODE_COLOURS = {0: "tab:blue", 1: "tab:grey", 2: "tab:orange", 3: "tab:red", 4: "tab:green"}
+
+
+def as_text(value):
+    """An HDF5 string, whether h5py returns it as str or bytes."""
+    return value.decode() if isinstance(value, bytes) else str(value)
+
+
+def text_attr(obj, name, default=""):
+    return as_text(obj.attrs.get(name, default))
+
+
+def parse_names(text):
+    """'0 fallen,1 locked-circular,...' -> {0: 'fallen', 1: 'locked-circular', ...}."""
+    return {int(k): v for k, v in (item.split(" ", 1) for item in text.split(",") if item)}
+
+
+def fail(message):
+    """Stop a script with a message on stderr and exit code 2 (bad input), like astrojax."""
+    print(f"error: {message}", file=sys.stderr)
+    sys.exit(2)
+
+
+def file_kind(path):
+    """'sweep' (written by astrojax sweep) or 'run' (astrojax run); exits on anything else."""
+    try:
+        with h5py.File(path, "r") as f:
+            if "windows" in f and "samples" in f:
+                return "sweep"
+            if "trajectory" in f:
+                return "run"
+    except OSError as e:
+        fail(f"{path}: cannot read as HDF5: {e}")
+    fail(f"{path}: neither a sweep file (/windows, /samples) nor a run file (/trajectory)")
+
+
+class Sweep:
+    """The per-window table of a sweep file, chains × windows, with ω in rad/s.
+
+    Unclassified windows (class -1: the task never ran) are kept with their class; use
+    `valid` to skip them."""
+
+    def __init__(self, path):
+        self.path = path
+        if file_kind(path) != "sweep":
+            fail(f"{path}: not a sweep file (no /windows): make one with `astrojax sweep`")
+        with h5py.File(path, "r") as f:
+            w = f["windows"]
+            self.class_names = parse_names(text_attr(w["class"], "names"))
+            self.cls = w["class"][:]
+            self.omega_begin = w["omega_m_begin"][:]
+            self.omega_end = w["omega_m_end"][:]
+            self.direction = w["direction"][:]
+            self.segment = w["segment"][:]
+            layout = ("class", "direction", "segment")
+            self.stats = {name: w[name][:] for name in w if w[name].ndim == 2 and name not in layout}
+            ch = f["chains"]
+            self.model = ch["model"][:]
+            self.model_columns = [c.split(" [")[0] for c in text_attr(ch["model"], "columns").split(",")]
+            axes = text_attr(ch, "axes")
+            self.axes = [a for a in axes.split(",") if a]
+            self.grid = ch["grid_values"][:] if "grid_values" in ch else np.zeros((self.cls.shape[0], 0))
+            self.hold_omega = ch["hold_omega"][:] if "hold_omega" in ch else None
+            self.seed = ch["seed"][:] if "seed" in ch else None
+            self.seed_names = text_attr(ch["seed"], "names").split(",") if "seed" in ch else []
+            self.perturbation = ch["perturbation"][:] if "perturbation" in ch else None
+            self.sample_rate = float(f["samples"].attrs.get("sample_rate", np.nan))
+            prov = f["provenance"] if "provenance" in f else None
+            self.provenance = {k: text_attr(prov, k) for k in prov.attrs} if prov is not None else {}
+        self.n_chains, self.n_windows = self.cls.shape
+        self.omega_mean = 0.5 * (self.omega_begin + self.omega_end)
+        self.valid = self.cls >= 0
+
+    @property
+    def is_hold(self):
+        return self.hold_omega is not None
+
+    def class_name(self, c, k):
+        return self.class_names.get(int(self.cls[c, k]), "?")
+
+    def parameter(self, c, name):
+        """A model parameter of chain c by its /chains/model column name (SI units)."""
+        return float(self.model[c, self.model_columns.index(name)])
+
+    def grid_label(self, c):
+        """'drive_radius=0.01 ...' for the grid point of chain c ('' without grid axes)."""
+        return " ".join(f"{a}={v:g}" for a, v in zip(self.axes, self.grid[c]))
+
+    def chain_label(self, c):
+        label = f"chain {c}"
+        if self.axes:
+            label += f": {self.grid_label(c)}"
+        if self.is_hold:
+            seed = self.seed_names[int(self.seed[c])] if self.seed_names else str(self.seed[c])
+            label += f", seed {seed}" + (f" + kick {int(self.perturbation[c])}" if self.perturbation[c] else "")
+        return label
+
+    def marker(self, c, k):
+        """▲/▼ by direction on ramps; on held windows, one marker per seed."""
+        d = int(self.direction[c, k])
+        if d == 0 and self.is_hold:
+            return SEED_MARKERS[int(self.seed[c]) % len(SEED_MARKERS)]
+        return DIRECTION_MARKERS.get(d, "o")
+
+    def groups(self, chains=None):
+        """Chains grouped by grid point, in order: [(label, [chain, ...]), ...]. A ramp sweep
+        has one chain per grid point; a hold sweep has one per held ω_m, seed and kick."""
+        chains = range(self.n_chains) if chains is None else chains
+        out = {}
+        for c in chains:
+            key = tuple(self.grid[c])
+            out.setdefault(key, []).append(c)
+        return [(self.grid_label(cs[0]) or "all chains", cs) for cs in out.values()]
+
+    def windows(self, c):
+        """The classified windows of chain c, in protocol order."""
+        return [k for k in range(self.n_windows) if self.valid[c, k]]
+
+    def samples(self, c, k):
+        """The stored samples of window k of chain c: dict of t, omega_m, L1, T1, T2, mode
+        (n) and r1, r2 (n × 3), trimmed to /samples/count."""
+        with h5py.File(self.path, "r") as f:
+            s = f["samples"]
+            n = int(s["count"][c, k])
+            out = {name: s[name][c, k, :n] for name in ("t", "omega_m", "L1", "T1", "T2", "mode")}
+            out["r1"] = s["r1"][c, k, :n, :]
+            out["r2"] = s["r2"][c, k, :n, :]
+        out["mode"] = out["mode"].astype(int)
+        return out
+
+    def legend_handles(self, chains):
+        """Legend entries for the classes and markers used by these chains."""
+        from matplotlib.lines import Line2D
+        handles = []
+        used = {self.class_name(c, k) for c in chains for k in self.windows(c)}
+        for name in CLASS_COLOURS:
+            if name in used:
+                handles.append(Line2D([], [], ls="", marker="s", color=CLASS_COLOURS[name], label=name))
+        dirs = {int(self.direction[c, k]) for c in chains for k in self.windows(c)}
+        for d in (1, -1):
+            if d in dirs:
+                handles.append(Line2D([], [], ls="", marker=DIRECTION_MARKERS[d], color="k", mfc="none",
+                                      label=DIRECTION_WORDS[d]))
+        if 0 in dirs:
+            if self.is_hold:
+                for i in sorted({int(self.seed[c]) for c in chains}):
+                    name = self.seed_names[i] if i < len(self.seed_names) else str(i)
+                    handles.append(Line2D([], [], ls="", marker=SEED_MARKERS[i % len(SEED_MARKERS)], color="k",
+                                          mfc="none", label=f"held, seed {name}"))
+            else:
+                handles.append(Line2D([], [], ls="", marker="o", color="k", mfc="none", label=DIRECTION_WORDS[0]))
+        return handles
+
+
+def select_chains(sweep, text):
+    """--chains: 'all' or comma-separated indices, checked against the file."""
+    if text == "all":
+        return list(range(sweep.n_chains))
+    try:
+        chains = [int(c) for c in text.split(",")]
+    except ValueError:
+        fail(f"--chains: '{text}' is not 'all' or a comma-separated list of chain indices")
+    bad = [c for c in chains if not 0 <= c < sweep.n_chains]
+    if bad:
+        fail(f"--chains: {bad} outside 0..{sweep.n_chains - 1} of {sweep.path}")
+    return chains
+
+
+# ---- thresholds, from astrojax itself --------------------------------------------------
+
+def find_astrojax(explicit=None):
+    """The astrojax executable: --astrojax, else $ASTROJAX, else build/astrojax of this
+    checkout, else astrojax on PATH; None if none exists."""
+    here = os.path.dirname(os.path.abspath(__file__))
+    for candidate in (explicit, os.environ.get("ASTROJAX"), os.path.join(here, "..", "build", "astrojax"),
+                      shutil.which("astrojax")):
+        if candidate and os.path.isfile(candidate) and os.access(candidate, os.X_OK):
+            return candidate
+    if explicit:
+        fail(f"--astrojax: {explicit} is not an executable file")
+    return None
+
+
+def run_thresholds(h5_path, astrojax):
+    """Runs `astrojax thresholds FILE --csv TMP`; returns (rows of its CSV, its stdout)."""
+    with tempfile.TemporaryDirectory() as tmp:
+        out_csv = os.path.join(tmp, "thresholds.csv")
+        proc = subprocess.run([astrojax, "thresholds", h5_path, "--csv", out_csv], capture_output=True, text=True)
+        if proc.returncode != 0:
+            fail(f"`{astrojax} thresholds {h5_path}` exited with {proc.returncode}: {proc.stderr.strip()}")
+        return read_thresholds_csv(out_csv), proc.stdout
+
+
+def read_thresholds_csv(path):
+    """The rows of `astrojax thresholds --csv` as dicts of strings (the text as written)."""
+    try:
+        with open(path, newline="") as f:
+            rows = list(csv.DictReader(f))
+    except OSError as e:
+        fail(f"{path}: cannot read: {e}")
+    need = {"chain", "threshold", "before_rad_s", "after_rad_s", "mid_rad_s", "paper_rad_s", "relative_difference"}
+    if rows and not need <= set(rows[0]):
+        fail(f"{path}: not a CSV of `astrojax thresholds` (columns {sorted(need - set(rows[0]))} missing)")
+    return rows
+
+
+def number(text):
+    """A CSV field as a float; '' (not reached) is NaN."""
+    return float(text) if text not in ("", None) else np.nan
+
+
+def add_threshold_args(ap):
+    ap.add_argument("--thresholds", metavar="CSV",
+                    help="thresholds from `astrojax thresholds FILE --csv CSV` (default: run astrojax on the input)")
+    ap.add_argument("--astrojax", metavar="PATH",
+                    help="the astrojax executable (default: $ASTROJAX, build/astrojax, or astrojax on PATH)")
+
+
+def thresholds_for(args, h5_path):
+    """The threshold rows for a script's input: from --thresholds, else from astrojax."""
+    if args.thresholds:
+        return read_thresholds_csv(args.thresholds)
+    exe = find_astrojax(args.astrojax)
+    if exe is None:
+        fail("cannot find the astrojax executable to compute the thresholds: build it (cmake --build build), "
+             "or pass --astrojax PATH or --thresholds CSV")
+    return run_thresholds(h5_path, exe)[0]
+
+
+def draw_thresholds(ax, rows, chains, paper=True):
+    """On an axis with ω_m [π rad/s] along x: each chain's threshold brackets as shaded
+    spans with their symbol, and (paper=True) the paper's measured values as dashed lines
+    (named in the legend by threshold_legend_handles)."""
+    for row in rows:
+        if int(row["chain"]) not in chains:
+            continue
+        colour = THRESHOLD_COLOURS.get(row["threshold"], "k")
+        lo, hi = sorted((number(row["before_rad_s"]) / PI, number(row["after_rad_s"]) / PI))
+        if np.isfinite(lo):
+            ax.axvspan(lo, hi, color=colour, alpha=0.2, lw=0)
+            ax.text(0.5 * (lo + hi), 1.0, THRESHOLD_SYMBOLS.get(row["threshold"], row["threshold"]),
+                    transform=ax.get_xaxis_transform(), ha="center", va="bottom", fontsize=7, color=colour,
+                    fontweight="bold")
+    if paper:
+        for name, p in paper_values(rows).items():
+            ax.axvline(p / PI, color=THRESHOLD_COLOURS.get(name, "k"), ls="--", lw=0.9)
+
+
+def paper_values(rows):
+    """{threshold: the paper's measured value [rad/s]} as astrojax thresholds prints it."""
+    out = {}
+    for row in rows:
+        p = number(row["paper_rad_s"])
+        if np.isfinite(p):
+            out.setdefault(row["threshold"], p)
+    return out
+
+
+def threshold_legend_handles(rows, paper=True):
+    """Legend entries: the bracket shading and, per threshold, the paper's value."""
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+    handles = [Patch(color="0.5", alpha=0.3, label="bracket (astrojax thresholds)")]
+    if paper:
+        for name, p in paper_values(rows).items():
+            handles.append(Line2D([], [], color=THRESHOLD_COLOURS.get(name, "k"), ls="--", lw=0.9,
+                                  label=f"paper {THRESHOLD_SYMBOLS.get(name, name)} = {p / PI:.2f}π"))
+    return handles
+
+
+# ---- run files and the motor's frame ---------------------------------------------------
+
+def read_run(path):
+    """A run file's trajectory: dict of t, omega_m, phi, L1, mode (n), r1, r2 (n × 3), and
+    the /summary attributes as 'summary'."""
+    if file_kind(path) != "run":
+        fail(f"{path}: not a run file (no /trajectory): make one with `astrojax run`")
+    with h5py.File(path, "r") as f:
+        tr = f["trajectory"]
+        out = {name: tr[name][:] for name in ("t", "omega_m", "phi", "L1", "mode", "r1", "r2")}
+        out["summary"] = {k: f["summary"].attrs[k] for k in f["summary"].attrs}
+    out["mode"] = out["mode"].astype(int)
+    return out
+
+
+def _string_misfit(r1, L1, phi, R):
+    """mean (|r1 − a|² − L1²)² with the top a = (R cos φ, R sin φ, 0): zero on the string."""
+    d2 = (r1[:, 0] - R * np.cos(phi)) ** 2 + (r1[:, 1] - R * np.sin(phi)) ** 2 + r1[:, 2] ** 2
+    return np.mean((d2 - L1 ** 2) ** 2)
+
+
+def _golden(cost, lo, hi, iterations=80):
+    g = (np.sqrt(5) - 1) / 2
+    for _ in range(iterations):
+        a, b = hi - g * (hi - lo), lo + g * (hi - lo)
+        if cost(a) < cost(b):
+            hi = b
+        else:
+            lo = a
+    return 0.5 * (lo + hi)
+
+
+def _scan_and_refine(cost, lo, hi, n):
+    grid = np.linspace(lo, hi, n)
+    i = int(np.argmin([cost(x) for x in grid]))
+    step = grid[1] - grid[0]
+    return _golden(cost, grid[max(i - 1, 0)], grid[min(i + 1, n - 1)]) if step > 0 else grid[i]
+
+
+def motor_phase(t, omega_m, r1, L1, R):
+    """The motor phase φ(t) of samples that do not store it (a sweep's windows).
+
+    φ(t) = φ0 + ∫ω_m dt (trapezoid; exact on a linear ramp). φ0 follows from the string:
+    the top a = (R cos φ, R sin φ, 0) is at distance L1 = |r1 − a| from the bead, so φ0
+    minimises the misfit of that equation, scanned on 720 phases and refined by golden
+    section.
+    """
+    rel = np.concatenate([[0.0], np.cumsum(0.5 * (omega_m[1:] + omega_m[:-1]) * np.diff(t))])
+    if R <= 0:
+        return rel  # no drive circle: every phase gives the same picture
+    return _scan_and_refine(lambda p0: _string_misfit(r1, L1, p0 + rel, R), -PI, PI, 721) + rel
+
+
+def drive_radius(phi, r1, L1):
+    """The drive radius R of a run file (which stores φ but not R): the R in [0, min L1]
+    that puts the top a(φ) at distance L1 from the bead, scanned in 0.1 mm and refined."""
+    top = float(np.min(L1))
+    return _scan_and_refine(lambda R: _string_misfit(r1, L1, phi, R), 0.0, top, int(top / 1e-4) + 2)
+
+
+def corotating(r, phi):
+    """Positions in the frame turning with the motor: x' along the motor's rod, z unchanged."""
+    c, s = np.cos(phi), np.sin(phi)
+    return np.stack([c * r[:, 0] + s * r[:, 1], -s * r[:, 0] + c * r[:, 1], r[:, 2]], axis=1)
+
+
+# ---- command line and figure output ----------------------------------------------------
+
+def parser(doc):
+    """An argparse parser whose description is the script's docstring (--help shows usage)."""
+    import argparse
+    return argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
+
+
+def add_figure_args(ap, default_size):
+    ap.add_argument("-o", "--output", required=True, help="image to write: .png or .pdf (by extension)")
+    ap.add_argument("--size", default=None, metavar="W,H",
+                    help=f"figure size in inches (default: {default_size}, or as the panels need)")
+    ap.add_argument("--dpi", type=float, default=120, help="pixels per inch of a PNG (default 120)")
+
+
+def figure_size(args, default):
+    """--size 'W,H' in inches, else the default (a pair)."""
+    if not args.size:
+        return default
+    try:
+        w, h = (float(v) for v in args.size.split(","))
+    except ValueError:
+        fail(f"--size: '{args.size}' is not W,H in inches (for example 9,6)")
+    if not (0 < w <= 100 and 0 < h <= 100):
+        fail(f"--size: {w},{h} inches outside (0, 100]")
+    return w, h
+
+
+def check_output(path):
+    ext = os.path.splitext(path)[1].lower()
+    if ext not in (".png", ".pdf"):
+        fail(f"-o {path}: the extension must be .png or .pdf")
+
+
+def pyplot():
+    """matplotlib.pyplot without a display, imported only when a figure is made (--help and
+    bad input stay fast)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    return plt
+
+
+def save(fig, args):
+    """Writes the figure at exactly its size (W·dpi × H·dpi pixels for a PNG)."""
+    os.makedirs(os.path.dirname(os.path.abspath(args.output)), exist_ok=True)
+    fig.savefig(args.output, dpi=args.dpi)
+    pyplot().close(fig)
+    print(f"wrote {args.output}")
+
+
+def new_figure(args, default_size, **kw):
+    check_output(args.output)
+    return pyplot().figure(figsize=figure_size(args, default_size), layout="constrained", **kw)
+
+
+def panel_grid(n, max_cols=3):
+    """Rows and columns for n panels."""
+    cols = min(n, max_cols)
+    return (n + cols - 1) // cols, cols
+
+
+def legend_columns(width):
+    """Legend columns that fit a figure width [in]."""
+    return max(1, int(width / 2.1))
+
+
+def legend_height(width, n_entries):
+    """Height [in] of a legend strip with n entries across a figure width [in]."""
+    return 0.2 + 0.2 * -(-n_entries // legend_columns(width))
+
+
+def panels(fig, rows, cols, n_legend=0, **kw):
+    """rows × cols axes above a strip for a legend of n_legend entries (an axis without
+    frame); unused axes hidden by the caller. Returns (axes array rows × cols, legend axis)."""
+    w, h = fig.get_size_inches()
+    legend_height_in = min(legend_height(w, n_legend), 0.4 * h)
+    h = max(h, legend_height_in + rows * 0.5)
+    gs = fig.add_gridspec(rows + 1, cols, height_ratios=[(h - legend_height_in) / rows] * rows + [legend_height_in])
+    axes = np.empty((rows, cols), dtype=object)
+    for i in range(rows):
+        for j in range(cols):
+            share = {k: axes[0, 0] for k, v in kw.items() if v and i + j > 0}
+            axes[i, j] = fig.add_subplot(gs[i, j], **share)
+    leg = fig.add_subplot(gs[rows, :])
+    leg.axis("off")
+    return axes, leg
+
+
+def legend(leg_ax, handles):
+    """The legend in its strip, as many columns as the figure's width holds."""
+    ncol = legend_columns(leg_ax.figure.figure.get_size_inches()[0])  # .figure.figure: the root figure
+    leg_ax.legend(handles=handles, loc="center", ncol=min(len(handles), ncol), fontsize=7.5, frameon=False)

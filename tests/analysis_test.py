@@ -1,0 +1,305 @@
+#!/usr/bin/python3
+"""Tests of the analysis scripts (analysis/*.py), run by ctest with Debian's interpreter.
+
+`analysis_test.py ASTROJAX SOURCE_DIR DATA_DIR make` makes the small files once (the ctest
+fixture analysis_data): a sweep over three drive radii (tests/data/tiny_phase.toml), the
+tiny hold sweep, the tiny sweep over R and d, one trajectory, and the thresholds astrojax
+prints for the first sweep.
+`analysis_test.py ASTROJAX SOURCE_DIR DATA_DIR NAME` runs the unittest class NAME on them.
+
+Images are checked without matplotlib or PIL: a PNG's IHDR gives its pixel size, which must
+be the requested --size × --dpi exactly, and its decoded pixels must not be blank; a PDF's
+MediaBox must be the requested size in points.
+"""
+import csv
+import os
+import re
+import struct
+import subprocess
+import sys
+import unittest
+import zlib
+
+ASTROJAX, SOURCE, DATA = (os.path.abspath(p) for p in sys.argv[1:4])
+ANALYSIS = os.path.join(SOURCE, "analysis")
+PYTHON = sys.executable
+sys.path.insert(0, ANALYSIS)
+
+
+def data(name):
+    return os.path.join(DATA, name)
+
+
+def run(args, check=True):
+    """Runs a command; returns (exit code, stdout + stderr)."""
+    p = subprocess.run(args, capture_output=True, text=True)
+    if check and p.returncode != 0:
+        raise AssertionError(f"{' '.join(args)} exited with {p.returncode}:\n{p.stdout}{p.stderr}")
+    return p.returncode, p.stdout + p.stderr
+
+
+def script(name, *args, check=True):
+    return run([PYTHON, os.path.join(ANALYSIS, name), *args], check=check)
+
+
+def make():
+    os.makedirs(DATA, exist_ok=True)
+    run([ASTROJAX, "sweep", os.path.join(SOURCE, "tests/data/tiny_phase.toml"), "-o", data("phase.h5"), "-q"])
+    run([ASTROJAX, "sweep", os.path.join(SOURCE, "tests/data/tiny_hold.toml"), "-o", data("hold.h5"), "-q"])
+    run([ASTROJAX, "sweep", os.path.join(SOURCE, "tests/data/tiny_sweep.toml"), "-o", data("grid2.h5"), "-q",
+         "--set", "grid.contact_distance=[0.03,0.04]"])  # two grid axes: R and d
+    run([ASTROJAX, "run", os.path.join(SOURCE, "sweeps/spin_up.toml"), "-o", data("run.h5"), "-q"])
+    _, out = run([ASTROJAX, "thresholds", data("phase.h5"), "--csv", data("thresholds.csv")])
+    with open(data("thresholds.txt"), "w") as f:
+        f.write(out)
+
+
+# ---- PNG and PDF without an imaging library ----------------------------------------
+
+def png_size(path):
+    """(width, height) from a PNG's IHDR chunk, which follows the 8-byte signature."""
+    with open(path, "rb") as f:
+        head = f.read(24)
+    if head[:8] != b"\x89PNG\r\n\x1a\n" or head[12:16] != b"IHDR":
+        raise AssertionError(f"{path}: not a PNG")
+    return struct.unpack(">II", head[16:24])
+
+
+def png_pixels(path):
+    """(width, height, rows of pixels as bytes tuples) of an 8-bit RGB or RGBA PNG."""
+    with open(path, "rb") as f:
+        blob = f.read()
+    if blob[:8] != b"\x89PNG\r\n\x1a\n":
+        raise AssertionError(f"{path}: not a PNG")
+    pos, idat, ihdr = 8, b"", None
+    while pos < len(blob):
+        length, kind = struct.unpack(">I4s", blob[pos:pos + 8])
+        body = blob[pos + 8:pos + 8 + length]
+        if kind == b"IHDR":
+            ihdr = struct.unpack(">IIBBBBB", body)
+        elif kind == b"IDAT":
+            idat += body
+        pos += 12 + length
+    width, height, depth, colour, _, _, interlace = ihdr
+    if depth != 8 or colour not in (2, 6) or interlace:
+        raise AssertionError(f"{path}: unexpected PNG format (depth {depth}, colour {colour}, interlace {interlace})")
+    bpp = 4 if colour == 6 else 3
+    raw = zlib.decompress(idat)
+    stride = width * bpp
+    prev = bytearray(stride)
+    rows = []
+    for y in range(height):
+        ftype, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        for i in range(stride):  # undo the filter of this row (PNG spec, section 9)
+            a = line[i - bpp] if i >= bpp else 0
+            b = prev[i]
+            c = prev[i - bpp] if i >= bpp else 0
+            if ftype == 1:
+                line[i] = (line[i] + a) & 255
+            elif ftype == 2:
+                line[i] = (line[i] + b) & 255
+            elif ftype == 3:
+                line[i] = (line[i] + (a + b) // 2) & 255
+            elif ftype == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        rows.append(bytes(line))
+        prev = line
+    return width, height, bpp, rows
+
+
+class ImageChecks(unittest.TestCase):
+    def assert_png(self, path, width, height, min_ink=0.02, coloured=True):
+        """The PNG is width × height pixels and shows a drawing: at least min_ink of its
+        pixels differ from the background (the corner pixel), and (coloured) at least 0.03 %
+        are coloured: the scripts draw classes, paths or thresholds in colour, while empty
+        axes, ticks and text are black and grey (an empty axes at 50 dpi: 4.4 % ink, 0 %
+        coloured)."""
+        self.assertEqual(png_size(path), (width, height), f"{path}: pixel size")
+        w, h, bpp, rows = png_pixels(path)
+        background = rows[0][:bpp]
+        pixels = [row[i:i + bpp] for row in rows[::2] for i in range(0, len(row), 2 * bpp)]
+        ink = sum(p != background for p in pixels) / len(pixels)
+        self.assertGreater(ink, min_ink, f"{path}: nearly blank ({100 * ink:.2f} % drawn)")
+        if not coloured:
+            return
+        coloured = sum(max(p[:3]) - min(p[:3]) > 60 for p in pixels) / len(pixels)
+        self.assertGreater(coloured, 0.0003, f"{path}: no coloured drawing ({100 * coloured:.3f} % coloured)")
+
+    def assert_pdf(self, path, width_pt, height_pt):
+        with open(path, "rb") as f:
+            blob = f.read()
+        self.assertTrue(blob.startswith(b"%PDF"), f"{path}: not a PDF")
+        box = re.search(rb"/MediaBox\s*\[\s*0\s+0\s+([\d.]+)\s+([\d.]+)\s*\]", blob)
+        self.assertIsNotNone(box, f"{path}: no MediaBox")
+        self.assertAlmostEqual(float(box.group(1)), width_pt, places=3)
+        self.assertAlmostEqual(float(box.group(2)), height_pt, places=3)
+        self.assertGreater(len(blob), 5000, f"{path}: too small to hold a figure")
+
+    def image(self, name, *args, size=(8, 5), dpi=50, inputs=("phase.h5",), ext="png", **png_checks):
+        """Runs analysis/NAME on each input at --size and --dpi, checks each image."""
+        for inp in inputs:
+            out = data(f"{os.path.splitext(name)[0]}_{os.path.splitext(inp)[0]}.{ext}")
+            if os.path.exists(out):
+                os.remove(out)
+            script(name, data(inp), "-o", out, "--size", f"{size[0]},{size[1]}", "--dpi", str(dpi), *args)
+            if ext == "png":
+                self.assert_png(out, round(size[0] * dpi), round(size[1] * dpi), **png_checks)
+            else:
+                self.assert_pdf(out, size[0] * 72, size[1] * 72)
+
+
+THRESHOLD_ARGS = ("--astrojax", ASTROJAX)
+
+
+class hysteresis(ImageChecks):
+    def test_png_ramp_and_hold(self):
+        self.image("plot_hysteresis.py", *THRESHOLD_ARGS, inputs=("phase.h5", "hold.h5"))
+
+    def test_pdf(self):
+        self.image("plot_hysteresis.py", *THRESHOLD_ARGS, "--chains", "0,2", size=(9, 4), ext="pdf")
+
+    def test_thresholds_from_csv_and_the_demo_form(self):
+        # the CSV instead of running astrojax; and setup.sh's form (astrojax found via $ASTROJAX)
+        self.image("plot_hysteresis.py", "--thresholds", data("thresholds.csv"))
+        out = data("hysteresis_demo_form.png")
+        p = subprocess.run([PYTHON, os.path.join(ANALYSIS, "plot_hysteresis.py"), data("phase.h5"), "-o", out],
+                           capture_output=True, text=True, env=dict(os.environ, ASTROJAX=ASTROJAX))
+        self.assertEqual(p.returncode, 0, p.stderr)
+        w, h = png_size(out)
+        self.assertEqual(w, 1980)  # 3 panels of 5.5 in at 120 dpi
+        self.assertGreater(h, 4.5 * 120)  # a row of 4.5 in and the legend
+
+
+class branches(ImageChecks):
+    def test_png(self):
+        self.image("plot_branches.py", *THRESHOLD_ARGS, size=(10, 6), inputs=("phase.h5", "hold.h5"))
+
+
+class phase(ImageChecks):
+    def test_png_over_drive_radius_and_hold(self):
+        self.image("plot_phase.py", "--axis", "drive_radius", "--omega-ball-tol", "0.1", size=(8, 6))
+        self.image("plot_phase.py", size=(8, 3), inputs=("hold.h5",))
+
+    def test_coexistence(self):
+        # Two passes over 0..10 rad/s (entries: ω_m from, to, class, ω_ball): fallen
+        # throughout; and fallen below 4 (ω_ball 1 rad/s below 2, 3 rad/s from 2 to 4), then
+        # locked. Classes differ on [4, 7]; not-settled never counts, lagging does.
+        import plot_phase
+        strips = {"up": [(0, 5, "fallen", 1.0), (5, 10, "fallen", 1.0)],
+                  "down": [(0, 2, "fallen", 1.0), (2, 4, "fallen", 3.0), (4, 7, "locked-circular", 5.5),
+                           (7, 10, "not-settled", 8.5)]}
+        self.assertEqual(plot_phase.coexistence(strips), [(4, 7, "class")])
+        # ω_ball 1 and 3 rad/s at ω_m ≈ 3 differ by 2/3 ω_m: above a tolerance of 0.5, not of 0.7.
+        self.assertEqual(plot_phase.coexistence(strips, 0.5), [(2, 4, "omega_ball"), (4, 7, "class")])
+        self.assertEqual(plot_phase.coexistence(strips, 0.7), [(4, 7, "class")])
+        strips["down"][3] = (7, 10, "lagging-circular", 8.5)
+        self.assertEqual(plot_phase.coexistence(strips), [(4, 10, "class")])
+
+    def test_two_grid_axes(self):
+        rc, out = script("plot_phase.py", data("grid2.h5"), "-o", data("x.png"), "--axis", "drive_radius", check=False)
+        self.assertEqual(rc, 2)
+        self.assertIn("grid axis 'contact_distance' varies too; fix it with --where contact_distance=VALUE", out)
+        # Every window of this sweep is fallen (grey): the class blocks must fill the axes.
+        self.image("plot_phase.py", "--axis", "drive_radius", "--where", "contact_distance=0.04", size=(8, 4),
+                   inputs=("grid2.h5",), min_ink=0.15, coloured=False)
+
+    def test_bad_axis(self):
+        rc, out = script("plot_phase.py", data("phase.h5"), "-o", data("x.png"), "--axis", "mass", check=False)
+        self.assertEqual(rc, 2)
+        self.assertIn("--axis mass: not a grid axis", out)
+
+
+class orbits(ImageChecks):
+    def test_png_from_sweep_and_run(self):
+        self.image("plot_orbits.py", "--chain", "2", "--omega", "3,13", size=(10, 6), dpi=40)
+        # the circular_high seed at both held ω_m (two chains), and by default one per class
+        self.image("plot_orbits.py", "--chain", "2", "--omega", "6,8", size=(10, 6), dpi=40, inputs=("hold.h5",))
+        self.image("plot_orbits.py", "--chain", "2", size=(10, 6), dpi=40, inputs=("hold.h5",))
+        self.image("plot_orbits.py", "--omega", "6,14", "--tail", "1.5", size=(10, 6), dpi=40, inputs=("run.h5",))
+
+    def test_motor_phase_and_radius_recovered_from_the_string(self):
+        # A run file stores φ; take the last 5 s (ω_m held: the trapezoid ∫ω_m dt is exact) and
+        # recover φ0 and R from (t, ω_m, r1, L1) alone. 1e-6 rad of phase moves the top of the
+        # string by R·1e-6 = 1e-8 m and 1e-6 m of R by as much: far below a pixel of the
+        # pictures (~1e-4 m), and well above the rounding of the misfit's minimum.
+        import numpy as np
+        import astrojax_analysis as ajx
+        r = ajx.read_run(data("run.h5"))
+        keep = r["t"] >= r["t"][-1] - 5.0
+        t, w, r1, L1, phi = (r[k][keep] for k in ("t", "omega_m", "r1", "L1", "phi"))
+        R = ajx.drive_radius(phi, r1, L1)
+        recovered = ajx.motor_phase(t, w, r1, L1, 0.01)
+        error = np.max(np.abs(np.angle(np.exp(1j * (recovered - phi)))))
+        print(f"\nrecovered from the string: R error {abs(R - 0.01):.1e} m, phase error {error:.1e} rad")
+        self.assertAlmostEqual(R, 0.01, delta=1e-6)  # sweeps/spin_up.toml: drive_radius = 0.01
+        self.assertLess(error, 1e-6)
+
+
+class report(unittest.TestCase):
+    def test_numbers_equal_astrojax_thresholds(self):
+        md, out_csv = data("report.md"), data("report.csv")
+        script("threshold_report.py", data("phase.h5"), "-o", md, "--csv", out_csv, *THRESHOLD_ARGS)
+        with open(data("thresholds.csv"), newline="") as f:
+            theirs = list(csv.DictReader(f))
+        with open(out_csv, newline="") as f:
+            ours = list(csv.DictReader(f))
+        # The CSV: astrojax's rows and fields, verbatim.
+        self.assertEqual(len(ours), len(theirs))
+        for a, b in zip(ours, theirs):
+            for k in b:
+                self.assertEqual(a[k], b[k], f"chain {b['chain']} {b['threshold']} {k}")
+        reached = [b for b in theirs if b["mid_rad_s"]]
+        self.assertTrue(reached, "the test sweep must reach a threshold, or this comparison proves nothing")
+        # The Markdown: every row's numbers as astrojax prints them on stdout.
+        printed = {}
+        with open(data("thresholds.txt")) as f:
+            for line in f:
+                m = re.match(r"(\d+)\s+.*?(omega_\w+)\s+(.*)$", line)
+                if m:
+                    printed[(m.group(1), m.group(2))] = re.findall(r"[+-]?\d+\.\d+", m.group(3))
+        symbols = {"omega_rise": "ω_rise", "omega_fall": "ω_fall", "omega_1": "ω1", "omega_2": "ω2"}
+        with open(md) as f:
+            table = [line for line in f if re.match(r"\| \d+ \|", line)]
+        self.assertEqual(len(table), len(theirs))
+        for line, b in zip(table, theirs):
+            cells = [c.strip() for c in line.strip().strip("|").split("|")]
+            self.assertEqual((cells[0], cells[2]), (b["chain"], symbols[b["threshold"]]))
+            self.assertEqual(re.findall(r"[+-]?\d+\.\d+", " ".join(cells[3:])), printed[(b["chain"], b["threshold"])],
+                             f"Markdown row {line.strip()}")
+
+
+class cli(unittest.TestCase):
+    SCRIPTS = ("plot_hysteresis.py", "plot_branches.py", "plot_phase.py", "plot_orbits.py", "threshold_report.py",
+               "plot_run.py")
+
+    def test_help(self):
+        for name in self.SCRIPTS:
+            rc, out = script(name, "--help")
+            self.assertEqual(rc, 0)
+            self.assertIn("usage:", out)
+            self.assertIn("-o OUTPUT", out, name)
+
+    def test_bad_input_named(self):
+        for name in self.SCRIPTS:
+            out_path = data("x.md" if name == "threshold_report.py" else "x.png")
+            rc, out = script(name, data("missing.h5"), "-o", out_path, check=False)
+            self.assertEqual(rc, 2, name)
+            self.assertIn("missing.h5", out, name)
+        rc, out = script("plot_hysteresis.py", data("run.h5"), "-o", data("x.png"), check=False)
+        self.assertEqual((rc, "not a sweep file" in out), (2, True), out)
+        rc, out = script("plot_branches.py", data("phase.h5"), "-o", data("x.jpg"), *THRESHOLD_ARGS, check=False)
+        self.assertEqual((rc, "must be .png or .pdf" in out), (2, True), out)
+
+    def test_plot_run(self):
+        out = data("run.png")
+        script("plot_run.py", data("run.h5"), "-o", out, "--size", "8,6", "--dpi", "40")
+        ImageChecks().assert_png(out, 320, 240)
+
+
+if __name__ == "__main__":
+    if sys.argv[4] == "make":
+        make()
+    else:
+        unittest.main(argv=[sys.argv[0], "-v", *sys.argv[4:]])
