@@ -224,11 +224,12 @@ def find_astrojax(explicit=None):
     return None
 
 
-def run_thresholds(h5_path, astrojax):
-    """Runs `astrojax thresholds FILE --csv TMP`; returns (rows of its CSV, its stdout)."""
+def run_thresholds(h5_path, astrojax, extra=()):
+    """Runs `astrojax thresholds FILE --csv TMP [extra]`; returns (rows of its CSV, its stdout)."""
     with tempfile.TemporaryDirectory() as tmp:
         out_csv = os.path.join(tmp, "thresholds.csv")
-        proc = subprocess.run([astrojax, "thresholds", h5_path, "--csv", out_csv], capture_output=True, text=True)
+        proc = subprocess.run([astrojax, "thresholds", h5_path, "--csv", out_csv, *extra], capture_output=True,
+                              text=True)
         if proc.returncode != 0:
             fail(f"`{astrojax} thresholds {h5_path}` exited with {proc.returncode}: {proc.stderr.strip()}")
         return read_thresholds_csv(out_csv), proc.stdout
@@ -257,6 +258,8 @@ def add_threshold_args(ap):
                     help="thresholds from `astrojax thresholds FILE --csv CSV` (default: run astrojax on the input)")
     ap.add_argument("--astrojax", metavar="PATH",
                     help="the astrojax executable (default: $ASTROJAX, build/astrojax, or astrojax on PATH)")
+    ap.add_argument("--refine", metavar="F", type=int,
+                    help="also refine every bracket F times slower (`astrojax thresholds --refine F`)")
 
 
 def thresholds_for(args, h5_path):
@@ -267,7 +270,8 @@ def thresholds_for(args, h5_path):
     if exe is None:
         fail("cannot find the astrojax executable to compute the thresholds: build it (cmake --build build), "
              "or pass --astrojax PATH or --thresholds CSV")
-    return run_thresholds(h5_path, exe)[0]
+    extra = ("--refine", str(args.refine), "-j", str(os.cpu_count() or 1)) if getattr(args, "refine", None) else ()
+    return run_thresholds(h5_path, exe, extra)[0]
 
 
 def draw_thresholds(ax, rows, chains, paper=True):

@@ -39,23 +39,33 @@ def bracket(r):
     return f"{pi_units(r['before_rad_s'], 3)} .. {pi_units(r['after_rad_s'], 3)}" if r["mid_rad_s"] else "not reached"
 
 
+def refined(r):
+    """The refined bracket and its relative difference, or astrojax's note when there is none."""
+    if r.get("refined_mid_rad_s"):
+        return (f"{pi_units(r['refined_before_rad_s'], 3)} .. {pi_units(r['refined_after_rad_s'], 3)}",
+                percent(r["refined_relative_difference"]))
+    return (r.get("refine_note", ""), "")
+
+
 def markdown(path, rows, sweep):
     symbol = lambda name: ajx.THRESHOLD_SYMBOLS.get(name, name)  # noqa: E731
     prov = sweep.provenance
     lines = [f"# Thresholds of `{path}`", ""]
+    factor = rows[0].get("refine_factor") if rows else None
+    refine_head = (f"refined {factor}× slower [π rad/s]", "refined relative difference") if factor else ()
     facts = [("command", prov.get("command_line", "")), ("git commit", prov.get("git_commit", "")),
              ("version", prov.get("version", "")), ("finished", prov.get("end_time", ""))]
     lines += [f"- {k}: `{v}`" for k, v in facts if v]
     lines += [f"- chains: {sweep.n_chains}" + (f", grid axes: {', '.join(sweep.axes)}" if sweep.axes else ""),
-              f"- made by `astrojax thresholds {path}`; definitions in README (\"Thresholds and reclassification\").",
+              f"- made by `astrojax thresholds {path}{f' --refine {factor}' if factor else ''}`; definitions in README (\"Thresholds and reclassification\").",
               "", "## Every chain", "",
               table_row("chain", "parameters", "threshold", "bracket [π rad/s]", "midpoint [π rad/s]",
-                        "paper [π rad/s]", "relative difference"),
-              "|---:|---|---|---|---:|---:|---:|"]
+                        "paper [π rad/s]", "relative difference", *refine_head),
+              "|---:|---|---|---|---:|---:|---:|" + "---|---:|" * bool(refine_head)]
     for r in rows:
         lines.append(table_row(r["chain"], r.get("parameters", "") or "—", symbol(r["threshold"]), bracket(r),
                                pi_units(r["mid_rad_s"], 3), pi_units(r["paper_rad_s"], 2),
-                               percent(r["relative_difference"])))
+                               percent(r["relative_difference"]), *(refined(r) if refine_head else ())))
     lines += ["", "## Closest chain per threshold", "",
               table_row("threshold", "paper [π rad/s]", "reached by", "closest chain", "its bracket [π rad/s]",
                         "relative difference"),

@@ -270,6 +270,25 @@ class report(unittest.TestCase):
                              f"Markdown row {line.strip()}")
 
 
+    def test_refined_columns(self):
+        # --refine 1 re-runs each bracket at the sweep's own rate: the refined bracket is the
+        # sweep's, to the digit, in the Markdown as in the CSV.
+        md = data("report_refined.md")
+        script("threshold_report.py", data("phase.h5"), "-o", md, "--refine", "1", *THRESHOLD_ARGS)
+        with open(data("report_refined.csv"), newline="") as f:
+            rows = list(csv.DictReader(f))
+        reached = [r for r in rows if r["mid_rad_s"]]
+        self.assertTrue(reached, "the test sweep must reach a threshold")
+        for r in reached:
+            self.assertEqual((r["refined_before_rad_s"], r["refined_after_rad_s"]), (r["before_rad_s"], r["after_rad_s"]))
+        with open(md) as f:
+            table = [line for line in f if re.match(r"\| \d+ \|", line)]
+        for line in table:
+            cells = [c.strip() for c in line.strip().strip("|").split("|")]
+            if cells[3] != "not reached":
+                self.assertEqual(cells[7], cells[3], f"Markdown row {line.strip()}")
+
+
 class cli(unittest.TestCase):
     SCRIPTS = ("plot_hysteresis.py", "plot_branches.py", "plot_phase.py", "plot_orbits.py", "threshold_report.py",
                "plot_run.py")
