@@ -32,9 +32,10 @@ Stability stability(const OrbitProblem& pb, const Vec9& X) {
   Eigen::MatrixXd P = Eigen::MatrixXd::Zero(12, 2 * k);
   P.block(0, 0, 6, k) = N;
   P.block(6, k, 6, k) = N;
-  // Central differences along the tangent directions, step ε^(1/3) of l (positions) and of
-  // l ω (velocities); leaving the manifold at second order costs O(h²) like the formula.
-  const double l = m.p.string_length, h = std::cbrt(std::numeric_limits<double>::epsilon());
+  // Central differences along the tangent directions, steps ε^(1/3) of the shorter link L
+  // (positions) and of L ω (velocities): the error is O(h²) relative, like leaving the
+  // manifold at second order.
+  const double l = std::min(X(8), m.p.string_length - X(8)), h = std::cbrt(std::numeric_limits<double>::epsilon());
   const double vscale = l * std::max(pb.omega, std::sqrt(m.p.gravity / l));
   Eigen::MatrixXd B(2 * k, 2 * k);
   for (int j = 0; j < 2 * k; ++j) {
