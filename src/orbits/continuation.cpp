@@ -213,6 +213,14 @@ Branch continue_branch(OrbitProblem pb, const Vec9& X0, const std::string& param
     for (int k = 0; k < 6; ++k) {
       const bool changed = k == 5 ? v0[k] != v1[k] : (v0[k] < 0) != (v1[k] < 0);
       if (!changed || !std::isfinite(v0[k]) || !std::isfinite(v1[k])) continue;
+      // A change in the count of unstable eigenvalues is located on the real part of the
+      // crossing one: the (n+1)-th largest, n the smaller count (the count itself has a noise
+      // threshold).
+      const int n_cross = int(std::min(v0[5], v1[5]));
+      const auto located = [&](const Tests& T) {
+        return k == 5 ? T.point.stab.eigenvalues(n_cross).real() : values(T)[k];
+      };
+      const double f0 = located(cur);
       double a = 0, b = 1;
       Tests at = next;
       for (int it = 0; it < 40; ++it) {
@@ -220,8 +228,7 @@ Branch continue_branch(OrbitProblem pb, const Vec9& X0, const std::string& param
         const Corrected cm = correct(c, cur.Z + m * (next.Z - cur.Z), d);
         if (!cm.ok) break;
         Tests tm = make(cm.Z, cur.t, 0);
-        const double vm = values(tm)[k];
-        const bool same = k == 5 ? vm == v0[k] : (vm < 0) == (v0[k] < 0);
+        const bool same = (located(tm) < 0) == (f0 < 0);
         (same ? a : b) = m;
         if (!same) at = tm;
       }
