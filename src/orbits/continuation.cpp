@@ -139,7 +139,10 @@ struct Tests {
 Branch continue_branch(OrbitProblem pb, const Vec9& X0, const std::string& parameter, const ContinuationOptions& opt) {
   const Scales sc = scales(pb.model);
   Curve c{pb, parameter, {}, 1.0};
-  c.dX << Vec3::Constant(sc.length), Vec3::Constant(sc.length), sc.force, sc.force, sc.length;
+  // Forces in units of the largest of weight and centripetal pull at the start, W (1 + ω² l/g):
+  // on a whirling branch the tensions grow as ω², and steps measured in W alone would crawl.
+  const double fs = sc.force * (1.0 + pb.omega * pb.omega * sc.length / pb.model.p.gravity);
+  c.dX << Vec3::Constant(sc.length), Vec3::Constant(sc.length), fs, fs, sc.length;
   const double lambda0 = parameter_value(pb, parameter);
   // ω_m in units of the pendulum frequency √(g/l); s in l; others in their own size.
   c.ls = parameter == "omega" ? std::sqrt(pb.model.p.gravity / pb.model.p.string_length)

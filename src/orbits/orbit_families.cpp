@@ -60,12 +60,38 @@ std::vector<Vec9> planar_guesses(const physics::Model& m, double omega, double L
   return out;
 }
 
+namespace {
+// From the drag-free root (exact for c_D = 0) to the model's drag in steps: a drag that
+// turns the orbit far out of the plane needs the path, not one Newton jump.
+NewtonResult drag_homotopy(const OrbitProblem& pb, const Vec9& guess) {
+  OrbitProblem q = pb;
+  q.model.p.drag = 0.0;
+  NewtonResult r = solve(q, guess);
+  double frac = 0.0, step = 0.125;
+  while (r.converged && frac < 1.0 && step > 1.0 / 4096) {
+    const double next = std::min(1.0, frac + step);
+    q.model.p.drag = next * pb.model.p.drag;
+    const NewtonResult t = solve(q, r.X);
+    if (t.converged) {
+      r = t;
+      frac = next;
+      step *= 1.5;
+    } else {
+      step *= 0.5;
+    }
+  }
+  if (frac < 1.0) r.converged = false;
+  return r;
+}
+}  // namespace
+
 std::vector<SteadyOrbit> orbits_at(const OrbitProblem& pb) {
   const double l = pb.model.p.string_length;
   const double s = pb.closure == Closure::BottomStop ? l - pb.model.p.contact_distance : pb.s_star;
   std::vector<SteadyOrbit> out;
   for (const Vec9& guess : planar_guesses(pb.model, pb.omega, s, l - s)) {
-    const NewtonResult r = solve(pb, guess);
+    NewtonResult r = solve(pb, guess);
+    if (!r.converged) r = drag_homotopy(pb, guess);
     if (!r.converged) continue;
     const bool seen = std::any_of(out.begin(), out.end(), [&](const SteadyOrbit& o) {
       return (unknowns(o).head<6>() - r.X.head<6>()).norm() < 1e-8 * l;
