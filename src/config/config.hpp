@@ -94,6 +94,22 @@ SweepConfig parse_sweep_config(std::string_view text, std::string_view source_na
                                const std::vector<std::string>& overrides = {});
 SweepConfig load_sweep_config(const std::string& path, const std::vector<std::string>& overrides = {});
 
+// astrojax orbits: the [model] and [layers] of any run or sweep file (their other tables are
+// accepted and not read), plus an optional [orbits] table.
+struct OrbitsSpec {
+  std::vector<double> omega;           // ω_m values [rad/s], in (0, 2000]
+  int s_points = 81;                   // the stuck family sampled along the string
+  std::string parameter;               // continue in this parameter ("" : no continuation)
+  double range_lo = 0.0, range_hi = 0.0;  // the continuation's interval (both 0: a default)
+  std::vector<double> s;               // stuck orbits to continue, bead positions [m]
+};
+struct OrbitsConfig : CommonConfig {
+  OrbitsSpec orbits;
+};
+OrbitsConfig parse_orbits_config(std::string_view text, std::string_view source_name,
+                                 const std::vector<std::string>& overrides = {});
+OrbitsConfig load_orbits_config(const std::string& path, const std::vector<std::string>& overrides = {});
+
 // Parse and validate. Overrides are "dotted.key=value" with a TOML value (a bare word is
 // taken as a string). Throws ConfigError.
 RunConfig parse_run_config(std::string_view text, std::string_view source_name,
