@@ -421,13 +421,13 @@ SweepConfig parse_sweep_config(std::string_view text, std::string_view source_na
       h.seeds.clear();
       for (std::size_t i = 0; i < seeds->size(); ++i) {
         const auto v = (*seeds)[i].value<std::string>();
-        if (!v || (*v != "hanging" && *v != "circular_high"))
-          throw ConfigError(fmt::format("{}: key 'hold.seeds[{}]': allowed: hanging, circular_high", file, i));
+        if (!v || (*v != "hanging" && *v != "circular_high" && *v != "locked_orbit"))
+          throw ConfigError(fmt::format("{}: key 'hold.seeds[{}]': allowed: hanging, circular_high, locked_orbit", file, i));
         h.seeds.push_back(*v);
       }
-      if (h.seeds.empty()) r.fail("seeds", "the list is empty; allowed: hanging, circular_high");
+      if (h.seeds.empty()) r.fail("seeds", "the list is empty; allowed: hanging, circular_high, locked_orbit");
     } else if (ht.contains("seeds")) {
-      r.fail("seeds", "expected an array of names (hanging, circular_high)");
+      r.fail("seeds", "expected an array of names (hanging, circular_high, locked_orbit)");
     }
     h.perturbations = int(r.number("perturbations", 0.0, 0.0, 1000.0));
     h.perturbation = r.number("perturbation", h.perturbation, 0.0, 10.0, true);

@@ -64,7 +64,7 @@ struct HoldSpec {
   std::vector<double> omega;                // ω_m values [rad/s]
   double settle = 60.0;                     // transient before measuring [s]
   double measure = 10.0;                    // the measured window [s]
-  std::vector<std::string> seeds{"hanging"};  // "hanging", "circular_high"
+  std::vector<std::string> seeds{"hanging"};  // "hanging", "circular_high", "locked_orbit"
   int perturbations = 0;                    // extra copies of each seed with random velocity kicks
   double perturbation = 0.01;               // size of a kick [m/s]
 };
