@@ -55,6 +55,7 @@ struct OrbitsArgs {
   bool all = false;                    // print every stuck orbit, not only their summary
   bool thresholds = false;             // predict ω_rise, ω_fall, ω1 from the branches
   int threshold_s_points = 21;
+  std::string compare;                 // a sweep's HDF5: its brackets next to the predictions
   std::string csv, branches_csv, events_csv, output;
   std::string command_line;
 };

@@ -70,6 +70,8 @@ int main(int argc, char** argv) {
   orbits_cmd->add_flag("--thresholds", orbits.thresholds, "Predict ω_rise, ω_fall and ω1 from the branches");
   orbits_cmd->add_option("--threshold-s-points", orbits.threshold_s_points, "Bead positions for --thresholds")
       ->check(CLI::Range(2, 1000));
+  orbits_cmd->add_option("--compare", orbits.compare,
+                         "Predict the thresholds and show the brackets of this sweep's chains that have the same model");
   orbits_cmd->add_option("--csv", orbits.csv, "Write every orbit found as CSV");
   orbits_cmd->add_option("--branches-csv", orbits.branches_csv, "Write the continuation's points as CSV");
   orbits_cmd->add_option("--events-csv", orbits.events_csv, "Write the continuation's events as CSV");

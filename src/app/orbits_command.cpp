@@ -21,6 +21,7 @@
 #include "orbits/orbit_families.hpp"
 #include "orbits/orbit_stability.hpp"
 #include "orbits/predicted_thresholds.hpp"
+#include "sweep/thresholds.hpp"
 
 namespace ajx::app {
 
@@ -176,6 +177,39 @@ void print_family(const std::vector<Row>& stuck) {
   }
 }
 
+// The brackets of a sweep's chains whose model equals m (chains/model, all ten columns), as
+// `astrojax thresholds` finds them. Throws on a file that is not a sweep's.
+struct SweepBrackets {
+  std::vector<std::size_t> chains;  // the matching chains
+  std::map<std::string, std::vector<std::optional<sweep::Bracket>>> by_symbol;
+};
+SweepBrackets sweep_brackets(const std::string& path, const physics::Model& m) {
+  const io::File f = io::File::open_read(path);
+  const auto cls = f.read_int32s("windows/class"), dir = f.read_int32s("windows/direction");
+  const auto wb = f.read_doubles("windows/omega_m_begin"), we = f.read_doubles("windows/omega_m_end");
+  const auto model = f.read_doubles("chains/model");
+  const physics::Parameters& p = m.p;
+  const double mine[10] = {p.string_length, p.bead_mass, p.ball_mass, p.drag, p.mu_static,
+                           p.mu_kinetic, p.gravity, p.drive_radius, p.contact_distance, p.top_stop};
+  SweepBrackets out;
+  for (std::size_t c = 0; c < cls.rows(); ++c) {
+    bool same = model.cols() == 10;
+    for (std::size_t j = 0; same && j < 10; ++j) same = std::abs(model(c, j) - mine[j]) <= 1e-12 * std::abs(mine[j]);
+    if (!same) continue;
+    std::vector<sweep::ClassedWindow> w;
+    for (std::size_t k = 0; k < cls.cols(); ++k)
+      if (cls(c, k) >= 0 && std::isfinite(wb(c, k)))
+        w.push_back({wb(c, k), we(c, k), dir(c, k), static_cast<sweep::OrbitClass>(cls(c, k))});
+    out.chains.push_back(c);
+    const auto rise = sweep::find_threshold(sweep::Threshold::Rise, w);
+    out.by_symbol["omega_rise"].push_back(rise);
+    out.by_symbol["omega_rise_cone"].push_back(rise);
+    out.by_symbol["omega_fall"].push_back(sweep::find_threshold(sweep::Threshold::Fall, w));
+    out.by_symbol["omega1"].push_back(sweep::find_threshold(sweep::Threshold::Omega1, w));
+  }
+  return out;
+}
+
 }  // namespace
 
 int orbits_command(const OrbitsArgs& args) {
@@ -298,7 +332,7 @@ int orbits_command(const OrbitsArgs& args) {
 
   // 3. Thresholds predicted from the branches.
   std::optional<Predictions> pred;
-  if (args.thresholds) {
+  if (args.thresholds || !args.compare.empty()) {
     PredictionOptions popt;
     popt.s_points = args.threshold_s_points;
     if (cfg.orbits.parameter == "omega" && cfg.orbits.range_lo < cfg.orbits.range_hi) {
@@ -310,11 +344,28 @@ int orbits_command(const OrbitsArgs& args) {
     for (const auto& iv : pred->intervals)
       std::printf("  s %.4f m side %s: [%.4fπ (%s), %.4fπ (%s)]\n", iv.s, iv.branch.c_str(), iv.omega_lo / kPi,
                   iv.ends_lo.c_str(), iv.omega_hi / kPi, iv.ends_hi.c_str());
-    std::printf("\npredicted thresholds (%d bead positions):\n  %-11s %12s %10s %10s  %s\n", popt.s_points, "symbol",
+    std::printf("\npredicted thresholds (%d bead positions):\n  %-15s %12s %10s %10s  %s\n", popt.s_points, "symbol",
                 "predicted", "", "paper", "mechanism");
     for (const auto& t : pred->thresholds)
-      std::printf("  %-11s %12.5f %9.4fπ %9.2fπ  %s\n", t.symbol.c_str(), t.predicted, t.predicted / kPi,
+      std::printf("  %-15s %12.5f %9.4fπ %9.2fπ  %s\n", t.symbol.c_str(), t.predicted, t.predicted / kPi,
                   t.measured / kPi, t.mechanism.c_str());
+    if (!args.compare.empty()) {
+      SweepBrackets sb;
+      try {
+        sb = sweep_brackets(args.compare, m);
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "error: %s: cannot read a sweep file: %s\n", args.compare.c_str(), e.what());
+        return kExitBadInput;
+      }
+      std::printf("\nagainst the sweep %s (%zu chains with this model):\n", args.compare.c_str(), sb.chains.size());
+      for (const auto& t : pred->thresholds)
+        for (std::size_t i = 0; i < sb.chains.size(); ++i) {
+          const auto& b = sb.by_symbol[t.symbol][i];
+          std::printf("  %-15s predicted %9.4fπ   chain %zu bracket %s\n", t.symbol.c_str(), t.predicted / kPi,
+                      sb.chains[i],
+                      b ? fmt::format("{:.3f}π .. {:.3f}π", b->before / kPi, b->after / kPi).c_str() : "not reached");
+        }
+    }
   }
 
   // Files.

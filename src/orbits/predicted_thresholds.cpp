@@ -32,31 +32,38 @@ Walk join(const Branch& back, const Branch& fwd) {
   return w;
 }
 
-bool locked(const BranchPoint& p) { return p.orbit.admissible && p.unstable == 0; }
+// Held by friction, and (unless only the cone is asked for) linearly stable.
+bool locked(const BranchPoint& p, bool need_stable) { return p.orbit.admissible && (!need_stable || p.unstable == 0); }
 
 // Where a run of locked points ends inside segment i: the event there that breaks it.
-std::pair<double, std::string> boundary(const Walk& w, int i, bool at_end) {
-  for (const auto& [seg, e] : w.events)
-    if (seg == i && e->kind != EventKind::BranchPoint) return {e->lambda, std::string(to_string(e->kind))};
+std::pair<double, std::string> boundary(const Walk& w, int i, bool at_end, bool need_stable) {
+  for (const auto& [seg, e] : w.events) {
+    const bool stability = e->kind == EventKind::Hopf || e->kind == EventKind::StabilityLoss ||
+                           e->kind == EventKind::StabilityGain;
+    if (seg == i && e->kind != EventKind::BranchPoint && (need_stable || !stability))
+      return {e->lambda, std::string(to_string(e->kind))};
+  }
   const BranchPoint& p = *w.points[at_end ? i : i + 1];
   return {p.lambda, "range"};
 }
 
-void collect(const Walk& w, double s, std::vector<LockedInterval>& out) {
+void collect(const Walk& w, double s, bool need_stable, std::vector<LockedInterval>& out) {
   const int n = int(w.points.size());
   int i = 0;
   while (i < n) {
-    if (!locked(*w.points[i])) {
+    if (!locked(*w.points[i], need_stable)) {
       ++i;
       continue;
     }
     int j = i;
-    while (j + 1 < n && locked(*w.points[j + 1])) ++j;
+    while (j + 1 < n && locked(*w.points[j + 1], need_stable)) ++j;
     LockedInterval iv;
     iv.s = s;
     iv.branch = w.points[i]->orbit.branch;
-    auto a = i > 0 ? boundary(w, i - 1, false) : std::pair<double, std::string>{w.points[i]->lambda, "range"};
-    auto b = j + 1 < n ? boundary(w, j, true) : std::pair<double, std::string>{w.points[j]->lambda, "range"};
+    auto a = i > 0 ? boundary(w, i - 1, false, need_stable)
+                   : std::pair<double, std::string>{w.points[i]->lambda, "range"};
+    auto b = j + 1 < n ? boundary(w, j, true, need_stable)
+                       : std::pair<double, std::string>{w.points[j]->lambda, "range"};
     if (a.first > b.first) std::swap(a, b);
     iv.omega_lo = a.first;
     iv.ends_lo = a.second;
@@ -86,7 +93,8 @@ namespace {
 // Every branch of one closure through the orbits found at the start frequencies, continued in
 // ω_m both ways; the intervals where it is admissible and stable.
 void trace_family(const physics::Model& m, Closure closure, double s, const std::vector<double>& starts,
-                  ContinuationOptions copt, std::vector<LockedInterval>& out) {
+                  ContinuationOptions copt, std::vector<LockedInterval>& out,
+                  std::vector<LockedInterval>* held_only = nullptr) {
   std::vector<Branch> halves;
   std::vector<Walk> walks;
   halves.reserve(2 * starts.size() * 8);
@@ -100,8 +108,9 @@ void trace_family(const physics::Model& m, Closure closure, double s, const std:
       copt.direction = +1;
       halves.push_back(continue_branch(pb, unknowns(o), "omega", copt));
       walks.push_back(join(halves[halves.size() - 2], halves.back()));
-      collect(walks.back(), closure == Closure::BottomStop ? pb.model.p.string_length - pb.model.p.contact_distance : s,
-              out);
+      const double sw = closure == Closure::BottomStop ? m.p.string_length - m.p.contact_distance : s;
+      collect(walks.back(), sw, true, out);
+      if (held_only) collect(walks.back(), sw, false, *held_only);
     }
   }
 }
@@ -135,35 +144,43 @@ Predictions predict_thresholds(const physics::Model& m, const PredictionOptions&
       wf.mechanism = fmt::format("{} at s = {:.4f} m (branch {})", iv.ends_lo, iv.s, iv.branch);
     }
   }
-  // ω_rise: ramping up from hanging, the pair follows a stable bottom-stop orbit. Where that
-  // orbit folds it must jump, and it lands on a stable bottom-stop orbit that exists there if
-  // there is one; any other end (the bead climbing off the ball, a loss of stability that
-  // sets it swinging) is where the bead starts to rise.
+  // ω_rise: ramping up from hanging, the pair follows an orbit on the bottom stop. Where that
+  // orbit folds it must jump, and it lands on one that exists there if there is one. Two
+  // readings: (linear) the first end that is not a fold, a loss of stability included; (cone)
+  // stability ignored, the first ω_m where the bead's static cone lets it climb off the ball.
+  // A slow ramp may cross a short unstable stretch without the oscillation growing much, so
+  // the truth lies between the two.
   ThresholdPrediction wr{"omega_rise", kNaN, 12.63 * kPi, "the bottom stop is off"};
+  ThresholdPrediction wc{"omega_rise_cone", kNaN, 12.63 * kPi, "the bottom stop is off"};
   if (m.layers.bottom_stop) {
-    std::vector<LockedInterval> bottom;
+    std::vector<LockedInterval> stable, held;
     std::vector<double> bstarts{opt.omega_lo};
     bstarts.insert(bstarts.end(), starts.begin(), starts.end());
-    trace_family(m, Closure::BottomStop, 0.0, bstarts, copt, bottom);
-    wr.mechanism = "no stable orbit on the bottom stop at the lowest ω_m";
-    const LockedInterval* at = nullptr;
-    for (const auto& iv : bottom)
-      if (iv.omega_lo <= opt.omega_lo * (1 + 1e-9) && (!at || iv.omega_hi > at->omega_hi)) at = &iv;
-    for (int hops = 0; at && hops < 32; ++hops) {
-      wr.predicted = at->omega_hi;
-      wr.mechanism = at->ends_hi == "range" ? "stable orbits on the bottom stop up to the end of the range"
-                                            : fmt::format("{} of the bottom-stop orbit (branch {})", at->ends_hi,
-                                                          at->branch);
-      if (at->ends_hi != "fold") break;
-      const LockedInterval* next = nullptr;
-      for (const auto& iv : bottom)
-        if (&iv != at && iv.omega_lo < at->omega_hi && iv.omega_hi > at->omega_hi && (!next || iv.omega_hi > next->omega_hi))
-          next = &iv;
-      at = next;
-    }
-    out.intervals.insert(out.intervals.end(), bottom.begin(), bottom.end());
+    trace_family(m, Closure::BottomStop, 0.0, bstarts, copt, stable, &held);
+    const auto follow = [&](const std::vector<LockedInterval>& list, ThresholdPrediction& t, const char* none) {
+      t.mechanism = none;
+      const LockedInterval* at = nullptr;
+      for (const auto& iv : list)
+        if (iv.omega_lo <= opt.omega_lo * (1 + 1e-9) && (!at || iv.omega_hi > at->omega_hi)) at = &iv;
+      for (int hops = 0; at && hops < 32; ++hops) {
+        t.predicted = at->omega_hi;
+        t.mechanism = at->ends_hi == "range" ? "orbits on the bottom stop up to the end of the range"
+                                             : fmt::format("{} of the bottom-stop orbit (branch {})", at->ends_hi,
+                                                           at->branch);
+        if (at->ends_hi != "fold") break;
+        const LockedInterval* next = nullptr;
+        for (const auto& iv : list)
+          if (&iv != at && iv.omega_lo < at->omega_hi && iv.omega_hi > at->omega_hi &&
+              (!next || iv.omega_hi > next->omega_hi))
+            next = &iv;
+        at = next;
+      }
+    };
+    follow(stable, wr, "no stable orbit on the bottom stop at the lowest ω_m");
+    follow(held, wc, "no orbit held on the bottom stop at the lowest ω_m");
+    out.intervals.insert(out.intervals.end(), stable.begin(), stable.end());
   }
-  out.thresholds = {wr, wf, w1};
+  out.thresholds = {wr, wc, wf, w1};
   return out;
 }
 

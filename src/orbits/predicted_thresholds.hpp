@@ -9,9 +9,10 @@
 //   ω_fall  the lowest such ω_m: ramping down below it, no stuck orbit holds, the bead
 //           slides; typically a cone exit downwards (the bead slides towards the ball);
 //           compared with the measured 3.24π.
-//   ω_rise  on the bottom-stop branch that hangs at ω_m → 0, the first ω_m going up where the
-//           bead climbs off (its cone margin `up` crosses 0) or the orbit folds or loses
-//           stability; compared with the measured 12.63π.
+//   ω_rise  ramping up from hanging, the pair follows an orbit on the bottom stop, jumping at
+//           folds to one that coexists; the first end that is not a fold: a loss of stability
+//           ("omega_rise") or, stability ignored, the bead's cone letting it climb off the
+//           ball ("omega_rise_cone"); compared with the measured 12.63π.
 #pragma once
 #include <string>
 #include <vector>
@@ -28,7 +29,7 @@ struct LockedInterval {
 };
 
 struct ThresholdPrediction {
-  std::string symbol;      // "omega1", "omega_fall", "omega_rise"
+  std::string symbol;      // "omega_rise", "omega_rise_cone", "omega_fall", "omega1"
   double predicted = 0.0;  // [rad/s], NaN when the branches give none in the range
   double measured = 0.0;   // the paper's [rad/s]
   std::string mechanism;   // which event, at which s and on which branch
