@@ -15,6 +15,7 @@
 #include "orbits/orbit_families.hpp"
 #include "orbits/orbit_stability.hpp"
 #include "orbits/steady_orbit.hpp"
+#include "sim/simulation.hpp"
 #include "steady_orbit.hpp"
 
 using namespace ajx;
@@ -213,5 +214,47 @@ TEST(SteadyOrbit, MirrorImagesWithTheTopOnTheAxis) {
     for (const auto& q : found)
       mirrored |= std::abs(q.p1.x() + o.p1.x()) + std::abs(q.p2.x() + o.p2.x()) < 1e-12 && std::abs(q.T1 - o.T1) < 1e-12;
     EXPECT_TRUE(mirrored) << o.branch << " rho1 " << o.rho1;
+  }
+}
+
+TEST(SteadyOrbit, ConeMarginsAgreeWithTheSimulatorsSwitch) {
+  // Across each cone edge at 4.7π: the stuck orbit 0.1 mm inside is simulated for 0.2 s and
+  // stays stuck; the one 0.1 mm outside slips at once, in the direction of the violated bound
+  // (ConeUp: the bead slides up, σ = −1; ConeDown: down, σ = +1).
+  const physics::Model m;
+  const double w = 4.7 * kPi;
+  const OrbitCatalogue cat = find_orbits(m, w, {41});
+  ASSERT_FALSE(cat.edges.empty());
+  sim::RunOptions opt;
+  opt.method = "dop853";
+  opt.integ.tol.rtol = 1e-11;
+  opt.integ.tol.atol = 1e-13;
+  const physics::MotorSchedule sched({{w, w, 1.0}});
+  for (const auto& e : cat.edges) {
+    for (double ds : {-1e-4, 1e-4}) {
+      const OrbitProblem pb{m, w, Closure::Stuck, e.s + ds};
+      const NewtonResult r = solve(pb, unknowns(e));
+      ASSERT_TRUE(r.converged);
+      const SteadyOrbit o = describe(pb, r.X);
+      const bool inside = o.margins.up > 0 && o.margins.down > 0;
+      const Vec3 W(0, 0, w);
+      physics::State s = sim::explicit_state(m, sched, o.p1, o.p2, W.cross(o.p1), W.cross(o.p2), physics::Mode::Stuck);
+      sim::Simulation simulation(m, sched, opt);
+      const sim::RunSummary sum = simulation.run(s, 0.2, 0.0);
+      ASSERT_TRUE(sum.ok()) << sum.failure;
+      if (inside) {
+        EXPECT_EQ(s.contact.mode, physics::Mode::Stuck) << to_string(e.closure) << " s " << o.s;
+        EXPECT_EQ(sum.mode_switches, 0);
+      } else {
+        EXPECT_GT(sum.mode_switches, 0) << to_string(e.closure) << " s " << o.s;
+        // Which way: the bead's L1 after 0.2 s against s.
+        const double L1 = (Vec3(s.y.segment<3>(physics::idx::r1)) - sched.top(m.p.drive_radius, s.t).a).norm();
+        if (o.margins.up < 0) {
+          EXPECT_LT(L1, o.s) << "should have slid up";
+        } else {
+          EXPECT_GT(L1, o.s) << "should have slid down";
+        }
+      }
+    }
   }
 }
