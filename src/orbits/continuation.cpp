@@ -17,8 +17,10 @@ const std::vector<std::string>& continuation_parameters() {
 }
 
 namespace {
-double* parameter_slot(OrbitProblem& pb, std::string_view name) {
-  physics::Parameters& p = pb.model.p;
+// The field `name` of pb (OrbitProblem or const OrbitProblem).
+template <class Problem>
+auto* parameter_slot(Problem& pb, std::string_view name) {
+  auto& p = pb.model.p;
   if (name == "omega") return &pb.omega;
   if (name == "s") return &pb.s_star;
   if (name == "drive_radius") return &p.drive_radius;
@@ -35,7 +37,7 @@ double* parameter_slot(OrbitProblem& pb, std::string_view name) {
 }  // namespace
 
 double parameter_value(const OrbitProblem& pb, std::string_view name) {
-  return *parameter_slot(const_cast<OrbitProblem&>(pb), name);
+  return *parameter_slot(pb, name);
 }
 
 void set_parameter(OrbitProblem& pb, std::string_view name, double value) {
