@@ -46,4 +46,21 @@ struct ClassifyArgs {
 };
 int classify_command(const ClassifyArgs& args);
 
+struct OrbitsArgs {
+  std::string config_path;             // any run or sweep file, or one with an [orbits] table
+  std::vector<std::string> overrides;
+  std::vector<std::string> omega;      // ω_m values: rad/s, or "4.7pi"
+  std::vector<double> s;               // stuck orbits to continue, bead positions [m]
+  std::string parameter;               // continue in this parameter
+  std::vector<double> range;           // [lo, hi] of the continuation
+  int s_points = 0;                    // 0: the config's (default 81)
+  bool all = false;                    // print every stuck orbit, not only their summary
+  bool thresholds = false;             // predict ω_rise, ω_fall, ω1 from the branches
+  int threshold_s_points = 21;
+  std::string compare;                 // a sweep's HDF5: its brackets next to the predictions
+  std::string csv, branches_csv, events_csv, output;
+  std::string command_line;
+};
+int orbits_command(const OrbitsArgs& args);
+
 }  // namespace ajx::app

@@ -58,6 +58,30 @@ int main(int argc, char** argv) {
   classify_cmd->add_option("-s,--set", classify.settings,
                            "A classifier setting, e.g. --set locked_tol=0.05 (see src/sweep/orbit_classifier.hpp)");
 
+  ajx::app::OrbitsArgs orbits;
+  orbits.command_line = command_line;
+  CLI::App* orbits_cmd = app.add_subcommand(
+      "orbits", "Locked circular orbits as equilibria of the co-rotating frame: all of them at given ω_m, "
+                "continued in a parameter, and the thresholds they predict");
+  orbits_cmd->add_option("config", orbits.config_path, "TOML file: [model], [layers] and an optional [orbits] table")
+      ->required();
+  orbits_cmd->add_option("-s,--set", orbits.overrides, "Override a key, e.g. --set model.drive_radius=0.005");
+  orbits_cmd->add_option("-w,--omega", orbits.omega, "ω_m in rad/s, or a multiple of π like 4.7pi (repeatable)");
+  orbits_cmd->add_option("--s", orbits.s, "Continue the stuck orbits with the bead at this s [m] (repeatable)");
+  orbits_cmd->add_option("--continue", orbits.parameter, "Continue in this parameter: omega, s, drive_radius, ...");
+  orbits_cmd->add_option("--range", orbits.range, "Continuation interval LO HI")->expected(2);
+  orbits_cmd->add_option("--s-points", orbits.s_points, "Bead positions sampled along the string")->check(CLI::Range(2, 10000));
+  orbits_cmd->add_flag("--all", orbits.all, "Print every stuck orbit, not only the summary of the family");
+  orbits_cmd->add_flag("--thresholds", orbits.thresholds, "Predict ω_rise, ω_fall and ω1 from the branches");
+  orbits_cmd->add_option("--threshold-s-points", orbits.threshold_s_points, "Bead positions for --thresholds")
+      ->check(CLI::Range(2, 1000));
+  orbits_cmd->add_option("--compare", orbits.compare,
+                         "Predict the thresholds and show the brackets of this sweep's chains that have the same model");
+  orbits_cmd->add_option("--csv", orbits.csv, "Write every orbit found as CSV");
+  orbits_cmd->add_option("--branches-csv", orbits.branches_csv, "Write the continuation's points as CSV");
+  orbits_cmd->add_option("--events-csv", orbits.events_csv, "Write the continuation's events as CSV");
+  orbits_cmd->add_option("-o,--output", orbits.output, "Write everything to this HDF5 file");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -66,6 +90,7 @@ int main(int argc, char** argv) {
   if (*run_cmd) return ajx::app::run_command(run);
   if (*thresholds_cmd) return ajx::app::thresholds_command(thresholds);
   if (*classify_cmd) return ajx::app::classify_command(classify);
+  if (*orbits_cmd) return ajx::app::orbits_command(orbits);
   if (*sweep_cmd) {
     ajx::parallel::MpiEnvironment mpi(argc, argv);
     try {

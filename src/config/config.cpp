@@ -10,6 +10,7 @@
 #include <toml++/toml.h>
 
 #include "numerics/stepper.hpp"
+#include "orbits/continuation.hpp"
 
 namespace ajx::config {
 
@@ -420,13 +421,13 @@ SweepConfig parse_sweep_config(std::string_view text, std::string_view source_na
       h.seeds.clear();
       for (std::size_t i = 0; i < seeds->size(); ++i) {
         const auto v = (*seeds)[i].value<std::string>();
-        if (!v || (*v != "hanging" && *v != "circular_high"))
-          throw ConfigError(fmt::format("{}: key 'hold.seeds[{}]': allowed: hanging, circular_high", file, i));
+        if (!v || (*v != "hanging" && *v != "circular_high" && *v != "locked_orbit"))
+          throw ConfigError(fmt::format("{}: key 'hold.seeds[{}]': allowed: hanging, circular_high, locked_orbit", file, i));
         h.seeds.push_back(*v);
       }
-      if (h.seeds.empty()) r.fail("seeds", "the list is empty; allowed: hanging, circular_high");
+      if (h.seeds.empty()) r.fail("seeds", "the list is empty; allowed: hanging, circular_high, locked_orbit");
     } else if (ht.contains("seeds")) {
-      r.fail("seeds", "expected an array of names (hanging, circular_high)");
+      r.fail("seeds", "expected an array of names (hanging, circular_high, locked_orbit)");
     }
     h.perturbations = int(r.number("perturbations", 0.0, 0.0, 1000.0));
     h.perturbation = r.number("perturbation", h.perturbation, 0.0, 10.0, true);
@@ -504,6 +505,57 @@ std::vector<GridPoint> expand_grid(const SweepConfig& c) {
     if (a == 0) break;
   }
   return points;
+}
+
+
+OrbitsConfig parse_orbits_config(std::string_view text, std::string_view source_name,
+                                 const std::vector<std::string>& overrides) {
+  OrbitsConfig c;
+  const toml::table root = begin(c, text, source_name, overrides,
+                                 {"model", "layers", "integrator", "initial", "schedule", "output", "protocol",
+                                  "grid", "hold", "orbits"});
+  const std::string file = c.source_name;
+  const physics::Parameters& p = c.model.p;
+  if (const toml::table* t = root.get_as<toml::table>("orbits")) {
+    Reader r(*t, "orbits", file);
+    if (const toml::node* n = t->get("omega")) {
+      r.known("omega");
+      c.orbits.omega = n->is_number() ? std::vector<double>{n->value<double>().value()} : value_list(*n, "orbits.omega", file);
+      for (std::size_t i = 0; i < c.orbits.omega.size(); ++i)
+        if (!(c.orbits.omega[i] > 0.0 && c.orbits.omega[i] <= 2000.0))
+          throw ConfigError(fmt::format("{}: key 'orbits.omega[{}]': {} is out of range; allowed (0, 2000] rad/s", file,
+                                        i, c.orbits.omega[i]));
+    }
+    c.orbits.s_points = int(r.number("s_points", c.orbits.s_points, 2, 10000));
+    c.orbits.parameter = r.word("continue", "", orbits::continuation_parameters());
+    if (const toml::array* a = t->get_as<toml::array>("range")) {
+      r.known("range");
+      const auto lo = a->size() == 2 ? (*a)[0].value<double>() : std::nullopt;
+      const auto hi = a->size() == 2 ? (*a)[1].value<double>() : std::nullopt;
+      if (!lo || !hi || !std::isfinite(*lo) || !std::isfinite(*hi) || !(*lo < *hi))
+        r.fail("range", "expected [lo, hi] with lo < hi");
+      c.orbits.range_lo = *lo;
+      c.orbits.range_hi = *hi;
+    } else if (t->contains("range")) {
+      r.fail("range", "expected [lo, hi] with lo < hi");
+    }
+    if (const toml::node* n = t->get("s")) {
+      r.known("s");
+      c.orbits.s = n->is_number() ? std::vector<double>{n->value<double>().value()} : value_list(*n, "orbits.s", file);
+      const double lo = c.model.layers.top_stop ? p.top_stop : 0.0;
+      const double hi = c.model.layers.bottom_stop ? p.string_length - p.contact_distance : p.string_length;
+      for (std::size_t i = 0; i < c.orbits.s.size(); ++i)
+        if (!(c.orbits.s[i] > lo && c.orbits.s[i] <= hi))
+          throw ConfigError(fmt::format("{}: key 'orbits.s[{}]': {} is out of range; allowed ({}, {}] m (the stops)",
+                                        file, i, c.orbits.s[i], lo, hi));
+    }
+    r.reject_unknown();
+  }
+  return c;
+}
+
+OrbitsConfig load_orbits_config(const std::string& path, const std::vector<std::string>& overrides) {
+  return parse_orbits_config(read_file(path), path, overrides);
 }
 
 }  // namespace ajx::config

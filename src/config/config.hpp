@@ -64,7 +64,7 @@ struct HoldSpec {
   std::vector<double> omega;                // ω_m values [rad/s]
   double settle = 60.0;                     // transient before measuring [s]
   double measure = 10.0;                    // the measured window [s]
-  std::vector<std::string> seeds{"hanging"};  // "hanging", "circular_high"
+  std::vector<std::string> seeds{"hanging"};  // "hanging", "circular_high", "locked_orbit"
   int perturbations = 0;                    // extra copies of each seed with random velocity kicks
   double perturbation = 0.01;               // size of a kick [m/s]
 };
@@ -93,6 +93,22 @@ std::vector<GridPoint> expand_grid(const SweepConfig& c);
 SweepConfig parse_sweep_config(std::string_view text, std::string_view source_name,
                                const std::vector<std::string>& overrides = {});
 SweepConfig load_sweep_config(const std::string& path, const std::vector<std::string>& overrides = {});
+
+// astrojax orbits: the [model] and [layers] of any run or sweep file (their other tables are
+// accepted and not read), plus an optional [orbits] table.
+struct OrbitsSpec {
+  std::vector<double> omega;           // ω_m values [rad/s], in (0, 2000]
+  int s_points = 81;                   // the stuck family sampled along the string
+  std::string parameter;               // continue in this parameter ("" : no continuation)
+  double range_lo = 0.0, range_hi = 0.0;  // the continuation's interval (both 0: a default)
+  std::vector<double> s;               // stuck orbits to continue, bead positions [m]
+};
+struct OrbitsConfig : CommonConfig {
+  OrbitsSpec orbits;
+};
+OrbitsConfig parse_orbits_config(std::string_view text, std::string_view source_name,
+                                 const std::vector<std::string>& overrides = {});
+OrbitsConfig load_orbits_config(const std::string& path, const std::vector<std::string>& overrides = {});
 
 // Parse and validate. Overrides are "dotted.key=value" with a TOML value (a bare word is
 // taken as a string). Throws ConfigError.

@@ -4,6 +4,10 @@
 #include <random>
 #include <stdexcept>
 
+#include <Eigen/Geometry>
+#include <fmt/format.h>
+
+#include "orbits/orbit_seed.hpp"
 #include "physics/contact_modes.hpp"
 #include "sim/simulation.hpp"
 
@@ -21,8 +25,18 @@ physics::State seed_state(const physics::Model& m, const physics::MotorSchedule&
     const Vec3 w(0, 0, omega);
     s = sim::explicit_state(m, schedule, r1, r2, w.cross(r1), w.cross(r2), physics::Mode::Sliding, 0.0,
                             0.1 * m.p.string_length);
+  } else if (seed == "locked_orbit") {
+    // An equilibrium of the co-rotating frame (orbits/orbit_seed.hpp), turned to the top's phase.
+    const auto o = orbits::locked_orbit_seed(m, omega);
+    if (!o) throw std::invalid_argument(fmt::format("no locked orbit at ω_m = {} rad/s", omega));
+    const physics::TopKinematics top = schedule.top(m.p.drive_radius, 0.0);
+    const Eigen::AngleAxisd turn(top.phi, Vec3::UnitZ());
+    const Vec3 r1 = turn * o->orbit.p1, r2 = turn * o->orbit.p2, w(0, 0, omega);
+    s = sim::explicit_state(m, schedule, r1, r2, w.cross(r1), w.cross(r2),
+                            o->orbit.closure == orbits::Closure::BottomStop ? physics::Mode::BottomStop
+                                                                             : physics::Mode::Stuck);
   } else {
-    throw std::invalid_argument("unknown seed '" + seed + "'; allowed: hanging, circular_high");
+    throw std::invalid_argument("unknown seed '" + seed + "'; allowed: hanging, circular_high, locked_orbit");
   }
   if (perturbation > 0) {
     // FNV-1a of the seed name: the same kicks on every platform.

@@ -1,0 +1,93 @@
+// The hold mode's seed "locked_orbit": at 6π rad/s (where the sweep's hold mode finds a locked
+// orbit with the bead high) the seed is a stable orbit held by friction, and the Simulation
+// started from it through sweep::seed_state stays on it: no spin-up, no transient.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "orbits/continuation.hpp"
+#include "orbits/corotating_frame.hpp"
+#include "orbits/orbit_families.hpp"
+#include "orbits/orbit_seed.hpp"
+#include "sim/simulation.hpp"
+#include "sweep/seeds.hpp"
+
+using namespace ajx;
+
+TEST(OrbitSeed, LockedOrbitSeedAt6PiIsStableHeldAndStaysPut) {
+  const physics::Model m;
+  const double w = 6 * std::numbers::pi;
+  const auto seed = orbits::locked_orbit_seed(m, w);
+  ASSERT_TRUE(seed.has_value());
+  EXPECT_EQ(seed->rank, 1);
+  EXPECT_TRUE(seed->stable && seed->orbit.admissible);
+  EXPECT_LT(seed->orbit.s, m.p.string_length - m.p.contact_distance);  // the bead off the ball
+  // Through the sweep's seed function, on a schedule whose phase at t = 0 is not zero.
+  const physics::MotorSchedule sched({{w, w, 30.0}}, 0.7);
+  physics::State s = sweep::seed_state(m, sched, "locked_orbit", w, 0, 0.0);
+  EXPECT_EQ(s.contact.mode, physics::Mode::Stuck);
+  EXPECT_NEAR(s.contact.s_star, seed->orbit.s, 1e-12);
+  sim::RunOptions opt;
+  opt.method = "dop853";
+  opt.integ.tol.rtol = 1e-11;
+  opt.integ.tol.atol = 1e-13;
+  sim::Simulation simulation(m, sched, opt);
+  const sim::RunSummary r = simulation.run(s, 20.0, 0.0);
+  ASSERT_TRUE(r.ok()) << r.failure;
+  EXPECT_EQ(s.contact.mode, physics::Mode::Stuck);
+  // In the co-rotating frame the pair has not moved: a stable equilibrium started on it
+  // departs only by the integration error (rtol 1e-11 over ~380 radians of motor phase).
+  const physics::TopKinematics top = sched.top(m.p.drive_radius, s.t);
+  const orbits::Vec12 z = orbits::frame_state(s.y, top.phi, w);
+  const double moved = (z.head<3>() - seed->orbit.p1).norm() + (z.segment<3>(3) - seed->orbit.p2).norm();
+  EXPECT_LT(moved, 1e-7);
+  std::printf("measured locked_orbit_seed: s %.4f m, bead radius %.4f m, margins %.4f/%.4f N, moved %.2e m in 20 s\n",
+              seed->orbit.s, seed->orbit.rho1, seed->orbit.margins.up, seed->orbit.margins.down, moved);
+}
+
+TEST(OrbitSeed, RampDownFromTheSeedSlipsWhereItsBranchLeavesTheCone) {
+  // From the 6π seed, ramp ω_m down: the bead holds until the quasi-static branch of its
+  // stuck orbit leaves the static cone (cone_exit_down, located by continuation), and slips
+  // there. The ramp makes the orbit lag the branch by an amount first order in the rate, so
+  // the miss must shrink at least twofold when the rate is divided by 4, and at 0.025 rad/s²
+  // be within 1e-3 of ω_m.
+  const physics::Model m;
+  const double pi = std::numbers::pi, w0 = 6 * pi, w1 = 4.4 * pi;
+  const auto seed = orbits::locked_orbit_seed(m, w0);
+  ASSERT_TRUE(seed.has_value());
+  orbits::ContinuationOptions c;
+  c.direction = -1;
+  c.lambda_min = w1;
+  c.lambda_max = w0 + 1.0;
+  const orbits::Branch b = orbits::continue_branch({m, w0, orbits::Closure::Stuck, seed->orbit.s},
+                                                   orbits::unknowns(seed->orbit), "omega", c);
+  double exit = -1;
+  for (const auto& e : b.events)
+    if (e.kind == orbits::EventKind::ConeExitDown && exit < 0) exit = e.lambda;
+  ASSERT_GT(exit, w1);
+  std::vector<double> miss;
+  for (double rate : {0.1, 0.025}) {
+    const physics::MotorSchedule sched({{w0, w0, 1.0}, {w0, w1, (w0 - w1) / rate}});
+    physics::State s = sweep::seed_state(m, sched, "locked_orbit", w0, 0, 0.0);
+    sim::RunOptions opt;
+    opt.method = "dop853";
+    opt.integ.tol.rtol = 1e-10;
+    opt.integ.tol.atol = 1e-12;
+    sim::Simulation simulation(m, sched, opt);
+    double slip = -1, landed = -1;
+    const sim::RunSummary r = simulation.run(s, sched.duration(), 1e-3, [&](const sim::Sample& x) {
+      if (slip < 0 && x.contact.mode != physics::Mode::Stuck) slip = x.top.omega;
+      if (landed < 0 && x.contact.mode == physics::Mode::BottomStop) landed = x.top.omega;
+    });
+    ASSERT_TRUE(r.ok()) << r.failure;
+    ASSERT_GT(slip, 0) << "the bead never slipped";
+    miss.push_back(slip - exit);
+    std::printf("measured ramp_down_slip: rate %g rad/s², slips at %.6f rad/s, branch leaves the cone at %.6f "
+                "rad/s (%.5fπ), miss %.2e rad/s; the bead then slides in steps and lands on the ball at %.4fπ\n",
+                rate, slip, exit, exit / pi, slip - exit, landed / pi);
+  }
+  EXPECT_LT(std::abs(miss[1]), 0.5 * std::abs(miss[0]));
+  EXPECT_LT(std::abs(miss[1]), 1e-3 * exit);
+}
