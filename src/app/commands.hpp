@@ -45,3 +45,21 @@ struct ClassifyArgs {
 int classify_command(const ClassifyArgs& args);
 
 }  // namespace ajx::app
+
+namespace ajx::app {
+
+// astrojax bench work-precision: scenes (run files) x methods x tolerances or steps -> CSV.
+struct WorkPrecisionArgs {
+  std::vector<std::string> scenes;     // run files (sweeps/scenes/*.toml)
+  std::vector<std::string> overrides;  // applied to every scene
+  std::string output = "out/work_precision.csv";
+  double horizon = 10.0;               // error measured at t0 + horizon [s]
+  std::vector<std::string> methods{"euler", "rk4", "dopri5", "dop853"};
+  std::vector<double> rtols{1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12};
+  std::vector<double> steps{4e-3, 2e-3, 1e-3, 5e-4, 2.5e-4, 1.25e-4, 6.25e-5};
+  int repeats = 5;                     // timed runs per point (median kept)
+  double cpu_budget = 2.0;             // stop repeating a point after this much CPU [s]
+};
+int bench_work_precision_command(const WorkPrecisionArgs& args);
+
+}  // namespace ajx::app

@@ -53,6 +53,23 @@ int main(int argc, char** argv) {
   classify_cmd->add_option("-s,--set", classify.settings,
                            "A classifier setting, e.g. --set locked_tol=0.05 (see src/sweep/orbit_classifier.hpp)");
 
+  ajx::app::WorkPrecisionArgs wp;
+  CLI::App* bench_cmd = app.add_subcommand("bench", "Accuracy against speed: work-precision diagrams");
+  bench_cmd->require_subcommand(1);
+  CLI::App* wp_cmd = bench_cmd->add_subcommand(
+      "work-precision", "Each method over tolerances / steps on each scene: CPU time, achieved error, drift, energy -> CSV");
+  wp_cmd->add_option("scenes", wp.scenes, "Run files (sweeps/scenes/*.toml)")->required();
+  wp_cmd->add_option("-o,--output", wp.output, "CSV output path")->capture_default_str();
+  wp_cmd->add_option("-s,--set", wp.overrides, "Override a key in every scene (repeatable)");
+  wp_cmd->add_option("--horizon", wp.horizon, "Error measured at this time [s]")->capture_default_str();
+  wp_cmd->add_option("--methods", wp.methods, "Methods")->delimiter(',')->capture_default_str();
+  wp_cmd->add_option("--rtols", wp.rtols, "Relative tolerances of the adaptive methods (atol = 1e-3 rtol)")
+      ->delimiter(',');
+  wp_cmd->add_option("--steps", wp.steps, "Steps of the fixed-step methods [s]")->delimiter(',');
+  wp_cmd->add_option("--repeats", wp.repeats, "Timed runs per point (the median is kept)")->capture_default_str();
+  wp_cmd->add_option("--budget", wp.cpu_budget, "Stop repeating a point after this much CPU [s]")
+      ->capture_default_str();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -61,6 +78,7 @@ int main(int argc, char** argv) {
   if (*run_cmd) return ajx::app::run_command(run);
   if (*thresholds_cmd) return ajx::app::thresholds_command(thresholds);
   if (*classify_cmd) return ajx::app::classify_command(classify);
+  if (*wp_cmd) return ajx::app::bench_work_precision_command(wp);
   if (*sweep_cmd) {
     ajx::parallel::MpiEnvironment mpi(argc, argv);
     try {
