@@ -8,34 +8,12 @@
 #include <fstream>
 
 #include "app/commands.hpp"
+#include "bench/scene_file.hpp"
 #include "bench/work_precision.hpp"
 #include "config/config.hpp"
 #include "numerics/stepper.hpp"
 
 namespace ajx::app {
-
-namespace {
-
-bench::Scene load_scene(const std::string& path, const std::vector<std::string>& overrides, double horizon) {
-  const config::RunConfig c = config::load_run_config(path, overrides);
-  bench::Scene s;
-  s.name = std::filesystem::path(path).stem().string();
-  s.model = c.model;
-  s.schedule = physics::MotorSchedule(c.schedule);
-  s.run = c.run;
-  s.horizon = horizon;
-  try {
-    s.initial = c.initial.preset == "hanging"
-                    ? sim::hanging_at_rest(c.model, s.schedule)
-                    : sim::explicit_state(c.model, s.schedule, c.initial.r1, c.initial.r2, c.initial.v1,
-                                          c.initial.v2, c.initial.mode, 0.0, c.initial.length_tolerance);
-  } catch (const std::invalid_argument& e) {
-    throw config::ConfigError(fmt::format("{}: key 'initial': {}", c.source_name, e.what()));
-  }
-  return s;
-}
-
-}  // namespace
 
 int bench_work_precision_command(const WorkPrecisionArgs& a) {
   std::vector<bench::Scene> scenes;
@@ -48,7 +26,7 @@ int bench_work_precision_command(const WorkPrecisionArgs& a) {
       if (!(r >= 1e-15 && r < 1.0)) throw config::ConfigError(fmt::format("--rtols {}: allowed [1e-15, 1)", r));
     for (double h : a.steps)
       if (!(h > 0.0 && h <= 0.1)) throw config::ConfigError(fmt::format("--steps {}: allowed (0, 0.1] s", h));
-    for (const auto& p : a.scenes) scenes.push_back(load_scene(p, a.overrides, a.horizon));
+    for (const auto& p : a.scenes) scenes.push_back(bench::load_scene(p, a.overrides, a.horizon));
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return kExitBadInput;

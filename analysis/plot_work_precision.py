@@ -1,0 +1,84 @@
+#!/usr/bin/python3
+"""Work-precision diagrams: CPU time (median of repeats) against the ACHIEVED error at the
+horizon, one panel per scene, one line per method, from the CSV files of
+`astrojax bench work-precision` (and of `astrojax_peers`, same columns).
+
+Errors left of the dashed line (the reference floor: |DOP853 at rtol 1e-13 - DOPRI5 at rtol
+1e-12|) are not resolved by the reference. Hollow markers: the run ended in another contact
+mode than the reference, or failed. The star is the paper's explicit Euler at 1/2000 s.
+
+Usage: /usr/bin/python3 analysis/plot_work_precision.py out/work_precision.csv [more.csv] -o out/wp.png
+"""
+import argparse
+import csv
+import math
+from collections import defaultdict
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+
+
+def read(paths):
+    rows = []
+    for p in paths:
+        with open(p, newline="") as f:
+            lines = [l for l in f if not l.startswith("#")]
+        rows += list(csv.DictReader(lines))
+    return rows
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("csv", nargs="+")
+    ap.add_argument("-o", "--output", default="out/work_precision.png")
+    ap.add_argument("--error", default="err_position_m", help="error column (err_position_m, omega_ball_error, ...)")
+    a = ap.parse_args()
+    rows = read(a.csv)
+    scenes = list(dict.fromkeys(r["scene"] for r in rows))
+    n = len(scenes)
+    cols = min(n, 3)
+    fig, axes = plt.subplots((n + cols - 1) // cols, cols, figsize=(5.2 * cols, 4.4 * ((n + cols - 1) // cols)),
+                             squeeze=False)
+    methods = list(dict.fromkeys(r["method"] for r in rows))
+    colors = {m: plt.cm.tab10(i % 10) for i, m in enumerate(methods)}
+    for k, scene in enumerate(scenes):
+        ax = axes[k // cols][k % cols]
+        rs = [r for r in rows if r["scene"] == scene]
+        by = defaultdict(list)
+        for r in rs:
+            by[r["method"]].append(r)
+        for m, pts in by.items():
+            good = [(float(p[a.error]), float(p["cpu_median_s"]), p) for p in pts
+                    if p["status"] == "ok" and math.isfinite(float(p[a.error])) and float(p[a.error]) > 0]
+            if not good:
+                continue
+            xs, ys = [g[0] for g in good], [g[1] for g in good]
+            ax.plot(xs, ys, "-", color=colors[m], lw=1, label=m)
+            for x, y, p in good:
+                filled = p["same_final_mode"] == "1"
+                ax.plot(x, y, "o", ms=4, color=colors[m], mfc=colors[m] if filled else "none")
+                if m == "euler" and p["param_kind"] == "step" and abs(float(p["param"]) - 5e-4) < 1e-12:
+                    ax.plot(x, y, "*", ms=14, color="k", mfc="gold", zorder=5)
+        floor = float(rs[0]["reference_floor_m"])
+        if a.error == "err_position_m" and floor > 0:
+            ax.axvline(floor, ls="--", color="0.5", lw=0.8)
+        chaotic = rs[0]["chaotic"] == "1"
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_title(f"{scene}" + (" (chaotic: use statistics)" if chaotic else ""))
+        ax.set_xlabel({"err_position_m": "achieved position error at the horizon [m]",
+                       "omega_ball_error": "|Δω_ball| [rad/s]"}.get(a.error, a.error))
+        ax.set_ylabel("CPU time per run [s]")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7)
+    for k in range(n, axes.size):
+        axes[k // cols][k % cols].axis("off")
+    fig.tight_layout()
+    fig.savefig(a.output, dpi=120)
+    print(f"-> {a.output}")
+
+
+if __name__ == "__main__":
+    main()
