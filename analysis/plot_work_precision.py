@@ -7,7 +7,11 @@ Errors left of the dashed line (the reference floor: |DOP853 at rtol 1e-13 - DOP
 1e-12|) are not resolved by the reference. Hollow markers: the run ended in another contact
 mode than the reference, or failed. The star is the paper's explicit Euler at 1/2000 s.
 
+With --table E1,E2,...: for each scene and target error, the CPU time of each method's
+cheapest run that reached it (same final contact mode, status ok), and the ratio to the best.
+
 Usage: /usr/bin/python3 analysis/plot_work_precision.py out/work_precision.csv [more.csv] -o out/wp.png
+       [--table 1e-6,1e-9]
 """
 import argparse
 import csv
@@ -29,13 +33,39 @@ def read(paths):
     return rows
 
 
+def cheapest(rows, method, target, column):
+    ok = [float(r["cpu_median_s"]) for r in rows if r["method"] == method and r["status"] == "ok"
+          and r["same_final_mode"] == "1" and float(r[column]) <= target]
+    return min(ok) if ok else math.nan
+
+
+def table(rows, targets, column):
+    """CPU [s] of the cheapest run of each method reaching each target error, per scene."""
+    for scene in dict.fromkeys(r["scene"] for r in rows):
+        rs = [r for r in rows if r["scene"] == scene]
+        methods = list(dict.fromkeys(r["method"] for r in rs))
+        print(f"\n{scene} (reference floor {float(rs[0]['reference_floor_m']):.1e} m)")
+        print(f"  {'method':24s}" + "".join(f"{'err <= %.0e' % t:>22s}" for t in targets))
+        best = {t: min((cheapest(rs, m, t, column) for m in methods), key=lambda x: (math.isnan(x), x))
+                for t in targets}
+        for m in methods:
+            cells = []
+            for t in targets:
+                c = cheapest(rs, m, t, column)
+                cells.append("—" if math.isnan(c) else f"{c * 1e3:8.2f} ms ({c / best[t]:4.1f}x)")
+            print(f"  {m:24s}" + "".join(f"{x:>22s}" for x in cells))
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("csv", nargs="+")
     ap.add_argument("-o", "--output", default="out/work_precision.png")
     ap.add_argument("--error", default="err_position_m", help="error column (err_position_m, omega_ball_error, ...)")
+    ap.add_argument("--table", default="", help="comma-separated target errors for a table at equal error")
     a = ap.parse_args()
     rows = read(a.csv)
+    if a.table:
+        table(rows, [float(x) for x in a.table.split(",")], a.error)
     scenes = list(dict.fromkeys(r["scene"] for r in rows))
     n = len(scenes)
     cols = min(n, 3)
