@@ -6,9 +6,11 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <fstream>
+#include <numbers>
 
 #include "app/commands.hpp"
 #include "bench/scene_file.hpp"
+#include "bench/stability.hpp"
 #include "bench/work_precision.hpp"
 #include "config/config.hpp"
 #include "numerics/stepper.hpp"
@@ -65,6 +67,80 @@ int bench_work_precision_command(const WorkPrecisionArgs& a) {
                     row.out.status.c_str());
         std::fflush(stdout);
       }
+    }
+  }
+  csv.close();
+  std::filesystem::rename(a.output + ".part", a.output, ec);
+  if (ec) {
+    std::fprintf(stderr, "error: cannot rename %s.part: %s\n", a.output.c_str(), ec.message().c_str());
+    return 1;
+  }
+  std::printf("-> %s\n", a.output.c_str());
+  return 0;
+}
+
+}  // namespace ajx::app
+
+namespace ajx::app {
+
+int bench_stability_command(const StabilityArgs& a) {
+  bench::Scene base;
+  try {
+    if (!(a.horizon > 0.0 && a.horizon <= 1e4))
+      throw config::ConfigError(fmt::format("--horizon {}: allowed (0, 1e4] s", a.horizon));
+    for (const auto& m : a.methods)
+      if (numerics::make_stepper(m)->adaptive())
+        throw config::ConfigError(fmt::format("--methods {}: allowed the fixed-step methods euler, rk4, radau_iia", m));
+    for (double w : a.omegas_pi)
+      if (!(w >= 0.0 && w * std::numbers::pi <= 2000.0))
+        throw config::ConfigError(fmt::format("--omegas-pi {}: allowed [0, 2000/π]", w));
+    if (!(a.h_min > 0.0 && a.h_min < a.h_max && a.h_max <= 0.1))
+      throw config::ConfigError(fmt::format("--h-min {} --h-max {}: allowed 0 < h_min < h_max <= 0.1 s", a.h_min, a.h_max));
+    base = bench::load_scene(a.scene, a.overrides, a.horizon);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return kExitBadInput;
+  }
+  const std::filesystem::path out(a.output);
+  std::error_code ec;
+  if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path(), ec);
+  std::ofstream csv(a.output + ".part");
+  if (!csv) {
+    std::fprintf(stderr, "error: cannot write %s.part\n", a.output.c_str());
+    return kExitBadInput;
+  }
+  const bench::StabilityCriteria crit{a.energy_tol};
+  csv << fmt::format("# astrojax bench stability {}: hold at omega from the scene's initial state for {} s; pass = "
+                     "finished, final mode of the reference (dop853 rtol 1e-13), |energy residual| <= {}\n",
+                     a.scene, a.horizon, crit.energy_tol);
+  csv << "omega,omega_over_pi,method,step,pass,largest_stable,status,final_mode_ok,err_position_m,max_drift_m,"
+         "energy_residual_rel,cpu_s\n";
+  std::printf("%-10s %-9s %16s   the paper's Euler at 1/2000 s: %s\n", "ω_m/π", "method", "largest stable h",
+              "energy residual, drift, error, final mode");
+  for (double wpi : a.omegas_pi) {
+    const double omega = wpi * std::numbers::pi;
+    const bench::Scene scene = bench::held_at(base, omega);
+    const bench::Reference ref = bench::reference(scene);
+    for (const auto& m : a.methods) {
+      std::vector<bench::StabilityRow> rows;
+      const double h = bench::largest_stable_step(scene, m, ref, crit, a.h_max, a.h_min, rows);
+      std::string paper;
+      if (m == "euler") {
+        bench::StabilityRow r{omega, m, 5e-4, bench::run_point(scene, {m, 0.0, 5e-4}, 1, 0.0), {}, false};
+        r.err = bench::compare(r.out.final, ref.run.final);
+        r.pass = bench::acceptable(r.out, r.err, crit);
+        paper = fmt::format("{:+.2e}, {:.1e} m, {:.1e} m, {}{}", r.out.energy_residual, r.out.max_drift,
+                            r.err.position, physics::to_string(r.out.final.contact.mode),
+                            r.err.same_mode ? "" : " (wrong)");
+        rows.push_back(r);
+      }
+      for (const auto& r : rows)
+        csv << fmt::format("{:.17g},{:.6g},{},{:.6g},{},{:.6g},\"{}\",{},{:.6e},{:.6e},{:.6e},{:.6e}\n", omega, wpi, m,
+                           r.step, r.pass ? 1 : 0, h, r.out.status, r.err.same_mode ? 1 : 0, r.err.position,
+                           r.out.max_drift, r.out.energy_residual, r.out.cpu_median);
+      csv.flush();
+      std::printf("%-10.4g %-9s %16.3e   %s\n", wpi, m.c_str(), h, paper.c_str());
+      std::fflush(stdout);
     }
   }
   csv.close();

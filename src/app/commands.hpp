@@ -63,3 +63,20 @@ struct WorkPrecisionArgs {
 int bench_work_precision_command(const WorkPrecisionArgs& args);
 
 }  // namespace ajx::app
+
+namespace ajx::app {
+
+// astrojax bench stability: the largest acceptable fixed step against ω_m held -> CSV.
+struct StabilityArgs {
+  std::string scene;                   // a run file; its schedule is replaced by each held ω_m
+  std::vector<std::string> overrides;
+  std::string output = "out/stability.csv";
+  double horizon = 20.0;               // [s]
+  std::vector<std::string> methods{"euler", "rk4"};
+  std::vector<double> omegas_pi{2, 4, 6, 8, 10, 12, 14};  // ω_m / π
+  double h_max = 0.1, h_min = 2e-6;    // scanned steps [s]
+  double energy_tol = 1e-2;            // acceptable |energy residual|
+};
+int bench_stability_command(const StabilityArgs& args);
+
+}  // namespace ajx::app

@@ -70,6 +70,19 @@ int main(int argc, char** argv) {
   wp_cmd->add_option("--budget", wp.cpu_budget, "Stop repeating a point after this much CPU [s]")
       ->capture_default_str();
 
+  ajx::app::StabilityArgs st;
+  CLI::App* st_cmd = bench_cmd->add_subcommand(
+      "stability", "Largest acceptable step of each fixed-step method against ω_m held, and the paper's Euler -> CSV");
+  st_cmd->add_option("scene", st.scene, "Run file (its schedule is replaced by each held ω_m)")->required();
+  st_cmd->add_option("-o,--output", st.output, "CSV output path")->capture_default_str();
+  st_cmd->add_option("-s,--set", st.overrides, "Override a key of the scene (repeatable)");
+  st_cmd->add_option("--horizon", st.horizon, "Run length [s]")->capture_default_str();
+  st_cmd->add_option("--methods", st.methods, "Fixed-step methods")->delimiter(',')->capture_default_str();
+  st_cmd->add_option("--omegas-pi", st.omegas_pi, "Held ω_m in units of π rad/s")->delimiter(',');
+  st_cmd->add_option("--h-max", st.h_max, "Largest step scanned [s]")->capture_default_str();
+  st_cmd->add_option("--h-min", st.h_min, "Smallest step scanned [s]")->capture_default_str();
+  st_cmd->add_option("--energy-tol", st.energy_tol, "Acceptable |energy-balance residual|")->capture_default_str();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -79,6 +92,7 @@ int main(int argc, char** argv) {
   if (*thresholds_cmd) return ajx::app::thresholds_command(thresholds);
   if (*classify_cmd) return ajx::app::classify_command(classify);
   if (*wp_cmd) return ajx::app::bench_work_precision_command(wp);
+  if (*st_cmd) return ajx::app::bench_stability_command(st);
   if (*sweep_cmd) {
     ajx::parallel::MpiEnvironment mpi(argc, argv);
     try {
