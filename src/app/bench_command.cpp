@@ -10,6 +10,7 @@
 
 #include "app/commands.hpp"
 #include "bench/scene_file.hpp"
+#include "bench/friction_study.hpp"
 #include "bench/stability.hpp"
 #include "bench/work_precision.hpp"
 #include "config/config.hpp"
@@ -142,6 +143,88 @@ int bench_stability_command(const StabilityArgs& a) {
       std::printf("%-10.4g %-9s %16.3e   %s\n", wpi, m.c_str(), h, paper.c_str());
       std::fflush(stdout);
     }
+  }
+  csv.close();
+  std::filesystem::rename(a.output + ".part", a.output, ec);
+  if (ec) {
+    std::fprintf(stderr, "error: cannot rename %s.part: %s\n", a.output.c_str(), ec.message().c_str());
+    return 1;
+  }
+  std::printf("-> %s\n", a.output.c_str());
+  return 0;
+}
+
+}  // namespace ajx::app
+
+namespace ajx::app {
+
+int bench_friction_command(const FrictionArgs& a) {
+  bench::Scene base;
+  try {
+    if (!(a.horizon > 0.0 && a.horizon <= 1e4))
+      throw config::ConfigError(fmt::format("--horizon {}: allowed (0, 1e4] s", a.horizon));
+    for (double e : a.eps)
+      if (!(e > 0.0 && e <= 1000.0)) throw config::ConfigError(fmt::format("--eps {}: allowed (0, 1000] m/s", e));
+    if (!(a.rtol >= 1e-15 && a.rtol < 1.0))
+      throw config::ConfigError(fmt::format("--rtol {}: allowed [1e-15, 1)", a.rtol));
+    for (double h : a.rk4_steps)
+      if (!(h > 0.0 && h <= 0.1)) throw config::ConfigError(fmt::format("--rk4-steps {}: allowed (0, 0.1] s", h));
+    for (double h : a.radau_steps)
+      if (!(h > 0.0 && h <= 0.1)) throw config::ConfigError(fmt::format("--radau-steps {}: allowed (0, 0.1] s", h));
+    if (a.max_steps < 1) throw config::ConfigError(fmt::format("--max-steps {}: allowed >= 1", a.max_steps));
+    base = bench::load_scene(a.scene, a.overrides, a.horizon);
+    if (base.model.layers.friction != physics::Friction::StickSlip)
+      throw config::ConfigError(fmt::format("{}: key 'layers.friction': allowed \"stick_slip\" (the event-driven "
+                                            "model the regularised one is compared with)", a.scene));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return kExitBadInput;
+  }
+  base.run.integ.max_steps = a.max_steps;
+  const std::filesystem::path out(a.output);
+  std::error_code ec;
+  if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path(), ec);
+  std::ofstream csv(a.output + ".part");
+  if (!csv) {
+    std::fprintf(stderr, "error: cannot write %s.part\n", a.output.c_str());
+    return kExitBadInput;
+  }
+  csv << fmt::format("# astrojax bench friction {}: horizon {} s; eps = 0 is the event-driven stick-slip model; "
+                     "references: dop853 at rtol 1e-13 (event-driven), 1e-11 (regularised, per eps)\n",
+                     a.scene, a.horizon);
+  csv << "eps,method,param_kind,param,status,cpu_s,steps,rhs_evals,err_model_m,err_total_m,creep_L1_m,"
+         "energy_residual_rel\n";
+  const bench::Reference exact = bench::reference(base);
+  const double L1_exact = bench::bead_position(base, exact.run.final);
+  std::printf("event-driven reference: %ld mode switches, final mode %s, L1 = %.9f m\n", exact.run.mode_switches,
+              std::string(physics::to_string(exact.run.final.contact.mode)).c_str(), L1_exact);
+  std::printf("%-8s %-10s %9s %10s %10s %12s %12s %12s  %s\n", "ε [m/s]", "method", "rtol|h", "cpu [s]", "evals",
+              "err model", "err total", "creep L1", "status");
+  const auto emit = [&](const bench::FrictionRow& r) {
+    csv << fmt::format("{:.6g},{},{},{:.6g},\"{}\",{:.6e},{},{},{:.6e},{:.6e},{:.6e},{:.6e}\n", r.eps, r.method,
+                       r.param_kind, r.param, r.out.status, r.out.cpu_median, r.out.steps, r.out.rhs_evals,
+                       r.err_model, r.err_total, r.creep, r.out.energy_residual);
+    csv.flush();
+    std::printf("%-8.0e %-10s %9.1e %10.3e %10ld %12.3e %12.3e %12.3e  %s\n", r.eps, r.method.c_str(), r.param,
+                r.out.cpu_median, r.out.rhs_evals, r.err_model, r.err_total, r.creep, r.out.status.c_str());
+    std::fflush(stdout);
+  };
+  const auto measure = [&](const bench::Scene& scene, const bench::Outcome& ref, double eps, double creep,
+                           const std::string& method, bool adaptive, double param) {
+    bench::FrictionRow r{eps, method, adaptive ? "rtol" : "step", param, {}, 0.0, 0.0, creep};
+    r.out = bench::run_point(scene, {method, adaptive ? param : 0.0, adaptive ? 0.0 : param}, a.repeats, 2.0);
+    r.err_model = bench::compare(r.out.final, ref.final).position;
+    r.err_total = bench::compare(r.out.final, exact.run.final).position;
+    emit(r);
+  };
+  for (const char* m : {"dopri5", "dop853"}) measure(base, exact.run, 0.0, 0.0, m, true, a.rtol);
+  for (double eps : a.eps) {
+    const bench::Scene scene = bench::regularised(base, eps);
+    const bench::Outcome ref = bench::run_point(scene, {"dop853", 1e-11, 0.0}, 1, 0.0);
+    const double creep = ref.status == "ok" ? std::abs(bench::bead_position(scene, ref.final) - L1_exact) : NAN;
+    for (const char* m : {"dopri5", "dop853"}) measure(scene, ref, eps, creep, m, true, a.rtol);
+    for (double h : a.rk4_steps) measure(scene, ref, eps, creep, "rk4", false, h);
+    for (double h : a.radau_steps) measure(scene, ref, eps, creep, "radau_iia", false, h);
   }
   csv.close();
   std::filesystem::rename(a.output + ".part", a.output, ec);

@@ -80,3 +80,22 @@ struct StabilityArgs {
 int bench_stability_command(const StabilityArgs& args);
 
 }  // namespace ajx::app
+
+namespace ajx::app {
+
+// astrojax bench friction: event-driven stick-slip against tanh(ṡ/ε) as ε -> 0 -> CSV.
+struct FrictionArgs {
+  std::string scene;                   // a run file with layers.friction = "stick_slip"
+  std::vector<std::string> overrides;
+  std::string output = "out/friction.csv";
+  double horizon = 10.0;               // [s]
+  std::vector<double> eps{1e-1, 1e-2, 1e-3, 1e-4, 1e-5};  // ε [m/s]
+  double rtol = 1e-8;                  // of dopri5 and dop853
+  std::vector<double> rk4_steps{1e-3, 1e-4};
+  std::vector<double> radau_steps{2e-3, 5e-4};
+  long max_steps = 5'000'000;          // a run needing more is reported as too costly
+  int repeats = 3;
+};
+int bench_friction_command(const FrictionArgs& args);
+
+}  // namespace ajx::app

@@ -83,6 +83,20 @@ int main(int argc, char** argv) {
   st_cmd->add_option("--h-min", st.h_min, "Smallest step scanned [s]")->capture_default_str();
   st_cmd->add_option("--energy-tol", st.energy_tol, "Acceptable |energy-balance residual|")->capture_default_str();
 
+  ajx::app::FrictionArgs fr;
+  CLI::App* fr_cmd = bench_cmd->add_subcommand(
+      "friction", "Event-driven stick-slip against tanh(ṡ/ε) as ε -> 0: creep error and cost, explicit and implicit -> CSV");
+  fr_cmd->add_option("scene", fr.scene, "Run file with layers.friction = \"stick_slip\"")->required();
+  fr_cmd->add_option("-o,--output", fr.output, "CSV output path")->capture_default_str();
+  fr_cmd->add_option("-s,--set", fr.overrides, "Override a key of the scene (repeatable)");
+  fr_cmd->add_option("--horizon", fr.horizon, "Run length [s]")->capture_default_str();
+  fr_cmd->add_option("--eps", fr.eps, "ε values [m/s]")->delimiter(',');
+  fr_cmd->add_option("--rtol", fr.rtol, "rtol of dopri5 and dop853")->capture_default_str();
+  fr_cmd->add_option("--rk4-steps", fr.rk4_steps, "Steps of RK4 [s]")->delimiter(',');
+  fr_cmd->add_option("--radau-steps", fr.radau_steps, "Steps of Radau IIA [s]")->delimiter(',');
+  fr_cmd->add_option("--max-steps", fr.max_steps, "Steps after which a run counts as too costly")->capture_default_str();
+  fr_cmd->add_option("--repeats", fr.repeats, "Timed runs per point (median kept)")->capture_default_str();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -93,6 +107,7 @@ int main(int argc, char** argv) {
   if (*classify_cmd) return ajx::app::classify_command(classify);
   if (*wp_cmd) return ajx::app::bench_work_precision_command(wp);
   if (*st_cmd) return ajx::app::bench_stability_command(st);
+  if (*fr_cmd) return ajx::app::bench_friction_command(fr);
   if (*sweep_cmd) {
     ajx::parallel::MpiEnvironment mpi(argc, argv);
     try {

@@ -13,7 +13,7 @@ const double kC[3] = {(4.0 - s6) / 10.0, (4.0 + s6) / 10.0, 1.0};
 const double kA[3][3] = {{(88.0 - 7.0 * s6) / 360.0, (296.0 - 169.0 * s6) / 1800.0, (-2.0 + 3.0 * s6) / 225.0},
                          {(296.0 + 169.0 * s6) / 1800.0, (88.0 + 7.0 * s6) / 360.0, (-2.0 - 3.0 * s6) / 225.0},
                          {(16.0 - s6) / 36.0, (16.0 + s6) / 36.0, 1.0 / 9.0}};
-constexpr int kFastIterations = 4;  // more than this: refresh J for the next step
+constexpr int kFastIterations = 6;  // more than this: refresh J for the next step
 constexpr int kMaxIterations = 12;
 
 }  // namespace

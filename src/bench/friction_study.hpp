@@ -1,0 +1,30 @@
+// Event-driven stick-slip against the regularised law T1 = T2 exp(μ_k ψ tanh(ṡ/ε)) as ε -> 0:
+// the creep error of the regularised model (its exact solution against the event-driven
+// one) and the cost of integrating it, which grows as ε shrinks for explicit methods
+// (stiffness ~ 1/ε) and need not for the implicit Radau IIA.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "bench/work_precision.hpp"
+
+namespace ajx::bench {
+
+struct FrictionRow {
+  double eps = 0.0;          // ε [m/s]; 0: the event-driven stick-slip model
+  std::string method;
+  std::string param_kind;    // "rtol" or "step"
+  double param = 0.0;
+  Outcome out;
+  double err_model = 0.0;    // position error against the same model's reference [m]
+  double err_total = 0.0;    // position error against the event-driven reference [m]
+  double creep = 0.0;        // |L1| of the regularised reference - L1 of the event-driven one [m]
+};
+
+// The scene with the regularised friction layer at ε (the stick-slip scene otherwise).
+Scene regularised(const Scene& base, double eps);
+
+// L1 = |r1 - a| at the state's time [m].
+double bead_position(const Scene& scene, const physics::State& s);
+
+}  // namespace ajx::bench
