@@ -10,6 +10,7 @@
 
 #include "app/commands.hpp"
 #include "bench/scene_file.hpp"
+#include "bench/constraint_study.hpp"
 #include "bench/friction_study.hpp"
 #include "bench/stability.hpp"
 #include "bench/work_precision.hpp"
@@ -232,6 +233,71 @@ int bench_friction_command(const FrictionArgs& a) {
     std::fprintf(stderr, "error: cannot rename %s.part: %s\n", a.output.c_str(), ec.message().c_str());
     return 1;
   }
+  std::printf("-> %s\n", a.output.c_str());
+  return 0;
+}
+
+}  // namespace ajx::app
+
+namespace ajx::app {
+
+int bench_constraints_command(const ConstraintsArgs& a) {
+  bench::Scene scene;
+  std::vector<bench::Setting> settings;
+  try {
+    if (!(a.horizon > 0.0 && a.horizon <= 1e4))
+      throw config::ConfigError(fmt::format("--horizon {}: allowed (0, 1e4] s", a.horizon));
+    for (double al : a.alphas)
+      if (!(al > 0.0 && al <= 1e6)) throw config::ConfigError(fmt::format("--alphas {}: allowed (0, 1e6] 1/s", al));
+    for (const auto& s : a.settings) {  // method@rtol or method@step
+      const auto at = s.find('@');
+      if (at == std::string::npos) throw config::ConfigError(fmt::format("--runs {}: allowed method@value", s));
+      const std::string m = s.substr(0, at);
+      const double x = std::stod(s.substr(at + 1));
+      const bool adaptive = numerics::make_stepper(m)->adaptive();
+      if (adaptive ? !(x >= 1e-15 && x < 1.0) : !(x > 0.0 && x <= 0.1))
+        throw config::ConfigError(fmt::format("--runs {}: allowed rtol in [1e-15, 1) or step in (0, 0.1] s", s));
+      settings.push_back({m, adaptive ? x : 0.0, adaptive ? 0.0 : x});
+    }
+    scene = bench::load_scene(a.scene, a.overrides, a.horizon);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return kExitBadInput;
+  }
+  const bench::Reference ref = bench::reference(scene);
+  if (ref.run.mode_switches != 0) {
+    std::fprintf(stderr, "error: %s: the reference switches modes %ld times; allowed: a scene in one contact mode\n",
+                 a.scene.c_str(), ref.run.mode_switches);
+    return kExitBadInput;
+  }
+  const std::filesystem::path out(a.output);
+  std::error_code ec;
+  if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path(), ec);
+  std::ofstream csv(a.output + ".part");
+  csv << fmt::format("# astrojax bench constraints {}: horizon {} s, mode {}; reference dop853 at rtol 1e-13\n", a.scene,
+                     a.horizon, physics::to_string(scene.initial.contact.mode));
+  csv << "variant,alpha,method,param,status,cpu_s,steps,rhs_evals,max_drift_m,end_drift_m,err_position_m,"
+         "energy_residual_rel\n";
+  std::vector<bench::ConstraintVariant> variants{{"none", 0.0, false}};
+  for (double al : a.alphas) variants.push_back({"baumgarte", al, false});
+  variants.push_back({"projection", 0.0, true});
+  std::printf("%-11s %8s %-8s %8s %10s %11s %11s %11s %11s  %s\n", "variant", "α [1/s]", "method", "rtol|h", "cpu [s]",
+              "max drift", "end drift", "error [m]", "energy", "status");
+  for (const auto& s : settings)
+    for (const auto& v : variants) {
+      const bench::ConstraintRun r = bench::run_constraint_variant(scene, v, s, a.repeats);
+      const double err = bench::compare(r.final, ref.run.final).position;
+      const double param = s.rtol > 0.0 ? s.rtol : s.step;
+      csv << fmt::format("{},{:.6g},{},{:.6g},\"{}\",{:.6e},{},{},{:.6e},{:.6e},{:.6e},{:.6e}\n", v.name, v.alpha,
+                         s.method, param, r.status, r.cpu, r.steps, r.rhs_evals, r.max_drift, r.end_drift, err,
+                         r.energy_residual);
+      csv.flush();
+      std::printf("%-11s %8.3g %-8s %8.1e %10.3e %11.2e %11.2e %11.2e %11.2e  %s\n", v.name.c_str(), v.alpha,
+                  s.method.c_str(), param, r.cpu, r.max_drift, r.end_drift, err, r.energy_residual, r.status.c_str());
+      std::fflush(stdout);
+    }
+  csv.close();
+  std::filesystem::rename(a.output + ".part", a.output, ec);
   std::printf("-> %s\n", a.output.c_str());
   return 0;
 }

@@ -99,3 +99,19 @@ struct FrictionArgs {
 int bench_friction_command(const FrictionArgs& args);
 
 }  // namespace ajx::app
+
+namespace ajx::app {
+
+// astrojax bench constraints: none / Baumgarte / projection on a one-mode scene -> CSV.
+struct ConstraintsArgs {
+  std::string scene;
+  std::vector<std::string> overrides;
+  std::string output = "out/constraints.csv";
+  double horizon = 100.0;  // [s]
+  std::vector<double> alphas{1, 10, 100, 1000};  // Baumgarte gains α [1/s]
+  std::vector<std::string> settings{"euler@5e-4", "rk4@5e-4", "dopri5@1e-6", "dop853@1e-9"};
+  int repeats = 3;
+};
+int bench_constraints_command(const ConstraintsArgs& args);
+
+}  // namespace ajx::app

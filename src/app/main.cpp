@@ -97,6 +97,17 @@ int main(int argc, char** argv) {
   fr_cmd->add_option("--max-steps", fr.max_steps, "Steps after which a run counts as too costly")->capture_default_str();
   fr_cmd->add_option("--repeats", fr.repeats, "Timed runs per point (median kept)")->capture_default_str();
 
+  ajx::app::ConstraintsArgs cs;
+  CLI::App* cs_cmd = bench_cmd->add_subcommand(
+      "constraints", "Constraint handling on a one-mode scene: none, Baumgarte gains, projection (drift, cost) -> CSV");
+  cs_cmd->add_option("scene", cs.scene, "Run file whose reference stays in one contact mode")->required();
+  cs_cmd->add_option("-o,--output", cs.output, "CSV output path")->capture_default_str();
+  cs_cmd->add_option("-s,--set", cs.overrides, "Override a key of the scene (repeatable)");
+  cs_cmd->add_option("--horizon", cs.horizon, "Run length [s]")->capture_default_str();
+  cs_cmd->add_option("--alphas", cs.alphas, "Baumgarte gains α [1/s]")->delimiter(',');
+  cs_cmd->add_option("--runs", cs.settings, "method@rtol or method@step")->delimiter(',')->capture_default_str();
+  cs_cmd->add_option("--repeats", cs.repeats, "Timed runs per point (median kept)")->capture_default_str();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -108,6 +119,7 @@ int main(int argc, char** argv) {
   if (*wp_cmd) return ajx::app::bench_work_precision_command(wp);
   if (*st_cmd) return ajx::app::bench_stability_command(st);
   if (*fr_cmd) return ajx::app::bench_friction_command(fr);
+  if (*cs_cmd) return ajx::app::bench_constraints_command(cs);
   if (*sweep_cmd) {
     ajx::parallel::MpiEnvironment mpi(argc, argv);
     try {
