@@ -193,39 +193,47 @@ int bench_friction_command(const FrictionArgs& a) {
   csv << fmt::format("# astrojax bench friction {}: horizon {} s; eps = 0 is the event-driven stick-slip model; "
                      "references: dop853 at rtol 1e-13 (event-driven), 1e-11 (regularised, per eps)\n",
                      a.scene, a.horizon);
-  csv << "eps,method,param_kind,param,status,cpu_s,steps,rhs_evals,err_model_m,err_total_m,creep_L1_m,"
-         "energy_residual_rel\n";
+  csv << "eps,model,method,param_kind,param,status,cpu_s,steps,rhs_evals,err_model_m,err_stick_slip_m,err_kinetic_m,"
+         "creep_stick_slip_L1_m,creep_kinetic_L1_m,energy_residual_rel\n";
   const bench::Reference exact = bench::reference(base);
+  const bench::Scene kin = bench::kinetic(base);
+  const bench::Reference exact_kin = bench::reference(kin);
   const double L1_exact = bench::bead_position(base, exact.run.final);
-  std::printf("event-driven reference: %ld mode switches, final mode %s, L1 = %.9f m\n", exact.run.mode_switches,
-              std::string(physics::to_string(exact.run.final.contact.mode)).c_str(), L1_exact);
-  std::printf("%-8s %-10s %9s %10s %10s %12s %12s %12s  %s\n", "ε [m/s]", "method", "rtol|h", "cpu [s]", "evals",
-              "err model", "err total", "creep L1", "status");
-  const auto emit = [&](const bench::FrictionRow& r) {
-    csv << fmt::format("{:.6g},{},{},{:.6g},\"{}\",{:.6e},{},{},{:.6e},{:.6e},{:.6e},{:.6e}\n", r.eps, r.method,
-                       r.param_kind, r.param, r.out.status, r.out.cpu_median, r.out.steps, r.out.rhs_evals,
-                       r.err_model, r.err_total, r.creep, r.out.energy_residual);
-    csv.flush();
-    std::printf("%-8.0e %-10s %9.1e %10.3e %10ld %12.3e %12.3e %12.3e  %s\n", r.eps, r.method.c_str(), r.param,
-                r.out.cpu_median, r.out.rhs_evals, r.err_model, r.err_total, r.creep, r.out.status.c_str());
-    std::fflush(stdout);
-  };
-  const auto measure = [&](const bench::Scene& scene, const bench::Outcome& ref, double eps, double creep,
-                           const std::string& method, bool adaptive, double param) {
-    bench::FrictionRow r{eps, method, adaptive ? "rtol" : "step", param, {}, 0.0, 0.0, creep};
+  const double L1_kin = bench::bead_position(kin, exact_kin.run.final);
+  std::printf("event-driven references: stick-slip %ld mode switches, final mode %s, L1 = %.9f m; kinetic %ld, %s, "
+              "L1 = %.9f m\n",
+              exact.run.mode_switches, std::string(physics::to_string(exact.run.final.contact.mode)).c_str(), L1_exact,
+              exact_kin.run.mode_switches, std::string(physics::to_string(exact_kin.run.final.contact.mode)).c_str(),
+              L1_kin);
+  std::printf("%-8s %-11s %-10s %8s %10s %9s %10s %10s %10s %10s %10s  %s\n", "ε [m/s]", "model", "method", "rtol|h",
+              "cpu [s]", "evals", "err model", "err s-s", "err kin", "creep s-s", "creep kin", "status");
+  const auto measure = [&](const bench::Scene& scene, const bench::Outcome& ref, double eps, const char* model,
+                           double creep_ss, double creep_kin, const std::string& method, bool adaptive, double param) {
+    bench::FrictionRow r{eps, method, adaptive ? "rtol" : "step", param, {}, 0.0, 0.0, 0.0, creep_ss, creep_kin};
     r.out = bench::run_point(scene, {method, adaptive ? param : 0.0, adaptive ? 0.0 : param}, a.repeats, 2.0);
     r.err_model = bench::compare(r.out.final, ref.final).position;
-    r.err_total = bench::compare(r.out.final, exact.run.final).position;
-    emit(r);
+    r.err_stick_slip = bench::compare(r.out.final, exact.run.final).position;
+    r.err_kinetic = bench::compare(r.out.final, exact_kin.run.final).position;
+    csv << fmt::format("{:.6g},{},{},{},{:.6g},\"{}\",{:.6e},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e}\n", r.eps,
+                       model, r.method, r.param_kind, r.param, r.out.status, r.out.cpu_median, r.out.steps,
+                       r.out.rhs_evals, r.err_model, r.err_stick_slip, r.err_kinetic, r.creep_stick_slip,
+                       r.creep_kinetic, r.out.energy_residual);
+    csv.flush();
+    std::printf("%-8.0e %-11s %-10s %8.1e %10.3e %9ld %10.2e %10.2e %10.2e %10.2e %10.2e  %s\n", r.eps, model,
+                r.method.c_str(), r.param, r.out.cpu_median, r.out.rhs_evals, r.err_model, r.err_stick_slip,
+                r.err_kinetic, r.creep_stick_slip, r.creep_kinetic, r.out.status.c_str());
+    std::fflush(stdout);
   };
-  for (const char* m : {"dopri5", "dop853"}) measure(base, exact.run, 0.0, 0.0, m, true, a.rtol);
+  for (const char* m : {"dopri5", "dop853"}) measure(base, exact.run, 0.0, "stick_slip", 0.0, NAN, m, true, a.rtol);
+  for (const char* m : {"dopri5", "dop853"}) measure(kin, exact_kin.run, 0.0, "kinetic", NAN, 0.0, m, true, a.rtol);
   for (double eps : a.eps) {
     const bench::Scene scene = bench::regularised(base, eps);
     const bench::Outcome ref = bench::run_point(scene, {"dop853", 1e-11, 0.0}, 1, 0.0);
-    const double creep = ref.status == "ok" ? std::abs(bench::bead_position(scene, ref.final) - L1_exact) : NAN;
-    for (const char* m : {"dopri5", "dop853"}) measure(scene, ref, eps, creep, m, true, a.rtol);
-    for (double h : a.rk4_steps) measure(scene, ref, eps, creep, "rk4", false, h);
-    for (double h : a.radau_steps) measure(scene, ref, eps, creep, "radau_iia", false, h);
+    const double L1 = ref.status == "ok" ? bench::bead_position(scene, ref.final) : NAN;
+    const double c_ss = std::abs(L1 - L1_exact), c_kin = std::abs(L1 - L1_kin);
+    for (const char* m : {"dopri5", "dop853"}) measure(scene, ref, eps, "regularised", c_ss, c_kin, m, true, a.rtol);
+    for (double h : a.rk4_steps) measure(scene, ref, eps, "regularised", c_ss, c_kin, "rk4", false, h);
+    for (double h : a.radau_steps) measure(scene, ref, eps, "regularised", c_ss, c_kin, "radau_iia", false, h);
   }
   csv.close();
   std::filesystem::rename(a.output + ".part", a.output, ec);

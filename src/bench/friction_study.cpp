@@ -12,6 +12,12 @@ Scene regularised(const Scene& base, double eps) {
   return s;
 }
 
+Scene kinetic(const Scene& base) {
+  Scene s = base;
+  s.model.layers.friction = physics::Friction::Kinetic;
+  return s;
+}
+
 double bead_position(const Scene& scene, const physics::State& s) {
   const physics::TopKinematics top = scene.schedule.top(scene.model.p.drive_radius, s.t);
   return (physics::Vec3(s.y.segment<3>(physics::idx::r1)) - top.a).norm();
