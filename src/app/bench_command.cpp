@@ -311,3 +311,63 @@ int bench_constraints_command(const ConstraintsArgs& a) {
 }
 
 }  // namespace ajx::app
+
+namespace ajx::app {
+
+int bench_threshold_command(const WorkPrecisionArgs& a, double sample_dt) {
+  std::vector<bench::Scene> scenes;
+  try {
+    if (!(a.horizon > 0.0 && a.horizon <= 1e4))
+      throw config::ConfigError(fmt::format("--horizon {}: allowed (0, 1e4] s", a.horizon));
+    if (!(sample_dt > 0.0 && sample_dt <= 0.1))
+      throw config::ConfigError(fmt::format("--sample {}: allowed (0, 0.1] s", sample_dt));
+    for (const auto& m : a.methods) (void)numerics::make_stepper(m);
+    for (const auto& p : a.scenes) scenes.push_back(bench::load_scene(p, a.overrides, a.horizon));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return kExitBadInput;
+  }
+  const std::filesystem::path out(a.output);
+  std::error_code ec;
+  if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path(), ec);
+  std::ofstream csv(a.output + ".part");
+  csv << "# astrojax bench threshold: omega_m at the bead's first landing on the bottom ball; reference dop853 at "
+         "rtol 1e-13, floor |reference - dopri5 at rtol 1e-12|\n";
+  csv << "scene,method,param_kind,param,status,repeats,cpu_median_s,rhs_evals,found,t_fall_s,omega_fall,"
+         "omega_fall_error,t_fall_error_s,omega_floor\n";
+  for (const bench::Scene& scene : scenes) {
+    const bench::Fall ref = bench::first_fall(scene, {"dop853", 1e-13, 0.0}, sample_dt);
+    const bench::Fall chk = bench::first_fall(scene, {"dopri5", 1e-12, 0.0}, sample_dt);
+    if (!ref.found) {
+      std::fprintf(stderr, "error: %s: the bead never lands on the bottom ball within %g s\n", scene.name.c_str(),
+                   scene.horizon);
+      return kExitBadInput;
+    }
+    const double floor = chk.found ? std::abs(chk.omega - ref.omega) : NAN;
+    std::printf("%s: reference ω_fall = %.9f rad/s (%.6fπ) at t = %.6f s, floor %.1e rad/s\n", scene.name.c_str(),
+                ref.omega, ref.omega / std::numbers::pi, ref.t, floor);
+    for (const auto& m : a.methods) {
+      const bool adaptive = numerics::make_stepper(m)->adaptive();
+      for (double param : adaptive ? a.rtols : a.steps) {
+        const bench::Setting set{m, adaptive ? param : 0.0, adaptive ? 0.0 : param};
+        const bench::Outcome o = bench::run_point(scene, set, a.repeats, a.cpu_budget);
+        const bench::Fall f = bench::first_fall(scene, set, sample_dt);
+        const double ew = f.found ? std::abs(f.omega - ref.omega) : INFINITY;
+        const double et = f.found ? std::abs(f.t - ref.t) : INFINITY;
+        csv << fmt::format("{},{},{},{:.6g},\"{}\",{},{:.6e},{},{},{:.9f},{:.12g},{:.6e},{:.6e},{:.6e}\n", scene.name, m,
+                           adaptive ? "rtol" : "step", param, o.status, o.repeats, o.cpu_median, o.rhs_evals,
+                           f.found ? 1 : 0, f.t, f.omega, ew, et, floor);
+        csv.flush();
+        std::printf("  %-7s %9.2e  cpu %.3e s  ω_fall %.6fπ  |Δω_fall| %.2e rad/s  |Δt| %.2e s  %s\n", m.c_str(),
+                    param, o.cpu_median, f.omega / std::numbers::pi, ew, et, o.status.c_str());
+        std::fflush(stdout);
+      }
+    }
+  }
+  csv.close();
+  std::filesystem::rename(a.output + ".part", a.output, ec);
+  std::printf("-> %s\n", a.output.c_str());
+  return 0;
+}
+
+}  // namespace ajx::app

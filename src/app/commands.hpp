@@ -115,3 +115,10 @@ struct ConstraintsArgs {
 int bench_constraints_command(const ConstraintsArgs& args);
 
 }  // namespace ajx::app
+
+namespace ajx::app {
+
+// astrojax bench threshold: ω_fall from a short ramp, per method and tolerance -> CSV.
+int bench_threshold_command(const WorkPrecisionArgs& args, double sample_dt);
+
+}  // namespace ajx::app

@@ -108,6 +108,23 @@ int main(int argc, char** argv) {
   cs_cmd->add_option("--runs", cs.settings, "method@rtol or method@step")->delimiter(',')->capture_default_str();
   cs_cmd->add_option("--repeats", cs.repeats, "Timed runs per point (median kept)")->capture_default_str();
 
+  ajx::app::WorkPrecisionArgs th;
+  th.output = "out/threshold.csv";
+  th.horizon = 40.0;
+  double th_sample = 1e-3;
+  CLI::App* th_cmd = bench_cmd->add_subcommand(
+      "threshold", "ω_fall (the bead's first landing on a ramp down) per method and tolerance, against a reference -> CSV");
+  th_cmd->add_option("scenes", th.scenes, "Run files with a ramp down (sweeps/scenes/fall_ramp.toml)")->required();
+  th_cmd->add_option("-o,--output", th.output, "CSV output path")->capture_default_str();
+  th_cmd->add_option("-s,--set", th.overrides, "Override a key in every scene (repeatable)");
+  th_cmd->add_option("--horizon", th.horizon, "Run length [s]")->capture_default_str();
+  th_cmd->add_option("--methods", th.methods, "Methods")->delimiter(',')->capture_default_str();
+  th_cmd->add_option("--rtols", th.rtols, "Relative tolerances of the adaptive methods (atol = 1e-3 rtol)")
+      ->delimiter(',');
+  th_cmd->add_option("--steps", th.steps, "Steps of the fixed-step methods [s]")->delimiter(',');
+  th_cmd->add_option("--repeats", th.repeats, "Timed runs per point (the median is kept)")->capture_default_str();
+  th_cmd->add_option("--sample", th_sample, "Sampling step that brackets the landing [s]")->capture_default_str();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -120,6 +137,7 @@ int main(int argc, char** argv) {
   if (*st_cmd) return ajx::app::bench_stability_command(st);
   if (*fr_cmd) return ajx::app::bench_friction_command(fr);
   if (*cs_cmd) return ajx::app::bench_constraints_command(cs);
+  if (*th_cmd) return ajx::app::bench_threshold_command(th, th_sample);
   if (*sweep_cmd) {
     ajx::parallel::MpiEnvironment mpi(argc, argv);
     try {

@@ -107,3 +107,37 @@ std::string csv_line(const Row& r, const Reference& ref) {
 }
 
 }  // namespace ajx::bench
+
+namespace ajx::bench {
+
+Fall first_fall(const Scene& scene, const Setting& setting, double sample_dt) {
+  sim::RunOptions o = scene.run;
+  o.method = setting.method;
+  if (setting.rtol > 0.0) o.integ.tol = {setting.rtol, 1e-3 * setting.rtol};
+  if (setting.step > 0.0) o.integ.h_fixed = setting.step;
+  sim::Simulation simulation(scene.model, scene.schedule, o);
+  physics::State s = scene.initial;
+  Fall fall;
+  bool have_prev = false;
+  double t_prev = 0.0, L2_prev = 0.0, L2dot_prev = 0.0;
+  const double d = scene.model.p.contact_distance;
+  simulation.run(s, scene.initial.t + scene.horizon, sample_dt, [&](const sim::Sample& x) {
+    if (fall.found) return;
+    if (x.contact.mode == physics::Mode::BottomStop) {
+      if (!have_prev) return;  // resting from the start: not a fall
+      fall.found = true;
+      fall.t = L2dot_prev < 0.0 ? std::min(x.t, t_prev + (L2_prev - d) / (-L2dot_prev)) : x.t;
+      double phi, w, wd;
+      scene.schedule.phase(fall.t, phi, w, wd);
+      fall.omega = w;
+      return;
+    }
+    have_prev = true;
+    t_prev = x.t;
+    L2_prev = x.dyn.g.L2;
+    L2dot_prev = x.dyn.g.L2_dot;
+  });
+  return fall;
+}
+
+}  // namespace ajx::bench

@@ -82,3 +82,17 @@ std::string csv_header();
 std::string csv_line(const Row& r, const Reference& ref);
 
 }  // namespace ajx::bench
+
+namespace ajx::bench {
+
+// The fall of the bead on a ramp down (ω_fall, model.md): the first landing on the bottom ball.
+// Samples every sample_dt; the landing time is extrapolated from the last sample before it,
+// t = t_k + (L2 - d)/(-L̇2) (error O(sample_dt² L̈2/L̇2)), and ω_fall = ω_m there.
+struct Fall {
+  bool found = false;
+  double t = 0.0;      // [s]
+  double omega = 0.0;  // ω_m at the landing [rad/s]
+};
+Fall first_fall(const Scene& scene, const Setting& setting, double sample_dt);
+
+}  // namespace ajx::bench
