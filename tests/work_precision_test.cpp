@@ -3,7 +3,9 @@
 // locked-circular scene over a short horizon (2 s, to keep the suite fast).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "bench/scene_file.hpp"
 #include "bench/work_precision.hpp"
@@ -92,6 +94,25 @@ TEST(WorkPrecision, CsvLineHasTheHeadersColumns) {
   bench::Row row{s.name, "dopri5", "rtol", 1e-6, bench::run_point(s, {"dopri5", 1e-6, 0.0}, 1, 0.0), {}, 0.0};
   const auto count = [](const std::string& x) { return std::count(x.begin(), x.end(), ','); };
   EXPECT_EQ(count(bench::csv_line(row, ref)), count(bench::csv_header()));
+}
+
+// The landing is extrapolated from the last sample before it with L2 + L̇2 τ = d, whose error
+// is ½ L̈2 τ² / L̇2 with τ < sample_dt: the error in ω_fall falls as sample_dt², 100x per
+// decade (30x..300x allows for where the landing falls inside the sample interval).
+TEST(WorkPrecision, FallExtrapolationErrorIsQuadraticInTheSampleStep) {
+  const bench::Scene s =
+      bench::load_scene(std::string(ASTROJAX_SOURCE_DIR) + "/sweeps/scenes/fall_ramp.toml", {}, 25.0);
+  const bench::Setting set{"dop853", 1e-10, 0.0};
+  const bench::Fall fine = bench::first_fall(s, set, 1e-4);
+  const bench::Fall mid = bench::first_fall(s, set, 1e-3);
+  const bench::Fall coarse = bench::first_fall(s, set, 1e-2);
+  ASSERT_TRUE(fine.found && mid.found && coarse.found);
+  const double ratio = std::abs(coarse.omega - fine.omega) / std::abs(mid.omega - fine.omega);
+  EXPECT_GT(ratio, 30.0);
+  EXPECT_LT(ratio, 300.0);
+  // The bead lands during the ramp (ω_m between 3 rad/s and 6π).
+  EXPECT_GT(fine.omega, 3.0);
+  EXPECT_LT(fine.omega, 6.0 * std::numbers::pi);
 }
 
 }  // namespace
