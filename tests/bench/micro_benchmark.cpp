@@ -95,6 +95,7 @@ BENCHMARK_CAPTURE(BM_step, euler, "euler", 5e-4);
 BENCHMARK_CAPTURE(BM_step, rk4, "rk4", 5e-4);
 BENCHMARK_CAPTURE(BM_step, dopri5, "dopri5", 2e-3);
 BENCHMARK_CAPTURE(BM_step, dop853, "dop853", 5e-3);
+BENCHMARK_CAPTURE(BM_step, radau_iia, "radau_iia", 2e-3);
 
 // Collects the mean CPU time per iteration, then prints the overhead table.
 class OverheadReporter : public benchmark::ConsoleReporter {
@@ -116,7 +117,7 @@ class OverheadReporter : public benchmark::ConsoleReporter {
     if (rhs == cpu_ns_.end()) return;
     std::printf("\nintegrator overhead (sliding mode; one RHS evaluation = %.1f ns):\n", rhs->second);
     std::printf("%-8s %12s %14s %14s %10s\n", "method", "step [ns]", "RHS per step", "in RHS [ns]", "overhead");
-    for (const char* m : {"euler", "rk4", "dopri5", "dop853"}) {
+    for (const char* m : {"euler", "rk4", "dopri5", "dop853", "radau_iia"}) {
       const std::string key = std::string("BM_step/") + m;
       if (!cpu_ns_.count(key) || !evals_.count(key)) continue;
       const double step = cpu_ns_[key], in_rhs = evals_[key] * rhs->second;
