@@ -63,6 +63,20 @@ BENCHMARK_CAPTURE(BM_rhs, stuck, physics::Mode::Stuck);
 BENCHMARK_CAPTURE(BM_rhs, bottom_stop, physics::Mode::BottomStop);
 BENCHMARK_CAPTURE(BM_rhs, slack, physics::Mode::Slack);
 
+// The motor kinematics alone (φ(t), sin φ, cos φ, ȧ, ä), part of every evaluation above: the
+// most a formulation in the frame co-rotating with the motor (autonomous, no sin/cos) could
+// save per evaluation.
+void BM_top(benchmark::State& st) {
+  const Fixture& fx = fixture();
+  double t = 0.0;
+  for (auto _ : st) {
+    const physics::TopKinematics k = fx.schedule.top(fx.model.p.drive_radius, t);
+    benchmark::DoNotOptimize(k.a_ddot.data());
+    t += 1e-9;
+  }
+}
+BENCHMARK(BM_top);
+
 // One accepted step (attempt + accept) along the orbit, in the sliding mode. Every 2000 steps
 // the state goes back to the seed (and the stepper is reset), so the orbit never drifts far.
 void BM_step(benchmark::State& st, const char* method, double h) {
