@@ -28,5 +28,20 @@ check "good run: exit 0 (got $rc)" "[ $rc -eq 0 ]"
 check "good run: 3 rows" "[ \$(grep -c '^locked_circular,' '$work/good.csv') -eq 3 ]"
 check "good run: every row has the header's columns" \
   "[ \$(grep -v '^#' '$work/good.csv' | awk -F, '{print NF}' | sort -u | wc -l) -eq 1 ]"
+# The other bench commands refuse what they cannot measure, before any work.
+"$bin" bench stability "$src/sweeps/spin_up.toml" -o "$work/s.csv" --methods dopri5 >/dev/null 2>"$work/s.err"
+rc=$?
+check "stability with an adaptive method: exit 2 (got $rc)" "[ $rc -eq 2 ] && grep -q 'fixed-step' '$work/s.err' && [ ! -e '$work/s.csv' ]"
+"$bin" bench friction "$scene" -o "$work/f.csv" --set layers.friction=kinetic >/dev/null 2>"$work/f.err"
+rc=$?
+check "friction without stick-slip: exit 2 naming layers.friction (got $rc)" \
+  "[ $rc -eq 2 ] && grep -q 'layers.friction' '$work/f.err' && [ ! -e '$work/f.csv' ]"
+"$bin" bench constraints "$src/sweeps/scenes/stick_slip_passage.toml" -o "$work/k.csv" --horizon 5 >/dev/null 2>"$work/k.err"
+rc=$?
+check "constraints on a switching scene: exit 2 (got $rc)" "[ $rc -eq 2 ] && grep -q 'one contact mode' '$work/k.err' && [ ! -e '$work/k.csv' ]"
+"$bin" bench threshold "$scene" -o "$work/t.csv" --horizon 2 >/dev/null 2>"$work/t.err"
+rc=$?
+check "threshold where the bead never falls: exit 2 (got $rc)" \
+  "[ $rc -eq 2 ] && grep -q 'never lands' '$work/t.err' && [ ! -e '$work/t.csv' ] && [ ! -e '$work/t.csv.part' ]"
 echo "bench_cli_test: $pass passed, $fail failed"
 [ $fail -eq 0 ]

@@ -282,6 +282,10 @@ int bench_constraints_command(const ConstraintsArgs& a) {
   std::error_code ec;
   if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path(), ec);
   std::ofstream csv(a.output + ".part");
+  if (!csv) {
+    std::fprintf(stderr, "error: cannot write %s.part\n", a.output.c_str());
+    return kExitBadInput;
+  }
   csv << fmt::format("# astrojax bench constraints {}: horizon {} s, mode {}; reference dop853 at rtol 1e-13\n", a.scene,
                      a.horizon, physics::to_string(scene.initial.contact.mode));
   csv << "variant,alpha,method,param,status,cpu_s,steps,rhs_evals,max_drift_m,end_drift_m,err_position_m,"
@@ -327,22 +331,32 @@ int bench_threshold_command(const WorkPrecisionArgs& a, double sample_dt) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return kExitBadInput;
   }
-  const std::filesystem::path out(a.output);
-  std::error_code ec;
-  if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path(), ec);
-  std::ofstream csv(a.output + ".part");
-  csv << "# astrojax bench threshold: omega_m at the bead's first landing on the bottom ball; reference dop853 at "
-         "rtol 1e-13, floor |reference - dopri5 at rtol 1e-12|\n";
-  csv << "scene,method,param_kind,param,status,repeats,cpu_median_s,rhs_evals,found,t_fall_s,omega_fall,"
-         "omega_fall_error,t_fall_error_s,omega_floor\n";
+  // The references first: a scene where the bead never lands is bad input, found before any file.
+  std::vector<std::pair<bench::Fall, bench::Fall>> refs;
   for (const bench::Scene& scene : scenes) {
-    const bench::Fall ref = bench::first_fall(scene, {"dop853", 1e-13, 0.0}, sample_dt);
-    const bench::Fall chk = bench::first_fall(scene, {"dopri5", 1e-12, 0.0}, sample_dt);
-    if (!ref.found) {
+    refs.emplace_back(bench::first_fall(scene, {"dop853", 1e-13, 0.0}, sample_dt),
+                      bench::first_fall(scene, {"dopri5", 1e-12, 0.0}, sample_dt));
+    if (!refs.back().first.found) {
       std::fprintf(stderr, "error: %s: the bead never lands on the bottom ball within %g s\n", scene.name.c_str(),
                    scene.horizon);
       return kExitBadInput;
     }
+  }
+  const std::filesystem::path out(a.output);
+  std::error_code ec;
+  if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path(), ec);
+  std::ofstream csv(a.output + ".part");
+  if (!csv) {
+    std::fprintf(stderr, "error: cannot write %s.part\n", a.output.c_str());
+    return kExitBadInput;
+  }
+  csv << "# astrojax bench threshold: omega_m at the bead's first landing on the bottom ball; reference dop853 at "
+         "rtol 1e-13, floor |reference - dopri5 at rtol 1e-12|\n";
+  csv << "scene,method,param_kind,param,status,repeats,cpu_median_s,rhs_evals,found,t_fall_s,omega_fall,"
+         "omega_fall_error,t_fall_error_s,omega_floor\n";
+  for (std::size_t k = 0; k < scenes.size(); ++k) {
+    const bench::Scene& scene = scenes[k];
+    const auto& [ref, chk] = refs[k];
     const double floor = chk.found ? std::abs(chk.omega - ref.omega) : NAN;
     std::printf("%s: reference ω_fall = %.9f rad/s (%.6fπ) at t = %.6f s, floor %.1e rad/s\n", scene.name.c_str(),
                 ref.omega, ref.omega / std::numbers::pi, ref.t, floor);
