@@ -5,6 +5,7 @@
 #   ./setup.sh test        install, build, run the default test suite (ctest -L unit)
 #   ./setup.sh test-long   install, build, run the long physics validations (ctest -L long)
 #   ./setup.sh install | build
+#   ./setup.sh peers       also install Boost and SUNDIALS, build astrojax_peers (benchmarks only)
 set -euo pipefail
 cd "$(dirname "$0")"
 
@@ -12,6 +13,9 @@ PACKAGES=(build-essential cmake pkg-config libeigen3-dev libopenmpi-dev openmpi-
           libhdf5-dev hdf5-tools libcli11-dev libtomlplusplus-dev libfmt-dev
           libgtest-dev libgmock-dev libbenchmark-dev
           python3-numpy python3-h5py python3-matplotlib)
+# Only for the work-precision comparison with peer solvers (./setup.sh peers); the product
+# never needs them.
+PEER_PACKAGES=(libboost-dev libsundials-dev)
 BUILD_DIR=${BUILD_DIR:-build}
 # Debian's interpreter: it has python3-numpy/h5py/matplotlib, whatever python3 is first on PATH.
 PYTHON=/usr/bin/python3
@@ -57,6 +61,9 @@ case "${1:-}" in
   build) install; build ;;
   demo) install; build; demo ;;
   test) install; build; (cd "$BUILD_DIR" && ctest -L unit -j"$(nproc)" --output-on-failure) ;;
+  peers) PACKAGES+=("${PEER_PACKAGES[@]}"); install
+         cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DASTROJAX_PEERS=ON >/dev/null
+         cmake --build "$BUILD_DIR" -j"$(nproc)" --target astrojax astrojax_peers ;;
   test-long) install; build; (cd "$BUILD_DIR" && ctest -L long --output-on-failure) ;;
   *) sed -n '2,9p' "$0"; exit 2 ;;
 esac

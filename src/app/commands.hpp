@@ -64,3 +64,80 @@ struct OrbitsArgs {
 int orbits_command(const OrbitsArgs& args);
 
 }  // namespace ajx::app
+
+namespace ajx::app {
+
+// astrojax bench work-precision: scenes (run files) x methods x tolerances or steps -> CSV.
+struct WorkPrecisionArgs {
+  std::vector<std::string> scenes;     // run files (sweeps/scenes/*.toml)
+  std::vector<std::string> overrides;  // applied to every scene
+  std::string output = "out/work_precision.csv";
+  double horizon = 10.0;               // error measured at t0 + horizon [s]
+  std::vector<std::string> methods{"euler", "rk4", "dopri5", "dop853"};
+  std::vector<double> rtols{1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12};
+  std::vector<double> steps{4e-3, 2e-3, 1e-3, 5e-4, 2.5e-4, 1.25e-4, 6.25e-5};
+  int repeats = 5;                     // timed runs per point (median kept)
+  double cpu_budget = 2.0;             // stop repeating a point after this much CPU [s]
+};
+int bench_work_precision_command(const WorkPrecisionArgs& args);
+
+}  // namespace ajx::app
+
+namespace ajx::app {
+
+// astrojax bench stability: the largest acceptable fixed step against ω_m held -> CSV.
+struct StabilityArgs {
+  std::string scene;                   // a run file; its schedule is replaced by each held ω_m
+  std::vector<std::string> overrides;
+  std::string output = "out/stability.csv";
+  double horizon = 20.0;               // [s]
+  std::vector<std::string> methods{"euler", "rk4"};
+  std::vector<double> omegas_pi{2, 4, 6, 8, 10, 12, 14};  // ω_m / π
+  double h_max = 0.1, h_min = 2e-6;    // scanned steps [s]
+  double energy_tol = 1e-2;            // acceptable |energy residual|
+};
+int bench_stability_command(const StabilityArgs& args);
+
+}  // namespace ajx::app
+
+namespace ajx::app {
+
+// astrojax bench friction: event-driven stick-slip against tanh(ṡ/ε) as ε -> 0 -> CSV.
+struct FrictionArgs {
+  std::string scene;                   // a run file with layers.friction = "stick_slip"
+  std::vector<std::string> overrides;
+  std::string output = "out/friction.csv";
+  double horizon = 10.0;               // [s]
+  std::vector<double> eps{1e-1, 1e-2, 1e-3, 1e-4, 1e-5};  // ε [m/s]
+  double rtol = 1e-8;                  // of dopri5 and dop853
+  std::vector<double> rk4_steps{1e-3, 1e-4};
+  std::vector<double> radau_steps{2e-3, 5e-4};
+  long max_steps = 5'000'000;          // a run needing more is reported as too costly
+  int repeats = 3;
+};
+int bench_friction_command(const FrictionArgs& args);
+
+}  // namespace ajx::app
+
+namespace ajx::app {
+
+// astrojax bench constraints: none / Baumgarte / projection on a one-mode scene -> CSV.
+struct ConstraintsArgs {
+  std::string scene;
+  std::vector<std::string> overrides;
+  std::string output = "out/constraints.csv";
+  double horizon = 100.0;  // [s]
+  std::vector<double> alphas{1, 10, 100, 1000};  // Baumgarte gains α [1/s]
+  std::vector<std::string> settings{"euler@5e-4", "rk4@5e-4", "dopri5@1e-6", "dop853@1e-9"};
+  int repeats = 3;
+};
+int bench_constraints_command(const ConstraintsArgs& args);
+
+}  // namespace ajx::app
+
+namespace ajx::app {
+
+// astrojax bench threshold: ω_fall from a short ramp, per method and tolerance -> CSV.
+int bench_threshold_command(const WorkPrecisionArgs& args, double sample_dt);
+
+}  // namespace ajx::app

@@ -81,6 +81,77 @@ int main(int argc, char** argv) {
   orbits_cmd->add_option("--branches-csv", orbits.branches_csv, "Write the continuation's points as CSV");
   orbits_cmd->add_option("--events-csv", orbits.events_csv, "Write the continuation's events as CSV");
   orbits_cmd->add_option("-o,--output", orbits.output, "Write everything to this HDF5 file");
+  ajx::app::WorkPrecisionArgs wp;
+  CLI::App* bench_cmd = app.add_subcommand("bench", "Accuracy against speed: work-precision diagrams");
+  bench_cmd->require_subcommand(1);
+  CLI::App* wp_cmd = bench_cmd->add_subcommand(
+      "work-precision", "Each method over tolerances / steps on each scene: CPU time, achieved error, drift, energy -> CSV");
+  wp_cmd->add_option("scenes", wp.scenes, "Run files (sweeps/scenes/*.toml)")->required();
+  wp_cmd->add_option("-o,--output", wp.output, "CSV output path")->capture_default_str();
+  wp_cmd->add_option("-s,--set", wp.overrides, "Override a key in every scene (repeatable)");
+  wp_cmd->add_option("--horizon", wp.horizon, "Error measured at this time [s]")->capture_default_str();
+  wp_cmd->add_option("--methods", wp.methods, "Methods")->delimiter(',')->capture_default_str();
+  wp_cmd->add_option("--rtols", wp.rtols, "Relative tolerances of the adaptive methods (atol = 1e-3 rtol)")
+      ->delimiter(',');
+  wp_cmd->add_option("--steps", wp.steps, "Steps of the fixed-step methods [s]")->delimiter(',');
+  wp_cmd->add_option("--repeats", wp.repeats, "Timed runs per point (the median is kept)")->capture_default_str();
+  wp_cmd->add_option("--budget", wp.cpu_budget, "Stop repeating a point after this much CPU [s]")
+      ->capture_default_str();
+
+  ajx::app::StabilityArgs st;
+  CLI::App* st_cmd = bench_cmd->add_subcommand(
+      "stability", "Largest acceptable step of each fixed-step method against ω_m held, and the paper's Euler -> CSV");
+  st_cmd->add_option("scene", st.scene, "Run file (its schedule is replaced by each held ω_m)")->required();
+  st_cmd->add_option("-o,--output", st.output, "CSV output path")->capture_default_str();
+  st_cmd->add_option("-s,--set", st.overrides, "Override a key of the scene (repeatable)");
+  st_cmd->add_option("--horizon", st.horizon, "Run length [s]")->capture_default_str();
+  st_cmd->add_option("--methods", st.methods, "Fixed-step methods")->delimiter(',')->capture_default_str();
+  st_cmd->add_option("--omegas-pi", st.omegas_pi, "Held ω_m in units of π rad/s")->delimiter(',');
+  st_cmd->add_option("--h-max", st.h_max, "Largest step scanned [s]")->capture_default_str();
+  st_cmd->add_option("--h-min", st.h_min, "Smallest step scanned [s]")->capture_default_str();
+  st_cmd->add_option("--energy-tol", st.energy_tol, "Acceptable |energy-balance residual|")->capture_default_str();
+
+  ajx::app::FrictionArgs fr;
+  CLI::App* fr_cmd = bench_cmd->add_subcommand(
+      "friction", "Event-driven stick-slip against tanh(ṡ/ε) as ε -> 0: creep error and cost, explicit and implicit -> CSV");
+  fr_cmd->add_option("scene", fr.scene, "Run file with layers.friction = \"stick_slip\"")->required();
+  fr_cmd->add_option("-o,--output", fr.output, "CSV output path")->capture_default_str();
+  fr_cmd->add_option("-s,--set", fr.overrides, "Override a key of the scene (repeatable)");
+  fr_cmd->add_option("--horizon", fr.horizon, "Run length [s]")->capture_default_str();
+  fr_cmd->add_option("--eps", fr.eps, "ε values [m/s]")->delimiter(',');
+  fr_cmd->add_option("--rtol", fr.rtol, "rtol of dopri5 and dop853")->capture_default_str();
+  fr_cmd->add_option("--rk4-steps", fr.rk4_steps, "Steps of RK4 [s]")->delimiter(',');
+  fr_cmd->add_option("--radau-steps", fr.radau_steps, "Steps of Radau IIA [s]")->delimiter(',');
+  fr_cmd->add_option("--max-steps", fr.max_steps, "Steps after which a run counts as too costly")->capture_default_str();
+  fr_cmd->add_option("--repeats", fr.repeats, "Timed runs per point (median kept)")->capture_default_str();
+
+  ajx::app::ConstraintsArgs cs;
+  CLI::App* cs_cmd = bench_cmd->add_subcommand(
+      "constraints", "Constraint handling on a one-mode scene: none, Baumgarte gains, projection (drift, cost) -> CSV");
+  cs_cmd->add_option("scene", cs.scene, "Run file whose reference stays in one contact mode")->required();
+  cs_cmd->add_option("-o,--output", cs.output, "CSV output path")->capture_default_str();
+  cs_cmd->add_option("-s,--set", cs.overrides, "Override a key of the scene (repeatable)");
+  cs_cmd->add_option("--horizon", cs.horizon, "Run length [s]")->capture_default_str();
+  cs_cmd->add_option("--alphas", cs.alphas, "Baumgarte gains α [1/s]")->delimiter(',');
+  cs_cmd->add_option("--runs", cs.settings, "method@rtol or method@step")->delimiter(',')->capture_default_str();
+  cs_cmd->add_option("--repeats", cs.repeats, "Timed runs per point (median kept)")->capture_default_str();
+
+  ajx::app::WorkPrecisionArgs th;
+  th.output = "out/threshold.csv";
+  th.horizon = 40.0;
+  double th_sample = 1e-3;
+  CLI::App* th_cmd = bench_cmd->add_subcommand(
+      "threshold", "ω_fall (the bead's first landing on a ramp down) per method and tolerance, against a reference -> CSV");
+  th_cmd->add_option("scenes", th.scenes, "Run files with a ramp down (sweeps/scenes/fall_ramp.toml)")->required();
+  th_cmd->add_option("-o,--output", th.output, "CSV output path")->capture_default_str();
+  th_cmd->add_option("-s,--set", th.overrides, "Override a key in every scene (repeatable)");
+  th_cmd->add_option("--horizon", th.horizon, "Run length [s]")->capture_default_str();
+  th_cmd->add_option("--methods", th.methods, "Methods")->delimiter(',')->capture_default_str();
+  th_cmd->add_option("--rtols", th.rtols, "Relative tolerances of the adaptive methods (atol = 1e-3 rtol)")
+      ->delimiter(',');
+  th_cmd->add_option("--steps", th.steps, "Steps of the fixed-step methods [s]")->delimiter(',');
+  th_cmd->add_option("--repeats", th.repeats, "Timed runs per point (the median is kept)")->capture_default_str();
+  th_cmd->add_option("--sample", th_sample, "Sampling step that brackets the landing [s]")->capture_default_str();
 
   try {
     app.parse(argc, argv);
@@ -91,6 +162,11 @@ int main(int argc, char** argv) {
   if (*thresholds_cmd) return ajx::app::thresholds_command(thresholds);
   if (*classify_cmd) return ajx::app::classify_command(classify);
   if (*orbits_cmd) return ajx::app::orbits_command(orbits);
+  if (*wp_cmd) return ajx::app::bench_work_precision_command(wp);
+  if (*st_cmd) return ajx::app::bench_stability_command(st);
+  if (*fr_cmd) return ajx::app::bench_friction_command(fr);
+  if (*cs_cmd) return ajx::app::bench_constraints_command(cs);
+  if (*th_cmd) return ajx::app::bench_threshold_command(th, th_sample);
   if (*sweep_cmd) {
     ajx::parallel::MpiEnvironment mpi(argc, argv);
     try {

@@ -7,17 +7,19 @@
 #include "numerics/dop853.hpp"
 #include "numerics/dopri5.hpp"
 #include "numerics/euler.hpp"
+#include "numerics/radau_iia.hpp"
 #include "numerics/rk4.hpp"
 
 namespace ajx::numerics {
 
-std::string_view stepper_names() { return "euler, rk4, dopri5, dop853"; }
+std::string_view stepper_names() { return "euler, rk4, dopri5, dop853, radau_iia"; }
 
 std::unique_ptr<Stepper> make_stepper(std::string_view name) {
   if (name == "euler") return std::make_unique<Euler>();
   if (name == "rk4") return std::make_unique<Rk4>();
   if (name == "dopri5") return std::make_unique<Dopri5>();
   if (name == "dop853") return std::make_unique<Dop853>();
+  if (name == "radau_iia") return std::make_unique<RadauIIA>();
   throw std::invalid_argument("unknown integrator '" + std::string(name) +
                               "' (allowed: " + std::string(stepper_names()) + ")");
 }

@@ -54,7 +54,7 @@ class Stepper {
   long rhs_evals_ = 0;
 };
 
-// Factory by name: "euler", "rk4", "dopri5", "dop853".
+// Factory by name: "euler", "rk4", "dopri5", "dop853", "radau_iia".
 // Throws std::invalid_argument naming the allowed values on an unknown name.
 std::unique_ptr<Stepper> make_stepper(std::string_view name);
 

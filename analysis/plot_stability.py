@@ -1,0 +1,58 @@
+#!/usr/bin/python3
+"""Where fixed-step methods fail, from `astrojax bench stability`: the largest acceptable step
+against the held ω_m for each method (left), and the paper's explicit Euler at 1/2000 s at
+each ω_m: its energy-balance residual (energy injected against the drag) and its position
+error against the reference (right).
+
+Usage: /usr/bin/python3 analysis/plot_stability.py out/stability.csv -o out/stability.png
+"""
+import argparse
+import csv
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("csv")
+    ap.add_argument("-o", "--output", default="out/stability.png")
+    a = ap.parse_args()
+    with open(a.csv, newline="") as f:
+        rows = list(csv.DictReader(l for l in f if not l.startswith("#")))
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.2))
+    for m in dict.fromkeys(r["method"] for r in rows):
+        pts = {}
+        for r in rows:
+            if r["method"] == m:
+                pts[float(r["omega_over_pi"])] = float(r["largest_stable"])
+        ws = sorted(pts)
+        ax1.semilogy(ws, [pts[w] if pts[w] > 0 else float("nan") for w in ws], "o-", label=m)
+    ax1.axhline(5e-4, ls="--", color="k", lw=0.8, label="the paper's 1/2000 s")
+    ax1.set_xlabel("ω_m / π [rad/s]")
+    ax1.set_ylabel("largest acceptable step [s]")
+    ax1.set_title("finished, right final mode, |energy residual| ≤ 1 %", fontsize=9)
+    ax1.grid(True, which="both", alpha=0.3)
+    ax1.legend(fontsize=8)
+    paper = sorted((float(r["omega_over_pi"]), r) for r in rows
+                   if r["method"] == "euler" and abs(float(r["step"]) - 5e-4) < 1e-12)
+    if paper:
+        ws = [w for w, _ in paper]
+        ax2.semilogy(ws, [abs(float(r["energy_residual_rel"])) for _, r in paper], "o-", label="|energy residual|")
+        ax2.semilogy(ws, [float(r["err_position_m"]) for _, r in paper], "s-", label="position error [m]")
+        for w, r in paper:
+            if r["final_mode_ok"] != "1":
+                ax2.annotate("wrong mode", (w, float(r["err_position_m"])), fontsize=7)
+        ax2.set_xlabel("ω_m / π [rad/s]")
+        ax2.set_title("the paper's Euler at 1/2000 s", fontsize=9)
+        ax2.grid(True, which="both", alpha=0.3)
+        ax2.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(a.output, dpi=120)
+    print(f"-> {a.output}")
+
+
+if __name__ == "__main__":
+    main()

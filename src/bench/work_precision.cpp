@@ -1,0 +1,143 @@
+#include "bench/work_precision.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <ctime>
+#include <fmt/format.h>
+
+#include "physics/contact_modes.hpp"
+#include "physics/energy.hpp"
+
+namespace ajx::bench {
+
+namespace {
+
+double cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+sim::RunOptions options_for(const Scene& scene, const Setting& setting) {
+  sim::RunOptions o = scene.run;
+  o.method = setting.method;
+  if (setting.rtol > 0.0) o.integ.tol = {setting.rtol, 1e-3 * setting.rtol};
+  if (setting.step > 0.0) o.integ.h_fixed = setting.step;
+  return o;
+}
+
+}  // namespace
+
+Outcome run_point(const Scene& scene, const Setting& setting, int repeats, double cpu_budget) {
+  sim::Simulation simulation(scene.model, scene.schedule, options_for(scene, setting));
+  const double t_end = scene.initial.t + scene.horizon;
+  Outcome out;
+  std::vector<double> times;
+  double spent = 0.0;
+  for (int k = 0; k < std::max(1, repeats); ++k) {
+    physics::State s = scene.initial;
+    const double c0 = cpu_seconds();
+    const sim::RunSummary sum = simulation.run(s, t_end, 0.0);
+    const double c = cpu_seconds() - c0;
+    times.push_back(c);
+    spent += c;
+    if (k == 0) {
+      out.status = sum.ok() ? "ok" : sum.failure;
+      out.steps = sum.steps;
+      out.rejected = sum.rejected;
+      out.rhs_evals = sum.rhs_evals;
+      out.mode_switches = sum.mode_switches;
+      out.max_drift = sum.max_drift;
+      out.energy_residual = sum.energy.relative();
+      out.omega_ball = sum.omega_ball;
+      out.final = s;
+    }
+    if (spent > cpu_budget) break;
+  }
+  std::sort(times.begin(), times.end());
+  out.repeats = int(times.size());
+  const std::size_t n = times.size();
+  out.cpu_median = n % 2 ? times[n / 2] : 0.5 * (times[n / 2 - 1] + times[n / 2]);
+  out.cpu_min = times.front();
+  return out;
+}
+
+Errors compare(const physics::State& s, const physics::State& ref) {
+  using namespace physics::idx;
+  Errors e;
+  e.position = std::max((s.y.segment<3>(r1) - ref.y.segment<3>(r1)).norm(),
+                        (s.y.segment<3>(r2) - ref.y.segment<3>(r2)).norm());
+  e.velocity = std::max((s.y.segment<3>(v1) - ref.y.segment<3>(v1)).norm(),
+                        (s.y.segment<3>(v2) - ref.y.segment<3>(v2)).norm());
+  e.same_mode = s.contact.mode == ref.contact.mode;
+  if (!std::isfinite(e.position)) e.position = e.velocity = INFINITY;
+  return e;
+}
+
+Reference reference(const Scene& scene) {
+  Reference ref;
+  ref.run = run_point(scene, {"dop853", 1e-13, 0.0}, 1, 0.0);
+  const Outcome check = run_point(scene, {"dopri5", 1e-12, 0.0}, 1, 0.0);
+  ref.floor = compare(check.final, ref.run.final).position;
+  // The kicked copy: δv = 1e-9 m/s on the bead along x, made consistent with the constraints.
+  constexpr double kick = 1e-9;
+  Scene kicked = scene;
+  kicked.initial.y(physics::idx::v1) += kick;
+  const physics::TopKinematics top = scene.schedule.top(scene.model.p.drive_radius, scene.initial.t);
+  physics::project_velocities(scene.model, kicked.initial.contact, top, kicked.initial.y);
+  const double d0 = compare(kicked.initial, scene.initial).velocity;
+  const Outcome k = run_point(kicked, {"dop853", 1e-13, 0.0}, 1, 0.0);
+  ref.amplification = d0 > 0.0 ? compare(k.final, ref.run.final).velocity / d0 : 0.0;
+  return ref;
+}
+
+std::string csv_header() {
+  return "scene,method,param_kind,param,status,repeats,cpu_median_s,cpu_min_s,steps,rejected,rhs_evals,"
+         "mode_switches,err_position_m,err_velocity_mps,same_final_mode,omega_ball_error,max_drift_m,"
+         "energy_residual_rel,reference_floor_m,amplification,chaotic";
+}
+
+std::string csv_line(const Row& r, const Reference& ref) {
+  const Outcome& o = r.out;
+  return fmt::format("{},{},{},{:.6g},\"{}\",{},{:.6e},{:.6e},{},{},{},{},{:.6e},{:.6e},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{}",
+                     r.scene, r.method, r.param_kind, r.param, o.status, o.repeats, o.cpu_median, o.cpu_min,
+                     o.steps, o.rejected, o.rhs_evals, o.mode_switches, r.err.position, r.err.velocity,
+                     r.err.same_mode ? 1 : 0, r.omega_ball_error, o.max_drift, o.energy_residual, ref.floor,
+                     ref.amplification, ref.chaotic() ? 1 : 0);
+}
+
+}  // namespace ajx::bench
+
+namespace ajx::bench {
+
+Fall first_fall(const Scene& scene, const Setting& setting, double sample_dt) {
+  sim::RunOptions o = scene.run;
+  o.method = setting.method;
+  if (setting.rtol > 0.0) o.integ.tol = {setting.rtol, 1e-3 * setting.rtol};
+  if (setting.step > 0.0) o.integ.h_fixed = setting.step;
+  sim::Simulation simulation(scene.model, scene.schedule, o);
+  physics::State s = scene.initial;
+  Fall fall;
+  bool have_prev = false;
+  double t_prev = 0.0, L2_prev = 0.0, L2dot_prev = 0.0;
+  const double d = scene.model.p.contact_distance;
+  simulation.run(s, scene.initial.t + scene.horizon, sample_dt, [&](const sim::Sample& x) {
+    if (fall.found) return;
+    if (x.contact.mode == physics::Mode::BottomStop) {
+      if (!have_prev) return;  // resting from the start: not a fall
+      fall.found = true;
+      fall.t = L2dot_prev < 0.0 ? std::min(x.t, t_prev + (L2_prev - d) / (-L2dot_prev)) : x.t;
+      double phi, w, wd;
+      scene.schedule.phase(fall.t, phi, w, wd);
+      fall.omega = w;
+      return;
+    }
+    have_prev = true;
+    t_prev = x.t;
+    L2_prev = x.dyn.g.L2;
+    L2dot_prev = x.dyn.g.L2_dot;
+  });
+  return fall;
+}
+
+}  // namespace ajx::bench

@@ -1,0 +1,118 @@
+// The work-precision measurements: errors against the reference, tolerance proportionality
+// of the achieved error, the reference floor and the sensitivity measure, on the shipped
+// locked-circular scene over a short horizon (2 s, to keep the suite fast).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "bench/scene_file.hpp"
+#include "bench/work_precision.hpp"
+
+namespace {
+
+using namespace ajx;
+
+bench::Scene locked(double horizon) {
+  return bench::load_scene(std::string(ASTROJAX_SOURCE_DIR) + "/sweeps/scenes/locked_circular.toml", {}, horizon);
+}
+
+TEST(WorkPrecision, CompareTakesTheWorseBall) {
+  physics::State a, b;
+  b.y(physics::idx::r1 + 0) = 3e-3;   // |Δr1| = 5e-3 (3-4-5)
+  b.y(physics::idx::r1 + 1) = 4e-3;
+  b.y(physics::idx::r2 + 2) = -1e-3;  // |Δr2| = 1e-3
+  b.y(physics::idx::v2 + 0) = 2.0;
+  const bench::Errors e = bench::compare(a, b);
+  EXPECT_DOUBLE_EQ(e.position, 5e-3);
+  EXPECT_DOUBLE_EQ(e.velocity, 2.0);
+  EXPECT_TRUE(e.same_mode);
+  b.contact.mode = physics::Mode::Slack;
+  EXPECT_FALSE(bench::compare(a, b).same_mode);
+}
+
+TEST(WorkPrecision, ReferenceIsResolvedAndTheLockedOrbitIsNotChaotic) {
+  const bench::Scene s = locked(2.0);
+  const bench::Reference ref = bench::reference(s);
+  ASSERT_EQ(ref.run.status, "ok");
+  EXPECT_EQ(ref.run.mode_switches, 0);  // the bead stays stuck: a smooth scene
+  // DOPRI5 at rtol 1e-12 over ~1.5e4 steps accumulates at most ~1e-12 x |r| per unit time
+  // (|r| ~ 0.8 m): the two references must agree far below the 1e-9 m figures we quote.
+  EXPECT_LT(ref.floor, 1e-10);
+  EXPECT_GT(ref.floor, 0.0);  // two different methods never agree bitwise
+  // A damped, driven limit cycle: a kick neither grows exponentially nor vanishes in 2 s
+  // (drag rate c_D/m ~ 0.1 /s).
+  EXPECT_FALSE(ref.chaotic());
+  EXPECT_GT(ref.amplification, 0.05);
+  EXPECT_LT(ref.amplification, 1e2);
+}
+
+TEST(WorkPrecision, DormandPrinceErrorIsProportionalToTheTolerance) {
+  const bench::Scene s = locked(2.0);
+  const bench::Reference ref = bench::reference(s);
+  double prev = INFINITY;
+  for (double rtol : {1e-5, 1e-7, 1e-9}) {
+    const bench::Outcome o = bench::run_point(s, {"dopri5", rtol, 0.0}, 1, 0.0);
+    ASSERT_EQ(o.status, "ok");
+    const double err = bench::compare(o.final, ref.run.final).position;
+    // Tolerance proportionality: 100x tighter gives ~100x smaller global error; one decade
+    // of slack either way for the step-size controller's safety factors.
+    if (std::isfinite(prev)) {
+      EXPECT_GT(prev / err, 10.0) << rtol;
+      EXPECT_LT(prev / err, 1000.0) << rtol;
+    }
+    prev = err;
+  }
+}
+
+TEST(WorkPrecision, FixedStepErrorFollowsTheOrderOfRk4) {
+  const bench::Scene s = locked(2.0);
+  const bench::Reference ref = bench::reference(s);
+  // Steps where the RK4 error (1e-7..1e-9 m) is far above the reference floor.
+  const double e1 = bench::compare(bench::run_point(s, {"rk4", 0.0, 4e-3}, 1, 0.0).final, ref.run.final).position;
+  const double e2 = bench::compare(bench::run_point(s, {"rk4", 0.0, 2e-3}, 1, 0.0).final, ref.run.final).position;
+  ASSERT_GT(e2, 1e3 * ref.floor);
+  // Halving h divides the global error by 2^4; the projection after each step may only
+  // help, so the observed order lies in [4 - 0.5, 5.5].
+  const double order = std::log2(e1 / e2);
+  EXPECT_GT(order, 3.5);
+  EXPECT_LT(order, 5.5);
+}
+
+TEST(WorkPrecision, RepeatsAreBoundedByTheBudget) {
+  const bench::Scene s = locked(0.5);
+  EXPECT_EQ(bench::run_point(s, {"dopri5", 1e-6, 0.0}, 3, 100.0).repeats, 3);
+  EXPECT_EQ(bench::run_point(s, {"dopri5", 1e-6, 0.0}, 3, 0.0).repeats, 1);
+  const bench::Outcome o = bench::run_point(s, {"dopri5", 1e-6, 0.0}, 3, 100.0);
+  EXPECT_LE(o.cpu_min, o.cpu_median);
+}
+
+TEST(WorkPrecision, CsvLineHasTheHeadersColumns) {
+  const bench::Scene s = locked(0.5);
+  bench::Reference ref;
+  bench::Row row{s.name, "dopri5", "rtol", 1e-6, bench::run_point(s, {"dopri5", 1e-6, 0.0}, 1, 0.0), {}, 0.0};
+  const auto count = [](const std::string& x) { return std::count(x.begin(), x.end(), ','); };
+  EXPECT_EQ(count(bench::csv_line(row, ref)), count(bench::csv_header()));
+}
+
+// The landing is extrapolated from the last sample before it with L2 + L̇2 τ = d, whose error
+// is ½ L̈2 τ² / L̇2 with τ < sample_dt: the error in ω_fall falls as sample_dt², 100x per
+// decade (30x..300x allows for where the landing falls inside the sample interval).
+TEST(WorkPrecision, FallExtrapolationErrorIsQuadraticInTheSampleStep) {
+  const bench::Scene s =
+      bench::load_scene(std::string(ASTROJAX_SOURCE_DIR) + "/sweeps/scenes/fall_ramp.toml", {}, 25.0);
+  const bench::Setting set{"dop853", 1e-10, 0.0};
+  const bench::Fall fine = bench::first_fall(s, set, 1e-4);
+  const bench::Fall mid = bench::first_fall(s, set, 1e-3);
+  const bench::Fall coarse = bench::first_fall(s, set, 1e-2);
+  ASSERT_TRUE(fine.found && mid.found && coarse.found);
+  const double ratio = std::abs(coarse.omega - fine.omega) / std::abs(mid.omega - fine.omega);
+  EXPECT_GT(ratio, 30.0);
+  EXPECT_LT(ratio, 300.0);
+  // The bead lands during the ramp (ω_m between 3 rad/s and 6π).
+  EXPECT_GT(fine.omega, 3.0);
+  EXPECT_LT(fine.omega, 6.0 * std::numbers::pi);
+}
+
+}  // namespace
