@@ -17,7 +17,7 @@ using physics::Mode;
 using physics::State;
 
 struct RunOptions {
-  std::string method = "dopri5";       // see numerics::stepper_names()
+  std::string method = "dop853";       // the measured recommendation (README, "Accuracy and speed")
   numerics::IntegrateOptions integ;    // tolerances, fixed step, bounds
   double projection_tol = 1e-12;       // project when |C| exceeds this [m] (or [m/s] for J v - b)
   long max_events = 1'000'000;         // bound on mode switches and impacts per run
