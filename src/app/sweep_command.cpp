@@ -165,9 +165,11 @@ int sweep_command(const SweepArgs& args) {
               std::filesystem::exists(final_path) ? fmt::format(" ({} is complete)", final_path.string()) : ""));
         }
         if (std::filesystem::exists(journal_path)) {
+          journal.emplace(io::Journal::open_append(journal_path));  // locked: no other sweep writes it
           replay = io::Journal::read(journal_path);
-          if (replay.records.empty() || replay.records.front().key != kJournalIdentity ||
-              replay.records.front().payload != journal_identity(cfg))
+          if (replay.records.empty())  // killed before its first record
+            journal->append(kJournalIdentity, journal_identity(cfg));
+          else if (replay.records.front().key != kJournalIdentity || replay.records.front().payload != journal_identity(cfg))
             throw config::ConfigError(fmt::format(
                 "{}: key 'output.path': {} was written by a different sweep file or overrides; resume it with the "
                 "same ones, or remove {} and {} to start afresh",
@@ -180,25 +182,29 @@ int sweep_command(const SweepArgs& args) {
             throw config::ConfigError(fmt::format("{}: key 'output.path': {} has {} tasks, the sweep {}",
                                                   cfg.source_name, part_path.string(), file->status().size(), n_tasks));
         } catch (const io::Hdf5Error& e) {
-          if (replay.records.empty()) throw;
+          if (!journal) throw;
           // Killed while writing: the journal holds every committed result; start the file anew.
           std::fprintf(stderr, "warning: %s cannot be used (%s); rebuilding it from %s (%zu results)\n",
-                       part_path.c_str(), e.what(), journal_path.c_str(), replay.records.size() - 1);
+                       part_path.c_str(), e.what(), journal_path.c_str(), replay.records.empty() ? 0 : replay.records.size() - 1);
           file.reset();
           std::filesystem::remove(part_path);
           make_file();
         }
-        if (replay.torn_tail)
+        if (journal && journal->cut_torn_tail())
           std::fprintf(stderr, "warning: %s ended in a result cut short; that task runs again\n", journal_path.c_str());
-        journal.emplace(std::filesystem::exists(journal_path) ? io::Journal::open_append(journal_path)
-                                                              : io::Journal::create(journal_path));
-        status.assign(n_tasks, 0);
+        if (!journal) {  // a .part from before journals: it alone says what is done
+          journal.emplace(io::Journal::create(journal_path));
+          journal->append(kJournalIdentity, journal_identity(cfg));
+          status = file->status();
+        } else {
+          status.assign(n_tasks, 0);  // the journal's replay below says what is done
+        }
       } else {
         std::error_code ec;
         if (final_path.has_parent_path()) std::filesystem::create_directories(final_path.parent_path(), ec);
         check_space(cfg, final_path, setups, cap);
+        journal.emplace(io::Journal::create(journal_path));  // locked first: no other sweep writes here
         make_file();
-        journal.emplace(io::Journal::create(journal_path));
         journal->append(kJournalIdentity, journal_identity(cfg));
         status.assign(n_tasks, 0);
       }

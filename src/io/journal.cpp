@@ -1,6 +1,7 @@
 #include "io/journal.hpp"
 
 #include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 #include <zlib.h>
 
@@ -56,16 +57,26 @@ bool write_all(int fd, const void* buf, std::size_t n) {
   return true;
 }
 
+// An exclusive lock for the writer's lifetime: a second sweep on the same output (a resume
+// started while the ranks of a killed mpirun still run) is refused. File systems without
+// flock (some Lustre mounts) give no protection; that is not an error.
+void lock_or_throw(int fd, const std::filesystem::path& p) {
+  if (::flock(fd, LOCK_EX | LOCK_NB) == 0 || errno != EWOULDBLOCK) return;
+  ::close(fd);
+  throw JournalError("'" + p.string() + "' is in use by another running sweep (wait for it to end, or end it)");
+}
+
 }  // namespace
 
 Journal::Journal(Journal&& o) noexcept
-    : fd_(std::exchange(o.fd_, -1)), path_(std::move(o.path_)), size_(o.size_) {}
+    : fd_(std::exchange(o.fd_, -1)), path_(std::move(o.path_)), size_(o.size_), cut_tail_(o.cut_tail_) {}
 Journal& Journal::operator=(Journal&& o) noexcept {
   if (this != &o) {
     close();
     fd_ = std::exchange(o.fd_, -1);
     path_ = std::move(o.path_);
     size_ = o.size_;
+    cut_tail_ = o.cut_tail_;
   }
   return *this;
 }
@@ -77,9 +88,10 @@ void Journal::close() {
 }
 
 Journal Journal::create(const std::filesystem::path& path) {
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0644);
   if (fd < 0) throw JournalError(sys_error("cannot create the journal", path));
-  if (!write_all(fd, kFileMagic, sizeof kFileMagic)) {
+  lock_or_throw(fd, path);
+  if (::ftruncate(fd, 0) != 0 || !write_all(fd, kFileMagic, sizeof kFileMagic)) {
     const std::string e = sys_error("cannot write the journal", path);
     ::close(fd);
     throw JournalError(e);
@@ -111,15 +123,18 @@ JournalContents Journal::read(const std::filesystem::path& path) {
 }
 
 Journal Journal::open_append(const std::filesystem::path& path) {
-  const JournalContents c = read(path);
   const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
   if (fd < 0) throw JournalError(sys_error("cannot open the journal", path));
+  lock_or_throw(fd, path);
+  const JournalContents c = read(path);
   if ((c.torn_tail && ::ftruncate(fd, off_t(c.valid_bytes)) != 0) || ::lseek(fd, off_t(c.valid_bytes), SEEK_SET) < 0) {
     const std::string e = sys_error("cannot cut the torn tail of the journal", path);
     ::close(fd);
     throw JournalError(e);
   }
-  return Journal(fd, path, c.valid_bytes);
+  Journal j(fd, path, c.valid_bytes);
+  j.cut_tail_ = c.torn_tail;
+  return j;
 }
 
 void Journal::append(std::int64_t key, std::span<const std::byte> payload) {

@@ -8,7 +8,8 @@
 // bytes are in the kernel, so they survive the death of the process (kill -9, a job killed
 // at its time limit), though not a crash of the machine before the kernel writes them. A record
 // cut short or failing its CRC ends the journal: it and anything after it are ignored, and
-// open_append() truncates them away.
+// open_append() truncates them away. The writer holds an exclusive flock on the journal:
+// create() and open_append() of a journal another process writes throw JournalError.
 #pragma once
 
 #include <cstddef>
@@ -59,12 +60,15 @@ class Journal {
   void append(std::int64_t key, std::span<const std::byte> payload);
   void close();  // also done by the destructor
   const std::filesystem::path& path() const { return path_; }
+  // open_append() found a torn tail and cut it off.
+  bool cut_torn_tail() const { return cut_tail_; }
 
  private:
   Journal(int fd, std::filesystem::path path, std::uint64_t size) : fd_(fd), path_(std::move(path)), size_(size) {}
   int fd_ = -1;
   std::filesystem::path path_;
   std::uint64_t size_ = 0;  // bytes committed
+  bool cut_tail_ = false;
 };
 
 }  // namespace ajx::io
