@@ -68,7 +68,9 @@ log "astrojax sweep exited with $rc"
 if [ $rc -eq 4 ]; then
   if [ $stopping -eq 1 ] && [ -n "${SLURM_JOB_ID:-}" ] && [ "${ASTROJAX_REQUEUE:-1}" = 1 ]; then
     # A requeued job runs this script again from the top: the .part is there, so --resume.
-    if scontrol requeue "$SLURM_JOB_ID"; then log "requeued: the job continues from $output.part"; exit 4; fi
+    # (scontrol requeue ends this run of the script at once.)
+    log "requeueing job $SLURM_JOB_ID: it continues from $output.part when it runs again"
+    if scontrol requeue "$SLURM_JOB_ID"; then exit 4; fi
     log "could not requeue (was the job submitted with --requeue?)"
   fi
   log "continue with: sbatch the same script again (it resumes from $output.part)"

@@ -114,8 +114,8 @@ same_file() {  # two sweep files equal in everything but /provenance
 }
 
 cd "$T"
-# 1. The quick sweep as a batch job (3 ranks; the launcher chosen by run_sweep.sh).
-j1=$(sbatch --parsable --ntasks=3 --time=10 --output="$T/quick-%j.log" "$src/cluster/sweep.sbatch" \
+# 1. The quick sweep as a batch job on 3 ranks, started by mpirun.
+j1=$(ASTROJAX_LAUNCHER=mpirun sbatch --parsable --ntasks=3 --time=10 --output="$T/quick-%j.log" "$src/cluster/sweep.sbatch" \
   "$src/sweeps/quick.toml" "$T/quick.h5" -q)
 check "sbatch sweep.sbatch accepted (job '$j1')" "[ -n '$j1' ]"
 wait_done "$j1" 300 || echo "job $j1 still $(job_state "$j1") after 300 s"
@@ -124,26 +124,32 @@ check "quick sweep job COMPLETED with exit 0 ($(job_state "$j1"), $(exit_code "$
   "[ '$(job_state "$j1")' = COMPLETED ] && [ '$(exit_code "$j1")' = 0 ]"
 check "quick sweep: the file is complete, on 3 ranks" \
   "[ -s '$T/quick.h5' ] && [ ! -e '$T/quick.h5.part' ] && h5dump -a /provenance/ranks '$T/quick.h5' | grep -q '(0): 3'"
+check "quick sweep: started by mpirun" "grep -q '\] mpirun -n 3' '$T'/quick-*.log"
 check "quick sweep: every window classified" "! h5dump -A 0 -d /windows/class '$T/quick.h5' | grep -q -- '-1'"
 
 # 2. Signalled mid-way, requeued, resumed. The sweep: the quick one with 1 window per task over
-# 4 drive radii (96 tasks, some 10 s on 2 cores), so that the signal lands while it runs.
-long=(--set protocol.windows_per_task=1 --set "grid.drive_radius=[0.01,0.012,0.015,0.02]")
-j2=$(ASTROJAX_LAUNCHER=mpirun sbatch --parsable --ntasks=3 --time=10 --output="$T/long-%j.log" \
+# 8 drive radii (264 tasks, a few seconds on 2 cores); the signal comes once its journal holds
+# a few tasks, as the time limit would (scancel --batch --signal=USR1 = what --signal=B:USR1 sends).
+long=(--set protocol.windows_per_task=1 --set "grid.drive_radius=[0.01,0.011,0.012,0.013,0.015,0.017,0.019,0.02]")
+# The launcher: srun --mpi=pmix where Slurm has it (Debian's does), which forwards the signal.
+j2=$(sbatch --parsable --ntasks=3 --time=10 --output="$T/long-%j.log" \
   "$src/cluster/sweep.sbatch" "$src/sweeps/quick.toml" "$T/long.h5" "${long[@]}")
-for _ in $(seq 600); do grep -q "sweep.*long.h5" "$T/long-$j2.log" 2> /dev/null && break; sleep 0.1; done
-sleep 3
+for _ in $(seq 3000); do [ "$(stat -c %s "$T/long.h5.journal" 2> /dev/null || echo 0)" -gt 300000 ] && break; sleep 0.01; done
 check "the long job was still running when signalled" "[ '$(job_state "$j2")' = RUNNING ] && [ -e '$T/long.h5.part' ]"
 scancel --batch --signal=USR1 "$j2"
-# The job requeues itself and runs again; wait for the second run to finish.
-for _ in $(seq 600); do grep -q "resuming" "$T/long-$j2.log" 2> /dev/null && break; sleep 0.2; done
+# The job requeues itself and runs again; wait for the second run to finish. Slurm holds a
+# requeued batch job until a begin time some minutes on: release it now to save the wait.
+for _ in $(seq 600); do [ "$(job_state "$j2")" = PENDING ] && break; sleep 0.2; done
+scontrol update JobId="$j2" StartTime=now
+for _ in $(seq 1500); do grep -q "resuming" "$T/long-$j2.log" 2> /dev/null && break; sleep 0.2; done
 sleep 1
 wait_done "$j2" 300 || echo "job $j2 still $(job_state "$j2") after 300 s"
 cat "$T/long-$j2.log"
 check "signalled job: master stopped with exit 4 and the job requeued itself" \
-  "grep -q 'exited with 4' '$T/long-$j2.log' && grep -q 'requeued' '$T/long-$j2.log'"
+  "grep -q 'exited with 4' '$T/long-$j2.log' && grep -q 'requeueing job' '$T/long-$j2.log'"
 check "requeued job resumed from the .part and completed ($(job_state "$j2"), $(exit_code "$j2"))" \
   "grep -q 'resuming' '$T/long-$j2.log' && [ '$(job_state "$j2")' = COMPLETED ] && [ '$(exit_code "$j2")' = 0 ]"
+check "long sweep: started by srun --mpi=pmix" "grep -q '\] srun --mpi=pmix' '$T/long-$j2.log'"
 check "restart count 1" "scontrol show job '$j2' | grep -q 'Restarts=1'"
 "$bin" sweep "$src/sweeps/quick.toml" -o "$T/straight.h5" -q "${long[@]}" > "$T/straight.out" 2>&1
 check "uninterrupted run of the same sweep: exit 0" "[ $? -eq 0 ]"
