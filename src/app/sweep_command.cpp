@@ -392,6 +392,11 @@ int sweep_command(const SweepArgs& args) {
     prov.set_attribute(args.resume ? "resume_wall_time" : "wall_time", wall);
     prov.set_attribute("farm_status", parallel::to_string(fs.status));
     prov.set_attribute("tasks_per_second", fs.tasks_per_second);
+    prov.set_attribute("bytes_to_workers", fs.bytes_sent);  // farm messages, headers included
+    prov.set_attribute("bytes_from_workers", fs.bytes_received);
+    double work = 0;
+    for (double b : fs.busy_seconds) work += b;
+    prov.set_attribute("work_seconds", work);  // summed over ranks: integration alone
     prov.set_attribute("version", ASTROJAX_VERSION);
     prov.set_attribute("git_commit", ASTROJAX_GIT_COMMIT);  // at configure time
   });
