@@ -4,7 +4,7 @@ Usage: project.py PAPER_1RANK.h5 QUICK_1WORKER.h5 QUICK_2WORKERS.h5 THROUGHPUT.t
 
 The model (cluster/README.md, "Scale"). A sweep has C chains of K tasks; a task of g windows
 integrates for tau = g * tau_w on a worker. The master spends s = g * m_w + 1/mu on each task:
-m_w per window to classify, journal and write it (measured on 1 rank as wall - work), 1/mu to
+m_w per window to classify, journal and write it (measured on 1 rank: time in on_result), 1/mu to
 receive it and hand out the next (the farm's message throughput mu with a task's output size).
 A worker waits for its next task while the master handles its result, so a chain advances one
 task per tau + s, and W workers run at most C chains at once:
@@ -25,7 +25,8 @@ def prov(path):
         windows = int((f["windows/class"][...] >= 0).sum())
         chains = f["windows/class"].shape[0]
     wall = float(p.get("wall_time", p.get("resume_wall_time")))
-    return dict(wall=wall, work=float(p["work_seconds"]), tasks=tasks, windows=windows, chains=chains,
+    return dict(wall=wall, work=float(p["work_seconds"]), master=float(p["master_result_seconds"]), tasks=tasks,
+                windows=windows, chains=chains,
                 bytes_in=int(p.get("bytes_from_workers", 0)))
 
 
@@ -33,7 +34,7 @@ def main():
     paper, w1, w2, tput = sys.argv[1:5]
     p = prov(paper)
     tau_w = p["work"] / p["windows"]
-    m_w = (p["wall"] - p["work"]) / p["windows"]
+    m_w = p["master"] / p["windows"]
     windows_per_chain = p["windows"] / p["chains"]
     print(f"paper protocol on 1 rank: {p['chains']} chains, {p['windows']} windows, {p['tasks']} tasks, "
           f"wall {p['wall']:.2f} s, integration {p['work']:.2f} s")
@@ -54,10 +55,11 @@ def main():
     mu = max(rates.values())  # the master's best message rate with sweep-sized outputs
     print(f"master message throughput with sweep-sized outputs: {', '.join(f'{r} ranks {v:.0f}/s' for r, v in sorted(rates.items()))}")
 
-    def efficiency(C, W, g):
+    def efficiency(C, W, g, m=None):
+        m = m_w if m is None else m
         K = math.ceil(windows_per_chain / g)
         tau = g * tau_w
-        s = g * m_w + 1.0 / mu
+        s = g * m + 1.0 / mu
         T = max(math.ceil(C / W) * K * (tau + s), C * K * s)
         return C * K * tau / (W * T)
 
@@ -72,6 +74,19 @@ def main():
             ok = [g for g in range(1, int(windows_per_chain) + 1) if efficiency(C, W, g) >= 0.9]
             print(f"  {R:5d}  " + "  ".join(f"{x:6.2f}" for x in es) + f"   {ok[0] if ok else 'none'}")
         print(f"  (at most {C} workers can be busy: {C} chains)")
+        for R in (64, 512, 4096):
+            # The master's cost per window that would give E >= 0.9 with whole chains as tasks.
+            g = int(windows_per_chain)
+            lo, hi = 0.0, m_w
+            if efficiency(C, R - 1, g, 0.0) < 0.9:
+                print(f"  {R} ranks: below 0.9 even with a master that costs nothing per window "
+                      f"(messages alone: {1e3 / mu:.2f} ms per task; a chain integrates in {g * tau_w:.2f} s)")
+                continue
+            for _ in range(60):
+                mid = 0.5 * (lo + hi)
+                lo, hi = (mid, hi) if efficiency(C, R - 1, g, mid) >= 0.9 else (lo, mid)
+            print(f"  {R} ranks: E >= 0.9 needs the master's cost per window below {lo * 1e6:.1f} us "
+                  f"(now {m_w * 1e3:.2f} ms), with one task per chain")
 
 
 if __name__ == "__main__":

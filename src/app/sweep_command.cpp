@@ -397,6 +397,7 @@ int sweep_command(const SweepArgs& args) {
     double work = 0;
     for (double b : fs.busy_seconds) work += b;
     prov.set_attribute("work_seconds", work);  // summed over ranks: integration alone
+    prov.set_attribute("master_result_seconds", fs.result_seconds);  // classify, journal, write
     prov.set_attribute("version", ASTROJAX_VERSION);
     prov.set_attribute("git_commit", ASTROJAX_GIT_COMMIT);  // at configure time
   });

@@ -290,6 +290,7 @@ class Scheduler {
     s.done = done_;
     s.failed = failed_;
     s.not_run = not_run_;
+    s.result_seconds = result_seconds_;
     s.unstarted = total_ - done_ - not_run_ - in_flight_;
     s.status = failed() ? FarmStatus::Aborted : s.unstarted > 0 ? FarmStatus::Interrupted : FarmStatus::Completed;
     s.busy_seconds.assign(static_cast<std::size_t>(ranks), 0.0);
@@ -324,11 +325,13 @@ class Scheduler {
 
   void deliver(const TaskResult& r) {
     if (!options_.on_result || failed()) return;
+    const auto t0 = Clock::now();
     try {
       options_.on_result(r);
     } catch (...) {
       error_ = std::current_exception();
     }
+    result_seconds_ += seconds_since(t0);
   }
 
   const FarmOptions& options_;
@@ -336,6 +339,7 @@ class Scheduler {
   std::vector<State> states_;
   std::set<std::size_t> ready_;  // chains whose next task may start
   std::int64_t total_ = 0, done_ = 0, failed_ = 0, not_run_ = 0, in_flight_ = 0;
+  double result_seconds_ = 0;  // in on_result
   std::exception_ptr error_;
 };
 

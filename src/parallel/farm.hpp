@@ -124,6 +124,7 @@ struct FarmSummary {
   std::uint64_t bytes_sent = 0;            // master -> workers, headers included
   std::uint64_t bytes_received = 0;        // workers -> master
   double tasks_per_second = 0;             // done / wall_seconds
+  double result_seconds = 0;               // rank 0: time spent in on_result (the master's own work)
   std::vector<int> lost_ranks;             // rank 0: ranks still past FarmOptions::task_timeout at the end
 };
 
