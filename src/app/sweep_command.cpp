@@ -268,7 +268,12 @@ int sweep_command(const SweepArgs& args) {
   };
   if (master && replay.records.size() > 1) {
     const auto replay_all = [&] {
-      for (std::size_t k = 1; k < replay.records.size(); ++k) commit(std::size_t(replay.records[k].key), replay.records[k].payload);
+      for (std::size_t k = 1; k < replay.records.size(); ++k) {
+        const std::int64_t id = replay.records[k].key;
+        if (id < 0 || std::size_t(id) >= n_tasks)
+          throw io::JournalError(fmt::format("{}: record {} names task {} of {}", journal_path.string(), k, id, n_tasks));
+        commit(std::size_t(id), replay.records[k].payload);
+      }
     };
     try {
       replay_all();
