@@ -94,8 +94,8 @@ check "disk full: resumed file equals the uninterrupted one" "[ $? -eq 0 ] && sa
 start_mpi hang.h5 100000 --task-timeout 2
 kill -STOP "$rank2"
 t0=$(date +%s)
-gone "$rank0"
-check "hung worker: the master ends within 10 s ($(($(date +%s) - t0)) s)" "! kill -0 $rank0 2> /dev/null"
+for _ in $(seq 300); do kill -0 "$rank0" 2> /dev/null || break; sleep 0.1; done
+check "hung worker: the master ends within 30 s ($(($(date +%s) - t0)) s)" "! kill -0 $rank0 2> /dev/null"
 # Its MPI_Abort ends the job; once, Open MPI's mpirun here stayed waiting for the stopped rank:
 # let it go on so that the test leaves nothing behind.
 for _ in $(seq 100); do kill -0 "$mp" 2> /dev/null || break; sleep 0.1; done
