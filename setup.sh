@@ -6,16 +6,20 @@
 #   ./setup.sh test-long   install, build, run the long physics validations (ctest -L long)
 #   ./setup.sh install | build
 #   ./setup.sh peers       also install Boost and SUNDIALS, build astrojax_peers (benchmarks only)
+#   ./setup.sh test-cluster  also installs slurm-wlm and munge: the cluster scripts on a Slurm started here (ctest -L cluster)
 set -euo pipefail
 cd "$(dirname "$0")"
 
 PACKAGES=(build-essential cmake pkg-config libeigen3-dev libopenmpi-dev openmpi-bin
           libhdf5-dev hdf5-tools libcli11-dev libtomlplusplus-dev libfmt-dev
           libgtest-dev libgmock-dev libbenchmark-dev
-          python3-numpy python3-h5py python3-matplotlib)
+          python3-numpy python3-h5py python3-matplotlib
+          zlib1g-dev clang libclang-rt-14-dev)
 # Only for the work-precision comparison with peer solvers (./setup.sh peers); the product
 # never needs them.
 PEER_PACKAGES=(libboost-dev libsundials-dev)
+# Only for ./setup.sh test-cluster: a Slurm and its authentication, started by the test itself.
+CLUSTER_PACKAGES=(slurm-wlm munge)
 BUILD_DIR=${BUILD_DIR:-build}
 # Debian's interpreter: it has python3-numpy/h5py/matplotlib, whatever python3 is first on PATH.
 PYTHON=/usr/bin/python3
@@ -65,5 +69,6 @@ case "${1:-}" in
          cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DASTROJAX_PEERS=ON >/dev/null
          cmake --build "$BUILD_DIR" -j"$(nproc)" --target astrojax astrojax_peers ;;
   test-long) install; build; (cd "$BUILD_DIR" && ctest -L long --output-on-failure) ;;
+  test-cluster) PACKAGES+=("${CLUSTER_PACKAGES[@]}"); install; build; (cd "$BUILD_DIR" && ctest -L cluster --output-on-failure) ;;
   *) sed -n '2,9p' "$0"; exit 2 ;;
 esac

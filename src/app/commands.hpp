@@ -27,6 +27,7 @@ struct SweepArgs {
   bool quiet = false;
   bool resume = false;  // continue an interrupted sweep from <output>.part
   long max_tasks = 0;   // stop (resumably) after this many task results; 0: no limit
+  double task_timeout = 0;  // [s] a task not back within it is failed and its rank given up; 0: no bound
   std::string command_line;
 };
 // Collective: every rank of MPI_COMM_WORLD calls it (rank 0 is the master).

@@ -38,6 +38,10 @@ int main(int argc, char** argv) {
   sweep_cmd->add_option("--max-tasks", sweep.max_tasks,
                         "Stop after this many task results, as an interruption would (resume later with --resume)")
       ->check(CLI::NonNegativeNumber);
+  sweep_cmd->add_option("--task-timeout", sweep.task_timeout,
+                        "Wall-clock bound of one task [s]: a task not back within it is reported failed, its rank "
+                        "given up, and the job ended once the rest is done (default 0: no bound)")
+      ->check(CLI::NonNegativeNumber);
 
   ajx::app::ThresholdsArgs thresholds;
   CLI::App* thresholds_cmd = app.add_subcommand(

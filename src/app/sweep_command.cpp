@@ -19,8 +19,10 @@
 
 #include "app/commands.hpp"
 #include "app/sweep_file.hpp"
+#include "app/sweep_recovery.hpp"
 #include "config/config.hpp"
 #include "io/hdf5_file.hpp"
+#include "io/journal.hpp"
 #include "parallel/farm.hpp"
 #include "parallel/mpi_env.hpp"
 #include "parallel/signals.hpp"
@@ -74,53 +76,96 @@ int sweep_command(const SweepArgs& args) {
   const std::vector<sweep::ChainSetup>& setups = plan.setups;
   const auto& spans = plan.spans;
   const auto& first_task = plan.first_task;
-  const std::size_t n_tasks = plan.n_tasks;
+  const std::size_t n_tasks = plan.n_tasks, n_windows = plan.max_windows, cap = plan.max_samples;
   const double total_sim = plan.total_duration;
 
   // Rank 0 opens the file: "<path>.part" while the sweep runs, renamed to <path> when every
-  // task has finished. --resume reopens the .part of an interrupted sweep.
+  // task has finished. --resume reopens the .part of an interrupted sweep. Every result goes
+  // first to the journal "<path>.journal" and then into the .part: a resume replays the
+  // journal onto the .part, or onto a new one when the old cannot be read (killed mid-write).
   const std::filesystem::path final_path(cfg.output_path), part_path(cfg.output_path + ".part");
+  const std::filesystem::path journal_path(cfg.output_path + ".journal");
   std::optional<SweepFile> file;
+  std::optional<io::Journal> journal;
+  io::JournalContents replay;
   std::vector<std::int32_t> status;
+  const auto make_file = [&] {
+    file.emplace(io::File::create(part_path), setups.size(), n_windows, cap, n_tasks);
+    file->create(cfg, plan.points, setups, spans);
+    if (cfg.hold) {  // which ω_m, seed and perturbation each chain holds
+      std::vector<double> w;
+      std::vector<std::int32_t> seed, pert;
+      for (const sweep::ChainStart& s : plan.starts) {
+        w.push_back(s.omega);
+        seed.push_back(std::int32_t(std::find(cfg.hold->seeds.begin(), cfg.hold->seeds.end(), s.seed) -
+                                    cfg.hold->seeds.begin()));
+        pert.push_back(s.perturbation);
+      }
+      io::Group cg = file->file().open_group("chains");
+      cg.write_dataset("hold_omega", std::span<const double>(w)).set_attribute("units", "rad/s");
+      cg.write_dataset("seed", std::span<const std::int32_t>(seed))
+          .set_attribute("names", fmt::format("{}", fmt::join(cfg.hold->seeds, ",")));
+      cg.write_dataset("perturbation", std::span<const std::int32_t>(pert))
+          .set_attribute("description", "0: the seed itself; k >= 1: the seed with velocity kick k");
+    }
+    file->file().flush();
+  };
   if (master && error.empty()) {
     try {
       if (args.resume) {
-        if (!std::filesystem::exists(part_path)) {
+        if (!std::filesystem::exists(part_path) && !std::filesystem::exists(journal_path)) {
           throw config::ConfigError(fmt::format(
               "{}: key 'output.path': nothing to resume: {} does not exist{}", cfg.source_name, part_path.string(),
               std::filesystem::exists(final_path) ? fmt::format(" ({} is complete)", final_path.string()) : ""));
         }
-        file.emplace(io::File::open_rw(part_path), setups.size(), plan.max_windows, plan.max_samples, n_tasks);
-        file->check_same(cfg);
-        status = file->status();
-        if (status.size() != n_tasks)
-          throw config::ConfigError(fmt::format("{}: key 'output.path': {} has {} tasks, the sweep {}",
-                                                cfg.source_name, part_path.string(), status.size(), n_tasks));
+        if (std::filesystem::exists(journal_path)) {
+          journal.emplace(io::Journal::open_append(journal_path));  // locked: no other sweep writes it
+          replay = io::Journal::read(journal_path);
+          if (replay.records.empty())  // killed before its first record
+            journal->append(kJournalIdentity, journal_identity(cfg));
+          else if (replay.records.front().key != kJournalIdentity || replay.records.front().payload != journal_identity(cfg))
+            throw config::ConfigError(fmt::format(
+                "{}: key 'output.path': {} was written by a different sweep file or overrides; resume it with the "
+                "same ones, or remove {} and {} to start afresh",
+                cfg.source_name, journal_path.string(), part_path.string(), journal_path.string()));
+        }
+        try {
+          file.emplace(io::File::open_rw(part_path), setups.size(), n_windows, cap, n_tasks);
+          file->check_same(cfg);
+          if (file->status().size() != n_tasks)
+            throw config::ConfigError(fmt::format("{}: key 'output.path': {} has {} tasks, the sweep {}",
+                                                  cfg.source_name, part_path.string(), file->status().size(), n_tasks));
+        } catch (const io::Hdf5Error& e) {
+          if (!journal) throw;
+          // Killed while writing: the journal holds every committed result; start the file anew.
+          std::fprintf(stderr, "warning: %s cannot be used (%s); rebuilding it from %s (%zu results)\n",
+                       part_path.c_str(), e.what(), journal_path.c_str(), replay.records.empty() ? 0 : replay.records.size() - 1);
+          file.reset();
+          std::filesystem::remove(part_path);
+          make_file();
+        }
+        if (journal && journal->cut_torn_tail())
+          std::fprintf(stderr, "warning: %s ended in a result cut short; that task runs again\n", journal_path.c_str());
+        if (!journal) {  // a .part from before journals: it alone says what is done
+          journal.emplace(io::Journal::create(journal_path));
+          journal->append(kJournalIdentity, journal_identity(cfg));
+          status = file->status();
+        } else {
+          status.assign(n_tasks, 0);  // the journal's replay below says what is done
+        }
       } else {
         std::error_code ec;
         if (final_path.has_parent_path()) std::filesystem::create_directories(final_path.parent_path(), ec);
-        file.emplace(io::File::create(part_path), setups.size(), plan.max_windows, plan.max_samples, n_tasks);
-        file->create(cfg, plan.points, setups, spans);
-        if (cfg.hold) {  // which ω_m, seed and perturbation each chain holds
-          std::vector<double> w;
-          std::vector<std::int32_t> seed, pert;
-          for (const sweep::ChainStart& s : plan.starts) {
-            w.push_back(s.omega);
-            seed.push_back(std::int32_t(std::find(cfg.hold->seeds.begin(), cfg.hold->seeds.end(), s.seed) -
-                                        cfg.hold->seeds.begin()));
-            pert.push_back(s.perturbation);
-          }
-          io::Group cg = file->file().open_group("chains");
-          cg.write_dataset("hold_omega", std::span<const double>(w)).set_attribute("units", "rad/s");
-          cg.write_dataset("seed", std::span<const std::int32_t>(seed))
-              .set_attribute("names", fmt::format("{}", fmt::join(cfg.hold->seeds, ",")));
-          cg.write_dataset("perturbation", std::span<const std::int32_t>(pert))
-              .set_attribute("description", "0: the seed itself; k >= 1: the seed with velocity kick k");
-        }
+        check_space(cfg, final_path, setups, cap);
+        journal.emplace(io::Journal::create(journal_path));  // locked first: no other sweep writes here
+        make_file();
+        journal->append(kJournalIdentity, journal_identity(cfg));
         status.assign(n_tasks, 0);
       }
     } catch (const io::Hdf5Error& e) {
       error = fmt::format("{}: key 'output.path': cannot write '{}' ({})", cfg.source_name, part_path.string(), e.what());
+    } catch (const io::JournalError& e) {
+      error = fmt::format("{}: key 'output.path': {}", cfg.source_name, e.what());
     } catch (const config::ConfigError& e) {
       error = e.what();
     }
@@ -128,6 +173,56 @@ int sweep_command(const SweepArgs& args) {
   if (!agree(error.empty())) {
     if (master) std::fprintf(stderr, "error: %s\n", error.empty() ? "invalid sweep file" : error.c_str());
     return kExitBadInput;
+  }
+
+  // One result into the file (the journal holds it already): the windows classified on the
+  // master, written and flushed. A journal record is a kind byte and then: 1 (ran) the task's
+  // output; 2 (failed without output: past the task wall-clock bound) the reason; 3 (not run)
+  // nothing.
+  std::vector<std::string> failures;
+  const auto commit = [&](std::size_t id, std::span<const std::byte> record) -> double {
+    if (record.empty() || std::to_integer<int>(record[0]) == 3) {
+      status[id] = 3;
+      file->write_not_run(id);
+      return 0.0;
+    }
+    const std::size_t chain = std::size_t(std::upper_bound(first_task.begin(), first_task.end(), id) - first_task.begin()) - 1;
+    sweep::TaskOutput out;
+    if (std::to_integer<int>(record[0]) == 2) {
+      out.ok = false;
+      out.failure.assign(reinterpret_cast<const char*>(record.data() + 1), record.size() - 1);
+      out.final_state.t = nan;
+      out.final_state.y.setConstant(nan);
+    } else {
+      out = sweep::decode_output(parallel::Bytes(record.begin() + 1, record.end()));
+    }
+    status[id] = out.ok ? 1 : 2;
+    if (!out.ok) failures.push_back(fmt::format("task {} (chain {}, part {}): {}", id, chain, id - first_task[chain], out.failure));
+    const std::vector<sweep::OrbitClassification> classes = sweep::classify_windows(setups[chain], out);
+    file->write_task(id, chain, out, classes);  // written and flushed at once
+    return out.simulated;  // [s]
+  };
+  if (master && replay.records.size() > 1) {
+    const auto replay_all = [&] {
+      for (std::size_t k = 1; k < replay.records.size(); ++k) {
+        const std::int64_t id = replay.records[k].key;
+        if (id < 0 || std::size_t(id) >= n_tasks)
+          throw io::JournalError(fmt::format("{}: record {} names task {} of {}", journal_path.string(), k, id, n_tasks));
+        commit(std::size_t(id), replay.records[k].payload);
+      }
+    };
+    try {
+      replay_all();
+    } catch (const io::Hdf5Error& e) {
+      std::fprintf(stderr, "warning: %s cannot be written (%s); rebuilding it from %s\n", part_path.c_str(), e.what(),
+                   journal_path.c_str());
+      file.reset();
+      std::filesystem::remove(part_path);
+      make_file();
+      status.assign(n_tasks, 0);
+      failures.clear();
+      replay_all();
+    }
   }
 
   // The work: decode (chain, span), integrate, return the windows and the carry.
@@ -170,7 +265,6 @@ int sweep_command(const SweepArgs& args) {
                   chains.size(), setups.size(), done_sim, total_sim);
   }
 
-  std::vector<std::string> failures;
   double simulated = done_sim;
   std::atomic<bool> stop{false};
   if (master)
@@ -184,18 +278,15 @@ int sweep_command(const SweepArgs& args) {
   fo.on_result = [&](const parallel::TaskResult& r) {
     if (args.max_tasks > 0 && ++results >= args.max_tasks) stop = true;
     const auto id = std::size_t(r.task_id);
-    if (!r.ran) {
-      status[id] = 3;
-      file->write_not_run(id);
-      return;
-    }
-    const sweep::TaskOutput out = sweep::decode_output(r.output);
-    status[id] = out.ok ? 1 : 2;
-    simulated += out.simulated;
-    if (!out.ok) failures.push_back(fmt::format("task {} (chain {}, part {}): {}", r.task_id, r.chain, r.index, out.failure));
-    const auto chain = std::size_t(r.chain);
-    const std::vector<sweep::OrbitClassification> classes = sweep::classify_windows(setups[chain], out);
-    file->write_task(id, chain, out, classes);  // written and flushed at once
+    const bool no_output = r.ran && !r.ok && r.output.empty();
+    parallel::Bytes record{std::byte(!r.ran ? 3 : no_output ? 2 : 1)};
+    if (no_output)
+      record.insert(record.end(), reinterpret_cast<const std::byte*>(r.error.data()),
+                    reinterpret_cast<const std::byte*>(r.error.data() + r.error.size()));
+    else if (r.ran)
+      record.insert(record.end(), r.output.begin(), r.output.end());
+    journal->append(r.task_id, record);  // committed: a resume replays it
+    simulated += commit(id, record);
   };
   const auto wall0 = std::chrono::steady_clock::now();
   const bool terminal = isatty(fileno(stdout));
@@ -209,8 +300,18 @@ int sweep_command(const SweepArgs& args) {
     std::fflush(stdout);
   };
   fo.progress_interval = terminal ? 0.5 : 10.0;
+  fo.task_timeout = args.task_timeout;
   const std::string started = now_iso();
-  const parallel::FarmSummary fs = parallel::run_farm(std::move(chains), work, fo);
+  parallel::FarmSummary fs;
+  try {
+    fs = parallel::run_farm(std::move(chains), work, fo);
+  } catch (const std::runtime_error& e) {  // io::Hdf5Error, io::JournalError: disk full, ...
+    if (!master || !(dynamic_cast<const io::Hdf5Error*>(&e) || dynamic_cast<const io::JournalError*>(&e))) throw;
+    // The workers have been told to stop; every result committed to the journal is safe.
+    std::fprintf(stderr, "error: %s\nthe finished tasks are in %s (with %s); fix the cause and continue with the "
+                 "same command and --resume\n", e.what(), part_path.c_str(), journal_path.c_str());
+    return 1;
+  }
   if (!master) return fs.status == parallel::FarmStatus::Completed ? 0 : kExitInterrupted;
   if (terminal && !args.quiet) std::printf("\n");
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
@@ -228,11 +329,21 @@ int sweep_command(const SweepArgs& args) {
     prov.set_attribute(args.resume ? "resume_wall_time" : "wall_time", wall);
     prov.set_attribute("farm_status", parallel::to_string(fs.status));
     prov.set_attribute("tasks_per_second", fs.tasks_per_second);
+    prov.set_attribute("bytes_to_workers", fs.bytes_sent);  // farm messages, headers included
+    prov.set_attribute("bytes_from_workers", fs.bytes_received);
+    double work = 0;
+    for (double b : fs.busy_seconds) work += b;
+    prov.set_attribute("work_seconds", work);  // summed over ranks: integration alone
+    prov.set_attribute("master_result_seconds", fs.result_seconds);  // classify, journal, write
     prov.set_attribute("version", ASTROJAX_VERSION);
     prov.set_attribute("git_commit", ASTROJAX_GIT_COMMIT);  // at configure time
   });
   const bool complete = std::none_of(status.begin(), status.end(), [](std::int32_t v) { return v == 0; });
-  if (complete) std::filesystem::rename(part_path, final_path);
+  if (complete) {
+    std::filesystem::rename(part_path, final_path);
+    journal.reset();
+    std::filesystem::remove(journal_path);  // the file holds everything now
+  }
 
   std::printf("%s  %zu chains, %zu tasks (%lld failed, %lld not run, %lld never started), %.0f of %.0f simulated s "
               "in %.1f s wall on %d ranks -> %s\n",
@@ -240,11 +351,17 @@ int sweep_command(const SweepArgs& args) {
               (long long)fs.unstarted, simulated, total_sim, wall, ranks,
               complete ? final_path.c_str() : part_path.c_str());
   for (const auto& fl : failures) std::printf("  failed: %s\n", fl.c_str());
-  if (!complete) {
+  if (!complete)
     std::printf("the finished tasks are in %s; continue with the same command and --resume\n", part_path.c_str());
-    return kExitInterrupted;
+  const int code = !complete ? kExitInterrupted : failures.empty() ? 0 : kExitRunFailed;
+  if (!fs.lost_ranks.empty()) {
+    // A hung rank never reaches MPI_Finalize: the file is closed, so end the job here.
+    std::printf("ranks %s did not return their task within --task-timeout %g s (see the failures above); "
+                "ending the job\n", fmt::format("{}", fmt::join(fs.lost_ranks, ", ")).c_str(), args.task_timeout);
+    std::fflush(stdout);
+    MPI_Abort(MPI_COMM_WORLD, code);
   }
-  return failures.empty() ? 0 : kExitRunFailed;
+  return code;
 }
 
 }  // namespace ajx::app

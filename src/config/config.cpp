@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <fmt/format.h>
 #include <fstream>
 #include <set>
@@ -38,7 +39,10 @@ class Reader {
     const toml::node* n = t_.get(key);
     if (!n) return fallback;
     if (!n->is_number()) fail(key, "expected a number");
-    const double v = n->value<double>().value();
+    // toml++ gives no double for an integer that a double cannot hold exactly (|v| > 2^53).
+    const std::optional<double> x = n->value<double>();
+    if (!x) fail(key, "expected a number; this integer is too large to be held exactly");
+    const double v = *x;
     const bool ok = std::isfinite(v) && (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
     if (!ok)
       fail(key, fmt::format("{} is out of range; allowed {}{}, {}{}", v, lo_open ? "(" : "[", lo, hi,

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <climits>
+#include <cstdio>
 #include <cstring>
 #include <deque>
 #include <exception>
@@ -289,6 +290,7 @@ class Scheduler {
     s.done = done_;
     s.failed = failed_;
     s.not_run = not_run_;
+    s.result_seconds = result_seconds_;
     s.unstarted = total_ - done_ - not_run_ - in_flight_;
     s.status = failed() ? FarmStatus::Aborted : s.unstarted > 0 ? FarmStatus::Interrupted : FarmStatus::Completed;
     s.busy_seconds.assign(static_cast<std::size_t>(ranks), 0.0);
@@ -323,11 +325,13 @@ class Scheduler {
 
   void deliver(const TaskResult& r) {
     if (!options_.on_result || failed()) return;
+    const auto t0 = Clock::now();
     try {
       options_.on_result(r);
     } catch (...) {
       error_ = std::current_exception();
     }
+    result_seconds_ += seconds_since(t0);
   }
 
   const FarmOptions& options_;
@@ -335,6 +339,7 @@ class Scheduler {
   std::vector<State> states_;
   std::set<std::size_t> ready_;  // chains whose next task may start
   std::int64_t total_ = 0, done_ = 0, failed_ = 0, not_run_ = 0, in_flight_ = 0;
+  double result_seconds_ = 0;  // in on_result
   std::exception_ptr error_;
 };
 
@@ -380,6 +385,32 @@ FarmSummary run_in_process(std::vector<Chain> chains, const WorkFunction& work, 
   return s;
 }
 
+// Tasks in flight past the wall-clock bound: delivered as failed, their workers given up.
+void give_up_late(double timeout, const std::vector<Clock::time_point>& handed,
+                  std::vector<std::optional<std::size_t>>& assigned, std::vector<bool>& lost, int& n_lost,
+                  Scheduler& sched) {
+  for (std::size_t w = 1; w < assigned.size(); ++w) {
+    if (!assigned[w] || seconds_since(handed[w]) <= timeout) continue;
+    const std::size_t c = *assigned[w];
+    assigned[w].reset();
+    lost[w] = true;
+    ++n_lost;
+    const Task& t = sched.task(c);
+    TaskResult r;
+    r.task_id = t.id;
+    r.chain = t.chain;
+    r.index = t.index;
+    r.ran = true;
+    r.rank = static_cast<int>(w);
+    r.wall_seconds = seconds_since(handed[w]);
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "no result after %.1f s on rank %zu (the task wall-clock bound is %g s); rank %zu given up",
+                  r.wall_seconds, w, timeout, w);
+    r.error = buf;
+    sched.finish(c, std::move(r));
+  }
+}
+
 FarmSummary run_master(const FarmComm& comm, int size, std::vector<Chain> chains, const FarmOptions& options,
                        Clock::time_point start) {
   Scheduler sched(std::move(chains), options, start);
@@ -388,6 +419,10 @@ FarmSummary run_master(const FarmComm& comm, int size, std::vector<Chain> chains
   std::vector<std::int64_t> ran(static_cast<std::size_t>(size), 0);
   std::vector<std::optional<std::size_t>> assigned(static_cast<std::size_t>(size));  // chain per worker
   std::deque<int> idle;  // workers waiting for a task, in the order they asked
+  std::vector<Clock::time_point> handed(static_cast<std::size_t>(size));  // when each worker got its task
+  std::vector<bool> lost(static_cast<std::size_t>(size), false);          // past the task timeout
+  int n_lost = 0;
+  Clock::time_point last_timeout_check = start;
   std::uint64_t sent = 0, received = 0;
   bool stopping = false;
   Backoff backoff;
@@ -408,11 +443,19 @@ FarmSummary run_master(const FarmComm& comm, int size, std::vector<Chain> chains
       comm.send(msg, w, kTagTask);
       sent += msg.size();
       assigned[static_cast<std::size_t>(w)] = c;
+      handed[static_cast<std::size_t>(w)] = Clock::now();
     }
     // Done when every worker is waiting (so none has a message still on its way) and there is
     // nothing more to hand out.
-    if (static_cast<int>(idle.size()) == workers && (stopping || !sched.has_ready())) break;
+    // Lost workers never ask again: with none left, what is still ready never starts.
+    const int active = workers - n_lost;
+    if (static_cast<int>(idle.size()) == active && (stopping || !sched.has_ready() || active == 0)) break;
 
+    // Timeouts are checked every 50 ms at most (a pass costs one look per worker).
+    if (options.task_timeout > 0 && seconds_since(last_timeout_check) > 0.05) {
+      give_up_late(options.task_timeout, handed, assigned, lost, n_lost, sched);
+      last_timeout_check = Clock::now();
+    }
     const std::optional<MPI_Status> st = comm.iprobe();
     if (!st) {
       sched.tick();
@@ -423,7 +466,11 @@ FarmSummary run_master(const FarmComm& comm, int size, std::vector<Chain> chains
     Message m = comm.receive(*st);
     received += m.buf.size();
     const int w = m.source;
-    if (m.tag == kTagResult) {
+    if (m.tag == kTagResult && lost[static_cast<std::size_t>(w)]) {
+      // The late result of a task already reported as failed: dropped; the rank works again.
+      lost[static_cast<std::size_t>(w)] = false;
+      --n_lost;
+    } else if (m.tag == kTagResult) {
       std::optional<std::size_t>& slot = assigned[static_cast<std::size_t>(w)];
       if (!slot || m.header.task_id != sched.task(*slot).id)
         throw std::runtime_error("farm: rank " + std::to_string(w) + " returned task " +
@@ -461,6 +508,8 @@ FarmSummary run_master(const FarmComm& comm, int size, std::vector<Chain> chains
     sent += msg.size();
   }
   sched.rethrow_if_failed();
+  for (int w = 1; w < size; ++w)
+    if (lost[static_cast<std::size_t>(w)]) s.lost_ranks.push_back(w);
   s.busy_seconds = std::move(busy);
   s.tasks_per_rank = std::move(ran);
   s.bytes_sent = sent;

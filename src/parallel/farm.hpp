@@ -102,6 +102,13 @@ struct FarmOptions {
   // Rank 0 only, optional: called at most every progress_interval seconds.
   std::function<void(const Progress&)> on_progress;
   double progress_interval = 1.0;
+  // Wall-clock bound of one task [s] (0: none), with >= 2 ranks. A task whose result has not
+  // come back within it is delivered as failed ("no result after ... s on rank r"), its chain
+  // ends, and its rank is given no more work (a rank may hang in a system call or in MPI
+  // itself; MPI cannot cancel it). Such a rank is listed in FarmSummary::lost_ranks; should
+  // its late result come after all, it is dropped and the rank works again. The caller must
+  // end the job with MPI_Abort while ranks are lost: they will not reach MPI_Finalize.
+  double task_timeout = 0.0;
 };
 
 // Complete on rank 0. On worker ranks only status, ranks, wall_seconds and this rank's
@@ -117,6 +124,8 @@ struct FarmSummary {
   std::uint64_t bytes_sent = 0;            // master -> workers, headers included
   std::uint64_t bytes_received = 0;        // workers -> master
   double tasks_per_second = 0;             // done / wall_seconds
+  double result_seconds = 0;               // rank 0: time spent in on_result (the master's own work)
+  std::vector<int> lost_ranks;             // rank 0: ranks still past FarmOptions::task_timeout at the end
 };
 
 // Runs the farm; collective over options.comm. `chains` is read on rank 0 only (pass {} on

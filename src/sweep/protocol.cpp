@@ -33,6 +33,8 @@ void require(bool ok, const char* what) {
 
 }  // namespace
 
+constexpr double kMaxWindows = 1e6;
+
 CompiledProtocol compile(const std::vector<Segment>& segments, double omega_start) {
   require(!segments.empty(), "protocol: no segments");
   Builder b;
@@ -47,6 +49,9 @@ CompiledProtocol compile(const std::vector<Segment>& segments, double omega_star
       // Windows of `window` seconds; the last one takes what is left (at least half a window,
       // else it is merged into the previous one).
       const double T = std::abs(r.to - r.from) / r.rate;
+      // A bound on the windows (each is stored with its samples): also keeps n an int.
+      require(T / r.window + double(b.out.windows.size()) <= kMaxWindows,
+              "protocol: more than 1e6 windows (a ramp's |to - from| / rate / window is too large)");
       const int n = std::max(1, int(std::floor(T / r.window + 0.5)));
       const double w = T / n, dir = r.to > r.from ? 1.0 : -1.0;
       for (int i = 0; i < n; ++i) {
@@ -64,6 +69,7 @@ CompiledProtocol compile(const std::vector<Segment>& segments, double omega_star
               "protocol: steps need num >= 1, measure > 0, settle >= 0, step_rate > 0, from/to >= 0");
       // A staircase has the direction of its levels (thresholds need it); a single level none.
       const int dir = st.to > st.from ? 1 : (st.to < st.from ? -1 : 0);
+      require(double(st.num) + double(b.out.windows.size()) <= kMaxWindows, "protocol: more than 1e6 windows");
       for (int i = 0; i < st.num; ++i) {
         const double level = st.num == 1 ? st.from : st.from + (st.to - st.from) * i / (st.num - 1);
         b.ramp_to(level, st.step_rate);

@@ -1,0 +1,93 @@
+"""Parallel efficiency of a sweep: measured (1 vs 2 workers) and projected to 64, 512, 4096 ranks.
+
+Usage: project.py PAPER_1RANK.h5 QUICK_1WORKER.h5 QUICK_2WORKERS.h5 THROUGHPUT.txt
+
+The model (cluster/README.md, "Scale"). A sweep has C chains of K tasks; a task of g windows
+integrates for tau = g * tau_w on a worker. The master spends s = g * m_w + 1/mu on each task:
+m_w per window to classify, journal and write it (measured on 1 rank: time in on_result), 1/mu to
+receive it and hand out the next (the farm's message throughput mu with a task's output size).
+A worker waits for its next task while the master handles its result, so a chain advances one
+task per tau + s, and W workers run at most C chains at once:
+    T(W) = max(ceil(C / W) * K * (tau + s),  C * K * s)
+the second term when the master is saturated. Efficiency E = C * K * tau / (W * T(W)).
+"""
+import math
+import re
+import sys
+
+import h5py
+
+
+def prov(path):
+    with h5py.File(path, "r") as f:
+        p = dict(f["provenance"].attrs)
+        tasks = len(f["tasks/status"])
+        windows = int((f["windows/class"][...] >= 0).sum())
+        chains = f["windows/class"].shape[0]
+    wall = float(p.get("wall_time", p.get("resume_wall_time")))
+    return dict(wall=wall, work=float(p["work_seconds"]), master=float(p["master_result_seconds"]), tasks=tasks,
+                windows=windows, chains=chains,
+                bytes_in=int(p.get("bytes_from_workers", 0)))
+
+
+def main():
+    paper, w1, w2, tput = sys.argv[1:5]
+    p = prov(paper)
+    tau_w = p["work"] / p["windows"]
+    m_w = p["master"] / p["windows"]
+    windows_per_chain = p["windows"] / p["chains"]
+    print(f"paper protocol on 1 rank: {p['chains']} chains, {p['windows']} windows, {p['tasks']} tasks, "
+          f"wall {p['wall']:.2f} s, integration {p['work']:.2f} s")
+    print(f"  integration per window tau_w = {tau_w * 1e3:.2f} ms; master per window m_w = {m_w * 1e3:.2f} ms "
+          f"(classify + journal + HDF5); {windows_per_chain:.0f} windows per chain")
+
+    a, b = prov(w1), prov(w2)
+    e = a["wall"] / (2 * b["wall"])
+    print(f"quick sweep, {a['chains']} chains, {a['tasks']} tasks: 1 worker {a['wall']:.2f} s, 2 workers "
+          f"{b['wall']:.2f} s: speed-up {a['wall'] / b['wall']:.2f}, efficiency {e:.2f}")
+    print(f"  bytes per task to the master: {b['bytes_in'] / b['tasks']:.0f}")
+
+    rates = {}
+    for line in open(tput):
+        m = re.search(r"ranks (\d+) .* ([\d.]+) tasks/s", line)
+        if m:
+            rates[int(m.group(1))] = float(m.group(2))
+    mu = max(rates.values())  # the master's best message rate with sweep-sized outputs
+    print(f"master message throughput with sweep-sized outputs: {', '.join(f'{r} ranks {v:.0f}/s' for r, v in sorted(rates.items()))}")
+
+    def efficiency(C, W, g, m=None):
+        m = m_w if m is None else m
+        K = math.ceil(windows_per_chain / g)
+        tau = g * tau_w
+        s = g * m + 1.0 / mu
+        T = max(math.ceil(C / W) * K * (tau + s), C * K * s)
+        return C * K * tau / (W * T)
+
+    gs = [1, 2, 5, 10, 20, 50, int(windows_per_chain)]
+    for C in (1024, 4096):
+        print(f"\nprojection: the paper's protocol on a {int(math.sqrt(C))} x {int(math.sqrt(C))} grid of R x d "
+              f"= {C} chains; efficiency by windows per task g")
+        print("  ranks  " + "  ".join(f"g={g:<4d}" for g in gs) + "   smallest g with E >= 0.9")
+        for R in (64, 512, 4096):
+            W = R - 1
+            es = [efficiency(C, W, g) for g in gs]
+            ok = [g for g in range(1, int(windows_per_chain) + 1) if efficiency(C, W, g) >= 0.9]
+            print(f"  {R:5d}  " + "  ".join(f"{x:6.2f}" for x in es) + f"   {ok[0] if ok else 'none'}")
+        print(f"  (at most {C} workers can be busy: {C} chains)")
+        for R in (64, 512, 4096):
+            # The master's cost per window that would give E >= 0.9 with whole chains as tasks.
+            g = int(windows_per_chain)
+            lo, hi = 0.0, m_w
+            if efficiency(C, R - 1, g, 0.0) < 0.9:
+                print(f"  {R} ranks: below 0.9 even with a master that costs nothing per window "
+                      f"(messages alone: {1e3 / mu:.2f} ms per task; a chain integrates in {g * tau_w:.2f} s)")
+                continue
+            for _ in range(60):
+                mid = 0.5 * (lo + hi)
+                lo, hi = (mid, hi) if efficiency(C, R - 1, g, mid) >= 0.9 else (lo, mid)
+            print(f"  {R} ranks: E >= 0.9 needs the master's cost per window below {lo * 1e6:.1f} us "
+                  f"(now {m_w * 1e3:.2f} ms), with one task per chain")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,50 @@
+// What lets a sweep survive faults: the identity of a sweep in its journal (a resume must come
+// from the same sweep file and overrides), and the disk-space check made before any work.
+#pragma once
+#include <sys/statvfs.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <fmt/format.h>
+#include <string>
+#include <vector>
+
+#include "config/config.hpp"
+#include "sweep/task.hpp"
+
+namespace ajx::app {
+
+// The journal's first record (key -1): the sweep file verbatim, a NUL, the overrides.
+inline constexpr std::int64_t kJournalIdentity = -1;
+inline std::vector<std::byte> journal_identity(const config::SweepConfig& cfg) {
+  const std::string s = cfg.source_text + '\0' + fmt::format("{}", fmt::join(cfg.overrides, "\n"));
+  const auto* p = reinterpret_cast<const std::byte*>(s.data());
+  return std::vector<std::byte>(p, p + s.size());
+}
+
+// Bytes a sweep may write at most: every window's samples (12 doubles per sample: t, ω_m, L1,
+// T1, T2, mode, r1, r2) once uncompressed in the journal and once, at worst uncompressed, in
+// the HDF5 file, plus the per-window statistics and per-task states (small beside them).
+inline std::uint64_t sweep_bytes_bound(const std::vector<sweep::ChainSetup>& setups, std::size_t cap) {
+  std::uint64_t windows = 0;
+  for (const auto& c : setups) windows += c.protocol.windows.size();
+  return 2 * windows * (std::uint64_t(cap) * 12 * 8 + 64 * 8);
+}
+
+// Refuses, before any work, a sweep whose file cannot fit on its file system.
+inline void check_space(const config::SweepConfig& cfg, const std::filesystem::path& out,
+                        const std::vector<sweep::ChainSetup>& setups, std::size_t cap) {
+  const std::filesystem::path dir = out.has_parent_path() ? out.parent_path() : std::filesystem::path(".");
+  struct statvfs fs;
+  if (statvfs(dir.c_str(), &fs) != 0) return;  // an unreadable directory fails at create, with its reason
+  const std::uint64_t free_bytes = std::uint64_t(fs.f_bavail) * fs.f_frsize;
+  const std::uint64_t need = sweep_bytes_bound(setups, cap);
+  if (need > free_bytes)
+    throw config::ConfigError(fmt::format(
+        "{}: key 'output.path': the sweep may write up to {:.1f} MB ({} and its journal), but {} has only {:.1f} MB "
+        "free",
+        cfg.source_name, double(need) / 1e6, out.string(), dir.string(), double(free_bytes) / 1e6));
+}
+
+}  // namespace ajx::app
