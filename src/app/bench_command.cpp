@@ -19,6 +19,40 @@
 
 namespace ajx::app {
 
+namespace {
+
+// A benchmark's CSV: written to "<path>.part" as the rows come, renamed to <path> when complete,
+// so a killed benchmark never leaves a truncated file under the final name.
+class CsvOutput {
+ public:
+  explicit CsvOutput(const std::string& path) : path_(path) {
+    const std::filesystem::path out(path);
+    std::error_code ec;
+    if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path(), ec);
+    stream_.open(path + ".part");
+  }
+  bool ok() const { return bool(stream_); }
+  std::ofstream& stream() { return stream_; }
+  // Closes and renames; prints where the table went. Returns the exit code.
+  int commit() {
+    stream_.close();
+    std::error_code ec;
+    std::filesystem::rename(path_ + ".part", path_, ec);
+    if (!stream_ || ec) {
+      std::fprintf(stderr, "error: cannot write %s: %s\n", path_.c_str(), ec ? ec.message().c_str() : "write failed");
+      return 1;
+    }
+    std::printf("-> %s\n", path_.c_str());
+    return 0;
+  }
+
+ private:
+  std::string path_;
+  std::ofstream stream_;
+};
+
+}  // namespace
+
 int bench_work_precision_command(const WorkPrecisionArgs& a) {
   std::vector<bench::Scene> scenes;
   try {
@@ -35,14 +69,12 @@ int bench_work_precision_command(const WorkPrecisionArgs& a) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return kExitBadInput;
   }
-  const std::filesystem::path out(a.output);
-  std::error_code ec;
-  if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path(), ec);
-  std::ofstream csv(a.output + ".part");
-  if (!csv) {
+  CsvOutput table(a.output);
+  if (!table.ok()) {
     std::fprintf(stderr, "error: cannot write %s.part\n", a.output.c_str());
     return kExitBadInput;
   }
+  std::ofstream& csv = table.stream();
   csv << "# astrojax bench work-precision; reference: dop853 at rtol 1e-13, floor: |reference - dopri5 at rtol 1e-12|\n";
   csv << bench::csv_header() << "\n";
   for (const bench::Scene& scene : scenes) {
@@ -71,14 +103,7 @@ int bench_work_precision_command(const WorkPrecisionArgs& a) {
       }
     }
   }
-  csv.close();
-  std::filesystem::rename(a.output + ".part", a.output, ec);
-  if (ec) {
-    std::fprintf(stderr, "error: cannot rename %s.part: %s\n", a.output.c_str(), ec.message().c_str());
-    return 1;
-  }
-  std::printf("-> %s\n", a.output.c_str());
-  return 0;
+  return table.commit();
 }
 
 }  // namespace ajx::app
@@ -103,14 +128,12 @@ int bench_stability_command(const StabilityArgs& a) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return kExitBadInput;
   }
-  const std::filesystem::path out(a.output);
-  std::error_code ec;
-  if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path(), ec);
-  std::ofstream csv(a.output + ".part");
-  if (!csv) {
+  CsvOutput table(a.output);
+  if (!table.ok()) {
     std::fprintf(stderr, "error: cannot write %s.part\n", a.output.c_str());
     return kExitBadInput;
   }
+  std::ofstream& csv = table.stream();
   const bench::StabilityCriteria crit{a.energy_tol};
   csv << fmt::format("# astrojax bench stability {}: hold at omega from the scene's initial state for {} s; pass = "
                      "finished, final mode of the reference (dop853 rtol 1e-13), |energy residual| <= {}\n",
@@ -145,14 +168,7 @@ int bench_stability_command(const StabilityArgs& a) {
       std::fflush(stdout);
     }
   }
-  csv.close();
-  std::filesystem::rename(a.output + ".part", a.output, ec);
-  if (ec) {
-    std::fprintf(stderr, "error: cannot rename %s.part: %s\n", a.output.c_str(), ec.message().c_str());
-    return 1;
-  }
-  std::printf("-> %s\n", a.output.c_str());
-  return 0;
+  return table.commit();
 }
 
 }  // namespace ajx::app
@@ -182,14 +198,12 @@ int bench_friction_command(const FrictionArgs& a) {
     return kExitBadInput;
   }
   base.run.integ.max_steps = a.max_steps;
-  const std::filesystem::path out(a.output);
-  std::error_code ec;
-  if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path(), ec);
-  std::ofstream csv(a.output + ".part");
-  if (!csv) {
+  CsvOutput table(a.output);
+  if (!table.ok()) {
     std::fprintf(stderr, "error: cannot write %s.part\n", a.output.c_str());
     return kExitBadInput;
   }
+  std::ofstream& csv = table.stream();
   csv << fmt::format("# astrojax bench friction {}: horizon {} s; eps = 0 is the event-driven stick-slip model; "
                      "references: dop853 at rtol 1e-13 (event-driven), 1e-11 (regularised, per eps)\n",
                      a.scene, a.horizon);
@@ -235,14 +249,7 @@ int bench_friction_command(const FrictionArgs& a) {
     for (double h : a.rk4_steps) measure(scene, ref, eps, "regularised", c_ss, c_kin, "rk4", false, h);
     for (double h : a.radau_steps) measure(scene, ref, eps, "regularised", c_ss, c_kin, "radau_iia", false, h);
   }
-  csv.close();
-  std::filesystem::rename(a.output + ".part", a.output, ec);
-  if (ec) {
-    std::fprintf(stderr, "error: cannot rename %s.part: %s\n", a.output.c_str(), ec.message().c_str());
-    return 1;
-  }
-  std::printf("-> %s\n", a.output.c_str());
-  return 0;
+  return table.commit();
 }
 
 }  // namespace ajx::app
@@ -278,14 +285,12 @@ int bench_constraints_command(const ConstraintsArgs& a) {
                  a.scene.c_str(), ref.run.mode_switches);
     return kExitBadInput;
   }
-  const std::filesystem::path out(a.output);
-  std::error_code ec;
-  if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path(), ec);
-  std::ofstream csv(a.output + ".part");
-  if (!csv) {
+  CsvOutput table(a.output);
+  if (!table.ok()) {
     std::fprintf(stderr, "error: cannot write %s.part\n", a.output.c_str());
     return kExitBadInput;
   }
+  std::ofstream& csv = table.stream();
   csv << fmt::format("# astrojax bench constraints {}: horizon {} s, mode {}; reference dop853 at rtol 1e-13\n", a.scene,
                      a.horizon, physics::to_string(scene.initial.contact.mode));
   csv << "variant,alpha,method,param,status,cpu_s,steps,rhs_evals,max_drift_m,end_drift_m,err_position_m,"
@@ -308,10 +313,7 @@ int bench_constraints_command(const ConstraintsArgs& a) {
                   s.method.c_str(), param, r.cpu, r.max_drift, r.end_drift, err, r.energy_residual, r.status.c_str());
       std::fflush(stdout);
     }
-  csv.close();
-  std::filesystem::rename(a.output + ".part", a.output, ec);
-  std::printf("-> %s\n", a.output.c_str());
-  return 0;
+  return table.commit();
 }
 
 }  // namespace ajx::app
@@ -342,14 +344,12 @@ int bench_threshold_command(const WorkPrecisionArgs& a, double sample_dt) {
       return kExitBadInput;
     }
   }
-  const std::filesystem::path out(a.output);
-  std::error_code ec;
-  if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path(), ec);
-  std::ofstream csv(a.output + ".part");
-  if (!csv) {
+  CsvOutput table(a.output);
+  if (!table.ok()) {
     std::fprintf(stderr, "error: cannot write %s.part\n", a.output.c_str());
     return kExitBadInput;
   }
+  std::ofstream& csv = table.stream();
   csv << "# astrojax bench threshold: omega_m at the bead's first landing on the bottom ball; reference dop853 at "
          "rtol 1e-13, floor |reference - dopri5 at rtol 1e-12|\n";
   csv << "scene,method,param_kind,param,status,repeats,cpu_median_s,rhs_evals,found,t_fall_s,omega_fall,"
@@ -378,10 +378,7 @@ int bench_threshold_command(const WorkPrecisionArgs& a, double sample_dt) {
       }
     }
   }
-  csv.close();
-  std::filesystem::rename(a.output + ".part", a.output, ec);
-  std::printf("-> %s\n", a.output.c_str());
-  return 0;
+  return table.commit();
 }
 
 }  // namespace ajx::app
