@@ -195,6 +195,16 @@ class Sweep:
         return handles
 
 
+def sweep_for_plot(args):
+    """The sweep of a plotting script, its chains with classified windows (--chains), their
+    thresholds and their grid-point groups."""
+    sweep = Sweep(args.input)
+    chains = [c for c in select_chains(sweep, args.chains) if sweep.valid[c].any()]
+    if not chains:
+        fail(f"{args.input}: no classified windows to draw")
+    return sweep, chains, thresholds_for(args, args.input), sweep.groups(chains)
+
+
 def select_chains(sweep, text):
     """--chains: 'all' or comma-separated indices, checked against the file."""
     if text == "all":

@@ -25,6 +25,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from astrojax_analysis import CLASS_COLOURS  # noqa: E402  the sweep's class colours
+
 PAPER = {"ω_rise": 12.63, "ω_fall": 3.24, "ω1": 4.80, "ω2": 15.00}  # [π rad/s], shared/model.md
 CASES = ["stuck", "bottom_stop", "frictionless", "cone_up", "cone_down"]
 CASE_COLOURS = ["tab:blue", "tab:grey", "tab:green", "tab:orange", "tab:red"]
@@ -37,14 +39,6 @@ EVENT_MARKERS = {
     "stability_gain": ("D", "tab:purple"),
     "branch_point": ("X", "tab:brown"),
     "slack": ("s", "tab:olive"),
-}
-CLASS_COLOURS = {
-    "fallen": "tab:grey",
-    "locked-circular": "tab:blue",
-    "lagging-circular": "tab:green",
-    "flower": "tab:purple",
-    "not-settled": "tab:orange",
-    "failed": "tab:red",
 }
 
 

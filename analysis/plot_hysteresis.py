@@ -52,12 +52,7 @@ def main(argv=None):
     ajx.add_threshold_args(ap)
     args = ap.parse_args(argv)
 
-    sweep = ajx.Sweep(args.input)
-    chains = [c for c in ajx.select_chains(sweep, args.chains) if sweep.valid[c].any()]
-    if not chains:
-        ajx.fail(f"{args.input}: no classified windows to draw")
-    rows = ajx.thresholds_for(args, args.input)
-    groups = sweep.groups(chains)
+    sweep, chains, rows, groups = ajx.sweep_for_plot(args)
     nr, nc = ajx.panel_grid(len(groups))
     from matplotlib.lines import Line2D
     handles = sweep.legend_handles(chains) + [Line2D([], [], color="k", ls=":", lw=0.8, label="ω_ball = ω_m")]

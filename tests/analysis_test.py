@@ -49,6 +49,15 @@ def make():
     run([ASTROJAX, "sweep", os.path.join(SOURCE, "tests/data/tiny_sweep.toml"), "-o", data("grid2.h5"), "-q",
          "--set", "grid.contact_distance=[0.03,0.04]"])  # two grid axes: R and d
     run([ASTROJAX, "run", os.path.join(SOURCE, "sweeps/spin_up.toml"), "-o", data("run.h5"), "-q"])
+    # For the scripts of `astrojax orbits` and `astrojax bench`: a short continuation, and a
+    # tiny work-precision and stability scan (about 1 s together).
+    run([ASTROJAX, "orbits", os.path.join(SOURCE, "sweeps/orbits.toml"), "--continue", "omega", "--s", "0.5443",
+         "--range", "10", "30", "-o", data("equilibria.h5")])
+    run([ASTROJAX, "bench", "work-precision", os.path.join(SOURCE, "sweeps/scenes/locked_circular.toml"),
+         "--methods", "dop853,rk4", "--rtols", "1e-4,1e-6", "--steps", "0.01,0.005", "--horizon", "1",
+         "--repeats", "1", "-o", data("work_precision.csv")])
+    run([ASTROJAX, "bench", "stability", os.path.join(SOURCE, "sweeps/spin_up.toml"), "--methods", "rk4,euler",
+         "--omegas-pi", "2,4", "--horizon", "1", "-o", data("stability.csv")])
     _, out = run([ASTROJAX, "thresholds", data("phase.h5"), "--csv", data("thresholds.csv")])
     with open(data("thresholds.txt"), "w") as f:
         f.write(out)
@@ -287,6 +296,26 @@ class report(unittest.TestCase):
             cells = [c.strip() for c in line.strip().strip("|").split("|")]
             if cells[3] != "not reached":
                 self.assertEqual(cells[7], cells[3], f"Markdown row {line.strip()}")
+
+
+class studies(ImageChecks):
+    """The figures of `astrojax orbits` and `astrojax bench`: drawn at their own size, which
+    the PNG must have (any size at all, but not blank and with colour)."""
+
+    def figure(self, name, out, *args):
+        if os.path.exists(out):
+            os.remove(out)
+        script(name, *args, "-o", out)
+        self.assert_png(out, *png_size(out))
+
+    def test_equilibria(self):
+        self.figure("plot_equilibria.py", data("equilibria.png"), data("equilibria.h5"), "--sweep", data("phase.h5"))
+
+    def test_work_precision(self):
+        self.figure("plot_work_precision.py", data("work_precision.png"), data("work_precision.csv"))
+
+    def test_stability(self):
+        self.figure("plot_stability.py", data("stability.png"), data("stability.csv"))
 
 
 class cli(unittest.TestCase):
