@@ -3,6 +3,9 @@
 // constraint along the exact quadratic motion; plus statics and rotational symmetry.
 #include <gtest/gtest.h>
 
+#include <cctype>
+#include <ostream>
+
 #include <Eigen/Geometry>
 #include <cmath>
 #include <random>
@@ -119,6 +122,13 @@ TEST_P(ConstraintAcceleration, TensionsKeepTheStringLengthsAtSecondOrder) {
   }
 }
 
+// Parameters print by name in test names and messages (found by gtest through ADL).
+namespace ajx::physics {
+void PrintTo(Mode m, std::ostream* os) { *os << to_string(m); }
+void PrintTo(Friction f, std::ostream* os) { *os << to_string(f); }
+void PrintTo(FrictionLaw f, std::ostream* os) { *os << to_string(f); }
+}  // namespace ajx::physics
+
 INSTANTIATE_TEST_SUITE_P(
     Modes, ConstraintAcceleration,
     ::testing::Values(std::make_tuple(Mode::Sliding, Friction::None, FrictionLaw::Capstan),
@@ -126,7 +136,15 @@ INSTANTIATE_TEST_SUITE_P(
                       std::make_tuple(Mode::Sliding, Friction::Kinetic, FrictionLaw::PointContact),
                       std::make_tuple(Mode::BottomStop, Friction::Kinetic, FrictionLaw::Capstan),
                       std::make_tuple(Mode::Stuck, Friction::Kinetic, FrictionLaw::Capstan),
-                      std::make_tuple(Mode::BottomStop, Friction::None, FrictionLaw::Capstan)));
+                      std::make_tuple(Mode::BottomStop, Friction::None, FrictionLaw::Capstan)),
+    [](const auto& info) {  // e.g. sliding_kinetic_capstan
+      std::string name = std::string(to_string(std::get<0>(info.param))) + "_" +
+                         std::string(to_string(std::get<1>(info.param))) + "_" +
+                         std::string(to_string(std::get<2>(info.param)));
+      for (char& ch : name)
+        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+      return name;
+    });
 
 TEST(AstrojaxSystem, RotatingTheSceneAboutTheAxisRotatesTheMotion) {
   // The physics is symmetric under rotations about ẑ: rotating the state by α and advancing

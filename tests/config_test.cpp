@@ -2,6 +2,7 @@
 // file, the key and the allowed range.
 #include <gtest/gtest.h>
 
+#include <ostream>
 #include <string>
 
 #include "config/config.hpp"
@@ -63,6 +64,9 @@ TEST(Config, OverridesApplyBeforeValidation) {
 struct BadCase {
   std::string name, from, to, key, range;
 };
+
+// Test names and failure messages show the case's name, not its bytes.
+void PrintTo(const BadCase& b, std::ostream* os) { *os << b.name; }
 
 class BadInput : public ::testing::TestWithParam<BadCase> {};
 

@@ -67,7 +67,7 @@ int classify_command(const ClassifyArgs& args) {
     }
     io::Group wg = out.file().open_group("windows");
     wg.set_attribute("classifier_settings", used.empty() ? std::string("defaults") : used);
-    out.file().close();
+    out.close();
     std::printf("classified %ld windows again in %s: %ld changed class\n", total, args.input.c_str(), changed);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s: %s\n", args.input.c_str(), e.what());

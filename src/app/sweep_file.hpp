@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <fmt/format.h>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -125,7 +126,7 @@ class SweepFile {
 
   void write_not_run(std::size_t task) {
     const std::int32_t v = 3;
-    f_.open_dataset("tasks/status").write_region({task}, {1}, std::span<const std::int32_t>(&v, 1));
+    ds("tasks/status").write_region({task}, {1}, std::span<const std::int32_t>(&v, 1));
     f_.flush();
   }
 
@@ -133,13 +134,13 @@ class SweepFile {
                   const std::vector<sweep::OrbitClassification>& classes) {
     for (std::size_t i = 0; i < out.windows.size(); ++i) write_window(chain, out.windows[i], classes[i]);
     const std::int32_t st = out.ok ? 1 : 2;
-    f_.open_dataset("tasks/status").write_region({task}, {1}, std::span<const std::int32_t>(&st, 1));
+    ds("tasks/status").write_region({task}, {1}, std::span<const std::int32_t>(&st, 1));
     const std::int64_t steps = out.steps;
-    f_.open_dataset("tasks/steps").write_region({task}, {1}, std::span<const std::int64_t>(&steps, 1));
+    ds("tasks/steps").write_region({task}, {1}, std::span<const std::int64_t>(&steps, 1));
     const physics::State& s = out.final_state;
     std::vector<double> row{s.t, double(s.contact.mode), double(s.contact.sigma), s.contact.s_star, s.impact_loss};
     row.insert(row.end(), s.y.data(), s.y.data() + s.y.size());
-    f_.open_dataset("tasks/final_state").write_region({task, 0}, {1, kStateCols}, std::span<const double>(row));
+    ds("tasks/final_state").write_region({task, 0}, {1, kStateCols}, std::span<const double>(row));
     f_.flush();
   }
 
@@ -159,6 +160,12 @@ class SweepFile {
     tg.set_attribute("failures", fmt::format("{}", fmt::join(failures, "\n")));
     io::Group prov = f_.require_group("provenance");
     provenance(prov);
+    close();
+  }
+
+  // Closes the datasets held open for writing, then the file.
+  void close() {
+    open_.clear();
     f_.close();
   }
 
@@ -222,16 +229,16 @@ class SweepFile {
     const io::Dims at{chain, std::size_t(rec.index)}, one{1, 1};
     const std::size_t n = std::min(rec.size(), cap_);
     const std::int32_t count = std::int32_t(n);
-    f_.open_dataset("samples/count").write_region(at, one, std::span<const std::int32_t>(&count, 1));
+    ds("samples/count").write_region(at, one, std::span<const std::int32_t>(&count, 1));
     if (n == 0) return;
     std::vector<double> mode(rec.mode.begin(), rec.mode.begin() + long(n));
     const std::vector<double>* columns[] = {&rec.t, &rec.omega_m, &rec.L1, &rec.T1, &rec.T2, &mode};
     for (std::size_t k = 0; k < 6; ++k)
-      f_.open_dataset(std::string("samples/") + kSamples[k])
+      ds(std::string("samples/") + kSamples[k])
           .write_region({chain, std::size_t(rec.index), 0}, {1, 1, n}, std::span<const double>(columns[k]->data(), n));
-    f_.open_dataset("samples/r1").write_region({chain, std::size_t(rec.index), 0, 0}, {1, 1, n, 3},
+    ds("samples/r1").write_region({chain, std::size_t(rec.index), 0, 0}, {1, 1, n, 3},
                                                std::span<const double>(rec.r1.data(), 3 * n));
-    f_.open_dataset("samples/r2").write_region({chain, std::size_t(rec.index), 0, 0}, {1, 1, n, 3},
+    ds("samples/r2").write_region({chain, std::size_t(rec.index), 0, 0}, {1, 1, n, 3},
                                                std::span<const double>(rec.r2.data(), 3 * n));
   }
 
@@ -240,7 +247,7 @@ class SweepFile {
   void write_classification(std::size_t chain, std::size_t window, const sweep::OrbitClassification& c) {
     const io::Dims at{chain, window}, one{1, 1};
     const std::int32_t cls = static_cast<std::int32_t>(c.cls);
-    f_.open_dataset("windows/class").write_region(at, one, std::span<const std::int32_t>(&cls, 1));
+    ds("windows/class").write_region(at, one, std::span<const std::int32_t>(&cls, 1));
     const auto& s = c.stats;
     const double stats[kNumStats] = {c.confidence,     s.omega_ball,     s.ball[0].omega,  s.ball[1].omega,
                                      s.rotation_number, s.ball[0].rho.mean, s.ball[0].rho.std, s.ball[1].rho.mean,
@@ -248,15 +255,24 @@ class SweepFile {
                                      s.L1.std,         s.L1.min,         s.L1.max,         s.T1.mean,
                                      s.T2.mean};
     for (std::size_t k = 0; k < kNumStats; ++k)
-      f_.open_dataset(std::string("windows/") + kStats[k][0]).write_region(at, one, std::span<const double>(&stats[k], 1));
-    f_.open_dataset("windows/mode_fraction")
+      ds(std::string("windows/") + kStats[k][0]).write_region(at, one, std::span<const double>(&stats[k], 1));
+    ds("windows/mode_fraction")
         .write_region({chain, window, 0}, {1, 1, 5}, std::span<const double>(s.mode_fraction));
   }
 
   io::File& file() { return f_; }
 
  private:
+  // The result datasets stay open while the sweep writes them: opening and closing one per
+  // window costs more than the write (closing a chunked dataset also flushes its chunk cache).
+  io::Dataset& ds(const std::string& path) {
+    auto it = open_.find(path);
+    if (it == open_.end()) it = open_.emplace(path, f_.open_dataset(path)).first;
+    return it->second;
+  }
+
   io::File f_;
+  std::map<std::string, io::Dataset> open_;
   std::size_t C_, W_, cap_, T_;
 };
 
