@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <hdf5.h>
+#include <zlib.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -548,6 +549,32 @@ void write_region_impl(const Dataset& d, hid_t native, const Dims& offset, const
 void Dataset::write_region(const Dims& offset, const Dims& count, std::span<const double> data) {
   write_region_impl(*this, handle_.get(), offset, count, data.data(), data.size(), H5T_NATIVE_DOUBLE);
 }
+void Dataset::write_chunk(const Dims& offset, std::span<const std::byte> filtered) {
+  Where w{file_name(), path()};
+  const auto start = to_hsize(offset);
+  // Filter mask 0: every filter of the pipeline was applied.
+  check(H5Dwrite_chunk(handle_.get(), H5P_DEFAULT, 0, start.data(), filtered.size(), filtered.data()),
+        "H5Dwrite_chunk", w);
+}
+
+std::vector<std::byte> encode_chunk(std::span<const double> values, int deflate) {
+  // Shuffle (H5Z_FILTER_SHUFFLE): byte j of every element together, j = 0..7.
+  constexpr std::size_t B = sizeof(double);
+  const std::size_t n = values.size();
+  const auto* in = reinterpret_cast<const unsigned char*>(values.data());
+  std::vector<unsigned char> shuffled(n * B);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < B; ++j) shuffled[j * n + i] = in[i * B + j];
+  // Deflate (H5Z_FILTER_DEFLATE): a zlib stream, as compress2 writes it.
+  uLongf size = compressBound(uLong(shuffled.size()));
+  std::vector<std::byte> out(size);
+  if (compress2(reinterpret_cast<Bytef*>(out.data()), &size, shuffled.data(), uLong(shuffled.size()),
+                std::clamp(deflate, 1, 9)) != Z_OK)
+    throw Hdf5Error("encode_chunk: zlib's compress2 failed");
+  out.resize(size);
+  return out;
+}
+
 void Dataset::write_region(const Dims& offset, const Dims& count, std::span<const std::int32_t> data) {
   write_region_impl(*this, handle_.get(), offset, count, data.data(), data.size(), H5T_NATIVE_INT32);
 }

@@ -147,11 +147,19 @@ class Dataset : public Object {
   void write_region(const Dims& offset, const Dims& count, std::span<const double> data);
   void write_region(const Dims& offset, const Dims& count, std::span<const std::int32_t> data);
   void write_region(const Dims& offset, const Dims& count, std::span<const std::int64_t> data);
+  // Write one whole chunk, already passed through the dataset's filters (see encode_chunk), at
+  // `offset` (a multiple of the chunk shape): the compression can then happen elsewhere.
+  void write_chunk(const Dims& offset, std::span<const std::byte> filtered);
 
  protected:
   friend class Group;
   using Object::Object;
 };
+
+// One chunk of doubles through the filters Group::create_filled sets for deflate > 0, in
+// HDF5's order: byte shuffle, then zlib's deflate at that level. For Dataset::write_chunk;
+// `values` fills the whole chunk (pad with the fill value). Pure: any rank may call it.
+std::vector<std::byte> encode_chunk(std::span<const double> values, int deflate);
 
 class AppendableTable;
 
