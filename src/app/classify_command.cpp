@@ -62,7 +62,8 @@ int classify_command(const ClassifyArgs& args) {
         const sweep::OrbitClassification r = sweep::classify_orbit(w, scales, settings);
         changed += static_cast<std::int32_t>(r.cls) != cls(c, k);
         ++total;
-        out.write_classification(c, k, r);
+        const WindowRow row = window_row(r);
+        out.write_rows(c, k, std::span<const WindowRow>(&row, 1));
       }
     }
     io::Group wg = out.file().open_group("windows");

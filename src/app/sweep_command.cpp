@@ -20,6 +20,7 @@
 #include "app/commands.hpp"
 #include "app/sweep_file.hpp"
 #include "app/sweep_recovery.hpp"
+#include "app/sweep_result.hpp"
 #include "config/config.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/journal.hpp"
@@ -175,8 +176,8 @@ int sweep_command(const SweepArgs& args) {
     return kExitBadInput;
   }
 
-  // One result into the file (the journal holds it already): the windows classified on the
-  // master, written and flushed. A journal record is a kind byte and then: 1 (ran) the task's
+  // One result into the file (the journal holds it already): the windows as the worker
+  // classified and compressed them (sweep_result.hpp), written and flushed. A journal record is a kind byte and then: 1 (ran) the task's
   // output; 2 (failed without output: past the task wall-clock bound) the reason; 3 (not run)
   // nothing.
   std::vector<std::string> failures;
@@ -187,19 +188,19 @@ int sweep_command(const SweepArgs& args) {
       return 0.0;
     }
     const std::size_t chain = std::size_t(std::upper_bound(first_task.begin(), first_task.end(), id) - first_task.begin()) - 1;
-    sweep::TaskOutput out;
+    TaskResult result;
+    sweep::TaskOutput& out = result.summary;
     if (std::to_integer<int>(record[0]) == 2) {
       out.ok = false;
       out.failure.assign(reinterpret_cast<const char*>(record.data() + 1), record.size() - 1);
       out.final_state.t = nan;
       out.final_state.y.setConstant(nan);
     } else {
-      out = sweep::decode_output(parallel::Bytes(record.begin() + 1, record.end()));
+      result = decode_result(record.subspan(1));
     }
     status[id] = out.ok ? 1 : 2;
     if (!out.ok) failures.push_back(fmt::format("task {} (chain {}, part {}): {}", id, chain, id - first_task[chain], out.failure));
-    const std::vector<sweep::OrbitClassification> classes = sweep::classify_windows(setups[chain], out);
-    file->write_task(id, chain, out, classes);  // written and flushed at once
+    file->write_task(id, chain, result);  // written and flushed at once
     return out.simulated;  // [s]
   };
   if (master && replay.records.size() > 1) {
@@ -235,7 +236,7 @@ int sweep_command(const SweepArgs& args) {
     o.ok = out.ok;
     o.error = out.failure;
     o.carry = sweep::encode(out.final_state);
-    o.output = sweep::encode(out);
+    o.output = encode(make_result(setups[chain], std::move(out), cap));  // classified and compressed here
     return o;
   };
 

@@ -12,6 +12,7 @@
 
 #include "config/config.hpp"
 #include "io/hdf5_file.hpp"
+#include "app/sweep_result.hpp"
 #include "sweep/orbit_classifier.hpp"
 #include "sweep/task.hpp"
 
@@ -24,28 +25,6 @@ inline constexpr double kNotComputed = std::numeric_limits<double>::quiet_NaN();
 // writes its windows and its final state and flushes. An interrupted sweep keeps all that.
 class SweepFile {
  public:
-  // The per-window statistics, in the order of kStats.
-  static constexpr const char* kStats[][3] = {
-      {"confidence", "1", "confidence of the class, in [0, 1]"},
-      {"omega_ball", "rad/s", "mean ω_ball of the balls with a reliable azimuth"},
-      {"omega_ball_bead", "rad/s", "ω_ball of the bead (NaN when unreliable)"},
-      {"omega_ball_bottom", "rad/s", "ω_ball of the bottom ball (NaN when unreliable)"},
-      {"rotation_number", "1", "ω_ball / mean ω_m"},
-      {"radius_bead_mean", "m", "mean horizontal radius of the bead"},
-      {"radius_bead_std", "m", "its standard deviation"},
-      {"radius_bottom_mean", "m", "mean horizontal radius of the bottom ball"},
-      {"radius_bottom_std", "m", "its standard deviation"},
-      {"height_bead_mean", "m", "mean height of the bead"},
-      {"height_bottom_mean", "m", "mean height of the bottom ball"},
-      {"L1_mean", "m", "mean bead position s = L1"},
-      {"L1_std", "m", "its standard deviation"},
-      {"L1_min", "m", "smallest L1"},
-      {"L1_max", "m", "largest L1"},
-      {"T1_mean", "N", "mean tension above the bead"},
-      {"T2_mean", "N", "mean tension below the bead"},
-  };
-  static constexpr std::size_t kNumStats = sizeof(kStats) / sizeof(kStats[0]);
-  static constexpr const char* kSamples[] = {"t", "omega_m", "L1", "T1", "T2", "mode"};
   static constexpr std::size_t kStateCols = physics::idx::dim + 5;
 
   SweepFile(io::File file, std::size_t chains, std::size_t windows, std::size_t cap, std::size_t tasks)
@@ -75,8 +54,14 @@ class SweepFile {
     sg.set_attribute("sample_rate", cfg.sample_rate);
     sg.set_attribute("description", "every window's samples, padded with NaN beyond count");
     sg.create_filled("count", dims, io::DType::Int32, 0.0, chunk);
-    for (const char* name : kSamples) sg.create_filled(name, {C_, W_, cap_}, io::DType::Float64, kNotComputed, {1, 1, cap_}, 4);
-    for (const char* name : {"r1", "r2"}) sg.create_filled(name, {C_, W_, cap_, 3}, io::DType::Float64, kNotComputed, {1, 1, cap_, 3}, 4);
+    // One chunk per window: the workers compress it (sweep_result.hpp), the master stores it.
+    for (std::size_t k = 0; k < kNumSampleColumns; ++k) {
+      if (k < 6)
+        sg.create_filled(kSampleColumns[k], {C_, W_, cap_}, io::DType::Float64, kNotComputed, {1, 1, cap_}, kSampleDeflate);
+      else
+        sg.create_filled(kSampleColumns[k], {C_, W_, cap_, 3}, io::DType::Float64, kNotComputed, {1, 1, cap_, 3},
+                         kSampleDeflate);
+    }
     io::Group tg = f_.create_group("tasks");
     std::vector<std::int64_t> chain, index;
     std::vector<double> tb, te;
@@ -130,9 +115,9 @@ class SweepFile {
     f_.flush();
   }
 
-  void write_task(std::size_t task, std::size_t chain, const sweep::TaskOutput& out,
-                  const std::vector<sweep::OrbitClassification>& classes) {
-    for (std::size_t i = 0; i < out.windows.size(); ++i) write_window(chain, out.windows[i], classes[i]);
+  void write_task(std::size_t task, std::size_t chain, const TaskResult& result) {
+    write_windows(chain, result.windows);
+    const sweep::TaskOutput& out = result.summary;
     const std::int32_t st = out.ok ? 1 : 2;
     ds("tasks/status").write_region({task}, {1}, std::span<const std::int32_t>(&st, 1));
     const std::int64_t steps = out.steps;
@@ -224,40 +209,46 @@ class SweepFile {
         .set_attribute("description", "protocol segment index");
   }
 
-  void write_window(std::size_t chain, const sweep::WindowRecord& rec, const sweep::OrbitClassification& c) {
-    write_classification(chain, std::size_t(rec.index), c);
-    const io::Dims at{chain, std::size_t(rec.index)}, one{1, 1};
-    const std::size_t n = std::min(rec.size(), cap_);
-    const std::int32_t count = std::int32_t(n);
-    ds("samples/count").write_region(at, one, std::span<const std::int32_t>(&count, 1));
-    if (n == 0) return;
-    std::vector<double> mode(rec.mode.begin(), rec.mode.begin() + long(n));
-    const std::vector<double>* columns[] = {&rec.t, &rec.omega_m, &rec.L1, &rec.T1, &rec.T2, &mode};
-    for (std::size_t k = 0; k < 6; ++k)
-      ds(std::string("samples/") + kSamples[k])
-          .write_region({chain, std::size_t(rec.index), 0}, {1, 1, n}, std::span<const double>(columns[k]->data(), n));
-    ds("samples/r1").write_region({chain, std::size_t(rec.index), 0, 0}, {1, 1, n, 3},
-                                               std::span<const double>(rec.r1.data(), 3 * n));
-    ds("samples/r2").write_region({chain, std::size_t(rec.index), 0, 0}, {1, 1, n, 3},
-                                               std::span<const double>(rec.r2.data(), 3 * n));
+  // A task's windows: their rows of /windows and /samples/count in one write per dataset (a
+  // task's windows are consecutive), and each window's sample chunks as the worker made them.
+  void write_windows(std::size_t chain, const std::vector<WindowResult>& windows) {
+    if (windows.empty()) return;
+    const std::size_t first = std::size_t(windows.front().index), n = windows.size();
+    for (std::size_t i = 0; i < n; ++i)
+      if (std::size_t(windows[i].index) != first + i) throw io::Hdf5Error("sweep file: a task's windows are not consecutive");
+    std::vector<WindowRow> rows;
+    std::vector<std::int32_t> count;
+    for (const WindowResult& w : windows) {
+      rows.push_back(w.row);
+      count.push_back(w.count);
+    }
+    write_rows(chain, first, rows);
+    ds("samples/count").write_region({chain, first}, {1, n}, std::span<const std::int32_t>(count));
+    for (const WindowResult& w : windows)
+      for (std::size_t k = 0; k < w.chunks.size(); ++k)
+        ds(std::string("samples/") + kSampleColumns[k])
+            .write_chunk(k < 6 ? io::Dims{chain, std::size_t(w.index), 0} : io::Dims{chain, std::size_t(w.index), 0, 0},
+                         w.chunks[k]);
   }
 
  public:
-  // The class and statistics of one window (also what astrojax classify rewrites).
-  void write_classification(std::size_t chain, std::size_t window, const sweep::OrbitClassification& c) {
-    const io::Dims at{chain, window}, one{1, 1};
-    const std::int32_t cls = static_cast<std::int32_t>(c.cls);
-    ds("windows/class").write_region(at, one, std::span<const std::int32_t>(&cls, 1));
-    const auto& s = c.stats;
-    const double stats[kNumStats] = {c.confidence,     s.omega_ball,     s.ball[0].omega,  s.ball[1].omega,
-                                     s.rotation_number, s.ball[0].rho.mean, s.ball[0].rho.std, s.ball[1].rho.mean,
-                                     s.ball[1].rho.std, s.ball[0].z.mean, s.ball[1].z.mean, s.L1.mean,
-                                     s.L1.std,         s.L1.min,         s.L1.max,         s.T1.mean,
-                                     s.T2.mean};
-    for (std::size_t k = 0; k < kNumStats; ++k)
-      ds(std::string("windows/") + kStats[k][0]).write_region(at, one, std::span<const double>(&stats[k], 1));
-    ds("windows/mode_fraction")
-        .write_region({chain, window, 0}, {1, 1, 5}, std::span<const double>(s.mode_fraction));
+  // Rows of /windows for consecutive windows from `first` (also what astrojax classify rewrites).
+  void write_rows(std::size_t chain, std::size_t first, std::span<const WindowRow> rows) {
+    const std::size_t n = rows.size();
+    if (n == 0) return;
+    const io::Dims at{chain, first}, block{1, n};
+    std::vector<std::int32_t> cls(n);
+    std::vector<double> column(n), modes(5 * n);
+    for (std::size_t i = 0; i < n; ++i) {
+      cls[i] = rows[i].cls;
+      std::copy(rows[i].mode_fraction.begin(), rows[i].mode_fraction.end(), modes.begin() + long(5 * i));
+    }
+    ds("windows/class").write_region(at, block, std::span<const std::int32_t>(cls));
+    for (std::size_t k = 0; k < kNumStats; ++k) {
+      for (std::size_t i = 0; i < n; ++i) column[i] = rows[i].stats[k];
+      ds(std::string("windows/") + kStats[k][0]).write_region(at, block, std::span<const double>(column));
+    }
+    ds("windows/mode_fraction").write_region({chain, first, 0}, {1, n, 5}, std::span<const double>(modes));
   }
 
   io::File& file() { return f_; }

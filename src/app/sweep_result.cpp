@@ -1,0 +1,86 @@
+#include "app/sweep_result.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+
+#include "io/hdf5_file.hpp"
+#include "sweep/codec.hpp"
+
+namespace ajx::app {
+
+WindowRow window_row(const sweep::OrbitClassification& c) {
+  const auto& s = c.stats;
+  WindowRow r;
+  r.cls = static_cast<std::int32_t>(c.cls);
+  r.stats = {c.confidence,        s.omega_ball,       s.ball[0].omega,    s.ball[1].omega,  s.rotation_number,
+             s.ball[0].rho.mean,  s.ball[0].rho.std,  s.ball[1].rho.mean, s.ball[1].rho.std, s.ball[0].z.mean,
+             s.ball[1].z.mean,    s.L1.mean,          s.L1.std,           s.L1.min,         s.L1.max,
+             s.T1.mean,           s.T2.mean};
+  std::copy(std::begin(s.mode_fraction), std::end(s.mode_fraction), r.mode_fraction.begin());
+  return r;
+}
+
+TaskResult make_result(const sweep::ChainSetup& chain, sweep::TaskOutput out, std::size_t cap) {
+  const std::vector<sweep::OrbitClassification> classes = sweep::classify_windows(chain, out);
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  TaskResult r;
+  for (std::size_t i = 0; i < out.windows.size(); ++i) {
+    const sweep::WindowRecord& rec = out.windows[i];
+    WindowResult w;
+    w.index = rec.index;
+    w.count = std::int32_t(std::min(rec.size(), cap));
+    w.row = window_row(classes[i]);
+    const auto n = std::size_t(w.count);
+    if (n > 0) {
+      std::vector<double> mode(rec.mode.begin(), rec.mode.begin() + long(n));
+      const std::vector<double>* columns[] = {&rec.t, &rec.omega_m, &rec.L1, &rec.T1, &rec.T2, &mode, &rec.r1, &rec.r2};
+      for (std::size_t k = 0; k < kNumSampleColumns; ++k) {
+        const std::size_t width = k < 6 ? 1 : 3;  // r1 and r2: three components per sample
+        std::vector<double> chunk(width * cap, nan);
+        std::copy_n(columns[k]->begin(), width * n, chunk.begin());
+        w.chunks.push_back(io::encode_chunk(chunk, kSampleDeflate));
+      }
+    }
+    r.windows.push_back(std::move(w));
+  }
+  out.windows.clear();
+  r.summary = std::move(out);
+  return r;
+}
+
+std::vector<std::byte> encode(const TaskResult& r) {
+  sweep::ByteWriter w;
+  w.put_vector(sweep::encode(r.summary));
+  w.put<std::uint64_t>(r.windows.size());
+  for (const WindowResult& x : r.windows) {
+    w.put(x.index);
+    w.put(x.count);
+    w.put(x.row.cls);
+    w.put(x.row.stats);
+    w.put(x.row.mode_fraction);
+    w.put<std::uint64_t>(x.chunks.size());
+    for (const auto& c : x.chunks) w.put_vector(c);
+  }
+  return w.take();
+}
+
+TaskResult decode_result(std::span<const std::byte> bytes) {
+  sweep::ByteReader rd(bytes.data(), bytes.size());
+  TaskResult r;
+  r.summary = sweep::decode_output(rd.get_vector<std::byte>());
+  r.windows.resize(rd.get<std::uint64_t>());
+  for (WindowResult& x : r.windows) {
+    x.index = rd.get<std::int32_t>();
+    x.count = rd.get<std::int32_t>();
+    x.row.cls = rd.get<std::int32_t>();
+    x.row.stats = rd.get<decltype(x.row.stats)>();
+    x.row.mode_fraction = rd.get<decltype(x.row.mode_fraction)>();
+    x.chunks.resize(rd.get<std::uint64_t>());
+    for (auto& c : x.chunks) c = rd.get_vector<std::byte>();
+  }
+  if (!rd.done()) throw std::runtime_error("sweep result: trailing bytes");
+  return r;
+}
+
+}  // namespace ajx::app

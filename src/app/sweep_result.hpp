@@ -1,0 +1,70 @@
+// What a worker sends back for one task, what the journal keeps and what the master writes
+// into the sweep file: the task's summary and, per window, its class with the statistics of
+// one /windows row and its samples as HDF5 chunks already compressed. The worker classifies
+// and compresses, so the master (the farm's one serial stage) only writes.
+#pragma once
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "sweep/orbit_classifier.hpp"
+#include "sweep/task.hpp"
+
+namespace ajx::app {
+
+// The per-window statistics of /windows: name, units, description.
+inline constexpr const char* kStats[][3] = {
+    {"confidence", "1", "confidence of the class, in [0, 1]"},
+    {"omega_ball", "rad/s", "mean ω_ball of the balls with a reliable azimuth"},
+    {"omega_ball_bead", "rad/s", "ω_ball of the bead (NaN when unreliable)"},
+    {"omega_ball_bottom", "rad/s", "ω_ball of the bottom ball (NaN when unreliable)"},
+    {"rotation_number", "1", "ω_ball / mean ω_m"},
+    {"radius_bead_mean", "m", "mean horizontal radius of the bead"},
+    {"radius_bead_std", "m", "its standard deviation"},
+    {"radius_bottom_mean", "m", "mean horizontal radius of the bottom ball"},
+    {"radius_bottom_std", "m", "its standard deviation"},
+    {"height_bead_mean", "m", "mean height of the bead"},
+    {"height_bottom_mean", "m", "mean height of the bottom ball"},
+    {"L1_mean", "m", "mean bead position s = L1"},
+    {"L1_std", "m", "its standard deviation"},
+    {"L1_min", "m", "smallest L1"},
+    {"L1_max", "m", "largest L1"},
+    {"T1_mean", "N", "mean tension above the bead"},
+    {"T2_mean", "N", "mean tension below the bead"},
+};
+inline constexpr std::size_t kNumStats = sizeof(kStats) / sizeof(kStats[0]);
+// The sample datasets of /samples, in chunk order: six scalars, then r1 and r2 (3 per sample).
+inline constexpr const char* kSampleColumns[] = {"t", "omega_m", "L1", "T1", "T2", "mode", "r1", "r2"};
+inline constexpr std::size_t kNumSampleColumns = sizeof(kSampleColumns) / sizeof(kSampleColumns[0]);
+inline constexpr int kSampleDeflate = 4;  // zlib level of the sample chunks
+
+// One row of /windows.
+struct WindowRow {
+  std::int32_t cls = -1;
+  std::array<double, kNumStats> stats{};
+  std::array<double, 5> mode_fraction{};
+};
+WindowRow window_row(const sweep::OrbitClassification& c);
+
+struct WindowResult {
+  std::int32_t index = 0;  // the window's index in its chain
+  std::int32_t count = 0;  // samples stored, at most the file's samples per window
+  WindowRow row;
+  std::vector<std::vector<std::byte>> chunks;  // per kSampleColumns; none when count == 0
+};
+
+struct TaskResult {
+  sweep::TaskOutput summary;  // the task's outcome, its windows' samples left out
+  std::vector<WindowResult> windows;
+};
+
+// On the worker: classify the windows and compress their samples into chunks of `cap`
+// samples (padded with NaN), as the file stores them.
+TaskResult make_result(const sweep::ChainSetup& chain, sweep::TaskOutput out, std::size_t cap);
+
+std::vector<std::byte> encode(const TaskResult& r);
+TaskResult decode_result(std::span<const std::byte> bytes);
+
+}  // namespace ajx::app
