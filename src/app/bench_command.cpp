@@ -51,13 +51,17 @@ class CsvOutput {
   std::ofstream stream_;
 };
 
+void require_horizon(double horizon) {
+  if (!(horizon > 0.0 && horizon <= 1e4))
+    throw config::ConfigError(fmt::format("--horizon {}: allowed (0, 1e4] s", horizon));
+}
+
 }  // namespace
 
 int bench_work_precision_command(const WorkPrecisionArgs& a) {
   std::vector<bench::Scene> scenes;
   try {
-    if (!(a.horizon > 0.0 && a.horizon <= 1e4))
-      throw config::ConfigError(fmt::format("--horizon {}: allowed (0, 1e4] s", a.horizon));
+    require_horizon(a.horizon);
     if (a.repeats < 1) throw config::ConfigError(fmt::format("--repeats {}: allowed >= 1", a.repeats));
     for (const auto& m : a.methods) (void)numerics::make_stepper(m);
     for (double r : a.rtols)
@@ -113,8 +117,7 @@ namespace ajx::app {
 int bench_stability_command(const StabilityArgs& a) {
   bench::Scene base;
   try {
-    if (!(a.horizon > 0.0 && a.horizon <= 1e4))
-      throw config::ConfigError(fmt::format("--horizon {}: allowed (0, 1e4] s", a.horizon));
+    require_horizon(a.horizon);
     for (const auto& m : a.methods)
       if (numerics::make_stepper(m)->adaptive())
         throw config::ConfigError(fmt::format("--methods {}: allowed the fixed-step methods euler, rk4, radau_iia", m));
@@ -178,8 +181,7 @@ namespace ajx::app {
 int bench_friction_command(const FrictionArgs& a) {
   bench::Scene base;
   try {
-    if (!(a.horizon > 0.0 && a.horizon <= 1e4))
-      throw config::ConfigError(fmt::format("--horizon {}: allowed (0, 1e4] s", a.horizon));
+    require_horizon(a.horizon);
     for (double e : a.eps)
       if (!(e > 0.0 && e <= 1000.0)) throw config::ConfigError(fmt::format("--eps {}: allowed (0, 1000] m/s", e));
     if (!(a.rtol >= 1e-15 && a.rtol < 1.0))
@@ -260,8 +262,7 @@ int bench_constraints_command(const ConstraintsArgs& a) {
   bench::Scene scene;
   std::vector<bench::Setting> settings;
   try {
-    if (!(a.horizon > 0.0 && a.horizon <= 1e4))
-      throw config::ConfigError(fmt::format("--horizon {}: allowed (0, 1e4] s", a.horizon));
+    require_horizon(a.horizon);
     for (double al : a.alphas)
       if (!(al > 0.0 && al <= 1e6)) throw config::ConfigError(fmt::format("--alphas {}: allowed (0, 1e6] 1/s", al));
     for (const auto& s : a.settings) {  // method@rtol or method@step
@@ -323,8 +324,7 @@ namespace ajx::app {
 int bench_threshold_command(const WorkPrecisionArgs& a, double sample_dt) {
   std::vector<bench::Scene> scenes;
   try {
-    if (!(a.horizon > 0.0 && a.horizon <= 1e4))
-      throw config::ConfigError(fmt::format("--horizon {}: allowed (0, 1e4] s", a.horizon));
+    require_horizon(a.horizon);
     if (!(sample_dt > 0.0 && sample_dt <= 0.1))
       throw config::ConfigError(fmt::format("--sample {}: allowed (0, 0.1] s", sample_dt));
     for (const auto& m : a.methods) (void)numerics::make_stepper(m);

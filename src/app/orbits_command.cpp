@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "app/commands.hpp"
+#include "app/provenance.hpp"
 #include "config/config.hpp"
 #include "io/hdf5_file.hpp"
 #include "orbits/continuation.hpp"
@@ -387,13 +388,7 @@ int orbits_command(const OrbitsArgs& args) {
       std::error_code ec;
       if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path(), ec);
       io::File f = io::File::create_temporary(out);
-      f.set_attribute("program", "astrojax-explorer");
-      f.set_attribute("version", ASTROJAX_VERSION);
-      f.set_attribute("git_commit", ASTROJAX_GIT_COMMIT);
-      f.set_attribute("command_line", args.command_line);
-      auto config = f.write_string_dataset("config", cfg.source_text);
-      config.set_attribute("source", cfg.source_name);
-      config.set_attribute("overrides", fmt::format("{}", fmt::join(cfg.overrides, "\n")));
+      write_provenance(f, args.command_line, cfg);
       write_table(f.create_group("orbits"), table);
       if (!points.empty()) {
         io::Group bg = f.create_group("branches");

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "app/commands.hpp"
+#include "app/provenance.hpp"
 #include "config/config.hpp"
 #include "io/hdf5_file.hpp"
 #include "physics/energy.hpp"
@@ -134,13 +135,7 @@ int run_command(const RunArgs& args) {
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
 
   io::File& f = *file;
-  f.set_attribute("program", "astrojax-explorer");
-  f.set_attribute("version", ASTROJAX_VERSION);
-  f.set_attribute("git_commit", ASTROJAX_GIT_COMMIT);
-  f.set_attribute("command_line", args.command_line);
-  auto config = f.write_string_dataset("config", cfg.source_text);
-  config.set_attribute("source", cfg.source_name);
-  config.set_attribute("overrides", fmt::format("{}", fmt::join(cfg.overrides, "\n")));
+  write_provenance(f, args.command_line, cfg);
   io::Group tg = f.create_group("trajectory");
   traj.write(tg);
   io::Group sg = f.create_group("summary");

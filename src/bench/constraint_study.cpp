@@ -10,16 +10,6 @@
 
 namespace ajx::bench {
 
-namespace {
-
-double cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
-
-}  // namespace
-
 ConstraintRun run_constraint_variant(const Scene& scene, const ConstraintVariant& v, const Setting& s, int repeats) {
   using numerics::Vec;
   const physics::Model& m = scene.model;

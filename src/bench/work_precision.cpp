@@ -10,13 +10,13 @@
 
 namespace ajx::bench {
 
-namespace {
-
 double cpu_seconds() {
   timespec ts{};
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
   return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
 }
+
+namespace {
 
 sim::RunOptions options_for(const Scene& scene, const Setting& setting) {
   sim::RunOptions o = scene.run;

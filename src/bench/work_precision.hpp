@@ -15,6 +15,9 @@
 
 namespace ajx::bench {
 
+// CPU time of this process [s]: what the benchmarks time (not wall time on a shared machine).
+double cpu_seconds();
+
 // A scene: a model, a motor schedule, an initial state, run options and a horizon.
 struct Scene {
   std::string name;
