@@ -3,9 +3,12 @@
 // encoding for the farm is exact; a failed integration comes back with its reason.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "sim/simulation.hpp"
+#include "sweep/seeds.hpp"
 #include "sweep/task.hpp"
 
 using namespace ajx;
@@ -59,6 +62,47 @@ TEST(Task, EveryWindowIsRecordedAtTheSampleRate) {
     EXPECT_EQ(r.r1.size(), 3 * r.size());
     EXPECT_NEAR(r.omega_m.front(), w.omega_begin, std::abs(w.omega_end - w.omega_begin) / 10 + 1e-9);
   }
+}
+
+TEST(Task, EveryWindowClosesItsEnergyBalance) {
+  // P_motor = P_drag + P_other + dE/dt over any window, ramps and holds alike: the ledgers are
+  // the run's own work integrals, whose balance closes to ~1e-10 of W_m at rtol 1e-10
+  // (simulation_test); 1e-7 of the largest power leaves three orders for round-off.
+  const ChainSetup c = short_chain();
+  for (const WindowRecord& r : run_chain(c, 3)) {
+    const WindowPowers p = window_powers(r);
+    const double scale = std::max({std::abs(p.motor), p.drag, std::abs(p.energy_rate)});
+    ASSERT_GT(scale, 0.0);
+    EXPECT_NEAR(p.motor, p.drag + p.other + p.energy_rate, 1e-7 * scale) << "window " << r.index;
+    EXPECT_GT(p.drag, 0.0);
+  }
+}
+
+TEST(Task, TheMotorSustainsALockedOrbitAndNothingMore) {
+  // Started on the stable locked orbit at 6π (the locked_orbit seed: an equilibrium of the
+  // co-rotating frame to Newton's round-off), the motor's mean power equals drag's and E does
+  // not change. Departures from the orbit decay (its slowest rate is -c_D/2m), so the only
+  // drift left is the integrator's, ~rtol per unit time: |dE/dt| ≤ 1e-6 P_drag with margin.
+  ChainSetup c;
+  c.model.p.drive_radius = 0.01;
+  c.model.p.contact_distance = 0.03;
+  const double w = 6 * pi;
+  c.protocol = compile({Segment{Segment::Kind::Steps, {}, {w, w, 1, 2.0, 10.0, 1.0}}}, w);
+  c.run.method = "dop853";
+  c.run.integ.tol.rtol = 1e-10;
+  c.run.integ.tol.atol = 1e-12;
+  c.sample_rate = 50.0;
+  const physics::MotorSchedule sched(c.protocol.schedule);
+  const TaskOutput out = run_task(c, split(c.protocol, 1).front(), seed_state(c.model, sched, "locked_orbit", w, 0, 0.0));
+  ASSERT_TRUE(out.ok) << out.failure;
+  ASSERT_EQ(out.windows.size(), 1u);
+  const WindowPowers p = window_powers(out.windows.front());
+  ASSERT_GT(p.drag, 0.0);
+  EXPECT_NEAR(p.motor, p.drag, 1e-6 * p.drag);
+  EXPECT_NEAR(p.energy_rate, 0.0, 1e-6 * p.drag);
+  EXPECT_NEAR(p.other, 0.0, 1e-6 * p.drag);  // the bead is stuck: no friction work, no impacts
+  std::printf("measured on the locked orbit at 6π: P_motor %.6e W, P_drag %.6e W, dE/dt %.2e W\n", p.motor, p.drag,
+              p.energy_rate);
 }
 
 TEST(Task, SplittingAChainDifferentlyChangesNothingBeyondTheTolerance) {

@@ -48,6 +48,11 @@ class SweepFile {
       d.set_attribute("units", st[1]);
       d.set_attribute("description", st[2]);
     }
+    for (const auto& st : kPowers) {
+      auto d = wg.create_filled(st[0], dims, io::DType::Float64, kNotComputed, chunk);
+      d.set_attribute("units", st[1]);
+      d.set_attribute("description", st[2]);
+    }
     wg.create_filled("mode_fraction", {C_, W_, 5}, io::DType::Float64, kNotComputed, {1, W_, 5})
         .set_attribute("description", "time fraction in modes 0 sliding, 1 bottom stop, 2 stuck, 3 top stop, 4 slack");
     io::Group sg = f_.create_group("samples");
@@ -223,6 +228,11 @@ class SweepFile {
       count.push_back(w.count);
     }
     write_rows(chain, first, rows);
+    std::vector<double> column(n);
+    for (std::size_t k = 0; k < kNumPowers; ++k) {
+      for (std::size_t i = 0; i < n; ++i) column[i] = windows[i].powers[k];
+      ds(std::string("windows/") + kPowers[k][0]).write_region({chain, first}, {1, n}, std::span<const double>(column));
+    }
     ds("samples/count").write_region({chain, first}, {1, n}, std::span<const std::int32_t>(count));
     for (const WindowResult& w : windows)
       for (std::size_t k = 0; k < w.chunks.size(); ++k)

@@ -31,6 +31,8 @@ TaskResult make_result(const sweep::ChainSetup& chain, sweep::TaskOutput out, st
     w.index = rec.index;
     w.count = std::int32_t(std::min(rec.size(), cap));
     w.row = window_row(classes[i]);
+    const sweep::WindowPowers p = sweep::window_powers(rec);
+    w.powers = {p.motor, p.drag, p.other, p.energy_rate};
     const auto n = std::size_t(w.count);
     if (n > 0) {
       std::vector<double> mode(rec.mode.begin(), rec.mode.begin() + long(n));
@@ -59,6 +61,7 @@ std::vector<std::byte> encode(const TaskResult& r) {
     w.put(x.row.cls);
     w.put(x.row.stats);
     w.put(x.row.mode_fraction);
+    w.put(x.powers);
     w.put<std::uint64_t>(x.chunks.size());
     for (const auto& c : x.chunks) w.put_vector(c);
   }
@@ -76,6 +79,7 @@ TaskResult decode_result(std::span<const std::byte> bytes) {
     x.row.cls = rd.get<std::int32_t>();
     x.row.stats = rd.get<decltype(x.row.stats)>();
     x.row.mode_fraction = rd.get<decltype(x.row.mode_fraction)>();
+    x.powers = rd.get<decltype(x.powers)>();
     x.chunks.resize(rd.get<std::uint64_t>());
     for (auto& c : x.chunks) c = rd.get_vector<std::byte>();
   }

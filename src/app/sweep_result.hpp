@@ -35,6 +35,16 @@ inline constexpr const char* kStats[][3] = {
     {"T2_mean", "N", "mean tension below the bead"},
 };
 inline constexpr std::size_t kNumStats = sizeof(kStats) / sizeof(kStats[0]);
+// The window's energy account (sweep::window_powers), also in /windows; not the classifier's,
+// so `astrojax classify` leaves them as the integration wrote them.
+inline constexpr const char* kPowers[][3] = {
+    {"motor_power", "W", "mean power the motor feeds the balls over the window"},
+    {"drag_power", "W", "mean power drag takes"},
+    {"friction_impact_power", "W", "mean power friction and impacts take"},
+    {"energy_rate", "W", "dE/dt over the window: about 0 for an orbit the motor sustains, negative for a decaying transient"},
+};
+inline constexpr std::size_t kNumPowers = sizeof(kPowers) / sizeof(kPowers[0]);
+
 // The sample datasets of /samples, in chunk order: six scalars, then r1 and r2 (3 per sample).
 inline constexpr const char* kSampleColumns[] = {"t", "omega_m", "L1", "T1", "T2", "mode", "r1", "r2"};
 inline constexpr std::size_t kNumSampleColumns = sizeof(kSampleColumns) / sizeof(kSampleColumns[0]);
@@ -52,6 +62,7 @@ struct WindowResult {
   std::int32_t index = 0;  // the window's index in its chain
   std::int32_t count = 0;  // samples stored, at most the file's samples per window
   WindowRow row;
+  std::array<double, kNumPowers> powers{};     // in the order of kPowers [W]
   std::vector<std::vector<std::byte>> chunks;  // per kSampleColumns; none when count == 0
 };
 

@@ -1,7 +1,9 @@
 #include "sweep/task.hpp"
 
 #include <cmath>
+#include <limits>
 
+#include "physics/energy.hpp"
 #include "sweep/codec.hpp"
 
 namespace ajx::sweep {
@@ -11,7 +13,7 @@ TaskOutput run_task(const ChainSetup& chain, const TaskSpan& span, physics::Stat
   sim::Simulation simulation(chain.model, schedule, chain.run);
   TaskOutput out;
   const auto& windows = chain.protocol.windows;
-  for (int i = 0; i < span.num_windows; ++i) out.windows.push_back({span.first_window + i, {}, {}, {}, {}, {}, {}, {}, {}});
+  for (int i = 0; i < span.num_windows; ++i) out.windows.push_back({span.first_window + i, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}});
   // The sample grid is anchored at the chain's t = 0, so a result depends on its task alone and
   // the samples do not depend on how the chain is split.
   std::size_t w = 0;
@@ -29,6 +31,9 @@ TaskOutput run_task(const ChainSetup& chain, const TaskSpan& span, physics::Stat
     rec.T1.push_back(s.dyn.T1);
     rec.T2.push_back(s.dyn.T2);
     rec.mode.push_back(static_cast<std::int32_t>(s.contact.mode));
+    rec.last = {s.t, s.y(physics::idx::motor_work), s.y(physics::idx::drag_loss),
+                s.y(physics::idx::friction_loss) + s.impact_loss, physics::mechanical_energy(chain.model.p, s.y)};
+    if (rec.size() == 1) rec.first = rec.last;
   };
   start.t = span.t_begin;
   const sim::RunSummary r = simulation.run(start, span.t_end, 1.0 / chain.sample_rate, on_sample, 0.0);
@@ -42,6 +47,16 @@ TaskOutput run_task(const ChainSetup& chain, const TaskSpan& span, physics::Stat
   out.slack_phases = r.slack_phases;
   out.simulated = r.t_end - span.t_begin;
   return out;
+}
+
+WindowPowers window_powers(const WindowRecord& rec) {
+  const double dt = rec.last.t - rec.first.t;
+  if (rec.size() < 2 || !(dt > 0.0)) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    return {nan, nan, nan, nan};
+  }
+  return {(rec.last.motor_work - rec.first.motor_work) / dt, (rec.last.drag_loss - rec.first.drag_loss) / dt,
+          (rec.last.other_loss - rec.first.other_loss) / dt, (rec.last.energy - rec.first.energy) / dt};
 }
 
 std::vector<OrbitClassification> classify_windows(const ChainSetup& chain, const TaskOutput& out,
@@ -113,6 +128,8 @@ std::vector<std::byte> encode(const TaskOutput& o) {
     w.put<std::int32_t>(rec.index);
     for (const auto* v : {&rec.t, &rec.omega_m, &rec.r1, &rec.r2, &rec.L1, &rec.T1, &rec.T2}) w.put_vector(*v);
     w.put_vector(rec.mode);
+    w.put(rec.first);
+    w.put(rec.last);
   }
   return w.take();
 }
@@ -130,6 +147,8 @@ TaskOutput decode_output(const std::vector<std::byte>& bytes) {
     rec.index = r.get<std::int32_t>();
     for (auto* v : {&rec.t, &rec.omega_m, &rec.r1, &rec.r2, &rec.L1, &rec.T1, &rec.T2}) *v = r.get_vector<double>();
     rec.mode = r.get_vector<std::int32_t>();
+    rec.first = r.get<EnergyLedger>();
+    rec.last = r.get<EnergyLedger>();
   }
   if (!r.done()) throw std::runtime_error("sweep codec: trailing bytes in a task output");
   return o;

@@ -23,12 +23,32 @@ struct ChainSetup {
 };
 
 // The samples of one window, row-major: r1 and r2 are N×3.
+// The energy account at one instant: the cumulative work integrals of the state and the
+// mechanical energy, to tell an orbit the motor sustains from a decaying transient.
+struct EnergyLedger {
+  double t = 0.0;             // [s]
+  double motor_work = 0.0;    // W_m [J]
+  double drag_loss = 0.0;     // [J]
+  double other_loss = 0.0;    // friction and impact losses [J]
+  double energy = 0.0;        // E = kinetic + potential [J]
+};
+
 struct WindowRecord {
   int index = 0;  // window index in the chain
   std::vector<double> t, omega_m, r1, r2, L1, T1, T2;
   std::vector<std::int32_t> mode;
+  EnergyLedger first, last;  // at the window's first and last sample
   std::size_t size() const { return t.size(); }
 };
+
+// Mean powers over a window from its ledgers [W]: what the motor feeds, what drag and
+// friction with impacts take, and the rate of change of E. Over any window
+// P_motor = P_drag + P_other + dE/dt (the energy balance); a sustained orbit has dE/dt ≈ 0,
+// a decaying transient dE/dt < 0 of the order of P_drag. NaN with fewer than two samples.
+struct WindowPowers {
+  double motor, drag, other, energy_rate;
+};
+WindowPowers window_powers(const WindowRecord& rec);
 
 struct TaskOutput {
   bool ok = true;
