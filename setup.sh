@@ -38,7 +38,8 @@ install() {
 }
 
 build() {
-  cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release >/dev/null
+  # The product build; ./setup.sh peers turns the peer solvers on for itself only.
+  cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DASTROJAX_PEERS=OFF >/dev/null
   cmake --build "$BUILD_DIR" -j"$(nproc)"
 }
 
@@ -70,5 +71,5 @@ case "${1:-}" in
          cmake --build "$BUILD_DIR" -j"$(nproc)" --target astrojax astrojax_peers ;;
   test-long) install; build; (cd "$BUILD_DIR" && ctest -L long --output-on-failure) ;;
   test-cluster) PACKAGES+=("${CLUSTER_PACKAGES[@]}"); install; build; (cd "$BUILD_DIR" && ctest -L cluster --output-on-failure) ;;
-  *) sed -n '2,9p' "$0"; exit 2 ;;
+  *) sed -n '2,9p' "$0" | sed 's/^# \{0,1\}//'; exit 2 ;;
 esac
