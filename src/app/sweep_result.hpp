@@ -48,7 +48,7 @@ inline constexpr std::size_t kNumPowers = sizeof(kPowers) / sizeof(kPowers[0]);
 // The sample datasets of /samples, in chunk order: six scalars, then r1 and r2 (3 per sample).
 inline constexpr const char* kSampleColumns[] = {"t", "omega_m", "L1", "T1", "T2", "mode", "r1", "r2"};
 inline constexpr std::size_t kNumSampleColumns = sizeof(kSampleColumns) / sizeof(kSampleColumns[0]);
-inline constexpr int kSampleDeflate = 4;  // zlib level of the sample chunks
+inline constexpr int kSampleDeflate = 1;  // zlib level of the sample chunks
 
 // One row of /windows.
 struct WindowRow {
