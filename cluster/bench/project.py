@@ -38,8 +38,8 @@ def main():
     windows_per_chain = p["windows"] / p["chains"]
     print(f"paper protocol on 1 rank: {p['chains']} chains, {p['windows']} windows, {p['tasks']} tasks, "
           f"wall {p['wall']:.2f} s, integration {p['work']:.2f} s")
-    print(f"  integration per window tau_w = {tau_w * 1e3:.2f} ms; master per window m_w = {m_w * 1e3:.2f} ms "
-          f"(classify + journal + HDF5); {windows_per_chain:.0f} windows per chain")
+    print(f"  worker per window (integrate, classify, compress) tau_w = {tau_w * 1e3:.2f} ms; master per window "
+          f"(journal, HDF5 writes) m_w = {m_w * 1e3:.2f} ms; {windows_per_chain:.0f} windows per chain")
 
     a, b = prov(w1), prov(w2)
     e = a["wall"] / (2 * b["wall"])
