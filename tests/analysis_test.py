@@ -20,6 +20,8 @@ import sys
 import unittest
 import zlib
 
+import numpy as np
+
 ASTROJAX, SOURCE, DATA = (os.path.abspath(p) for p in sys.argv[1:4])
 ANALYSIS = os.path.join(SOURCE, "analysis")
 PYTHON = sys.executable
@@ -49,6 +51,10 @@ def make():
     run([ASTROJAX, "sweep", os.path.join(SOURCE, "tests/data/tiny_sweep.toml"), "-o", data("grid2.h5"), "-q",
          "--set", "grid.contact_distance=[0.03,0.04]"])  # two grid axes: R and d
     run([ASTROJAX, "run", os.path.join(SOURCE, "sweeps/spin_up.toml"), "-o", data("run.h5"), "-q"])
+    # For the calibration: two drive radii at two ramp rates across ω_rise.
+    run([ASTROJAX, "sweep", os.path.join(SOURCE, "tests/data/tiny_rise.toml"), "-o", data("calib.h5"), "-q",
+         "--set", "grid.drive_radius=[0.01,0.02]", "--set", "grid.ramp_rate=[0.5,1.0]"])
+    run([ASTROJAX, "thresholds", data("calib.h5"), "--csv", data("calib_thresholds.csv")])
     # For the scripts of `astrojax orbits` and `astrojax bench`: a short continuation, and a
     # tiny work-precision and stability scan (about 1 s together).
     run([ASTROJAX, "orbits", os.path.join(SOURCE, "sweeps/orbits.toml"), "--continue", "omega", "--s", "0.5443",
@@ -318,9 +324,50 @@ class studies(ImageChecks):
         self.figure("plot_stability.py", data("stability.png"), data("stability.csv"))
 
 
+class calibration(unittest.TestCase):
+    def test_extrapolation_recovers_a_line(self):
+        import calibrate
+        # Three rates on an exact line: the intercept, with the bracket widths' own error
+        # (no scatter to scale it): σ² = 1/Σw for the intercept of a weighted line fit.
+        w0, s0, b, sb, how = calibrate.extrapolate([0.1, 0.2, 0.4], [40.1, 40.2, 40.4], [0.05, 0.05, 0.05])
+        self.assertAlmostEqual(w0, 40.0, places=10)
+        self.assertAlmostEqual(b, 1.0, places=9)
+        x = np.array([0.1, 0.2, 0.4])
+        expected = 0.05 * np.sqrt(np.sum(x**2) / (3 * np.sum(x**2) - np.sum(x) ** 2))
+        self.assertAlmostEqual(s0, expected, places=12)
+        self.assertEqual(how, "3 rates")
+        # One rate: the width-weighted mean and its error.
+        w0, s0, _, _, how = calibrate.extrapolate([0.1, 0.1], [10.0, 12.0], [1.0, 1.0])
+        self.assertEqual((w0, how), (11.0, "single rate"))
+        self.assertAlmostEqual(s0, 1 / np.sqrt(2), places=12)
+
+    def test_report_extrapolates_astrojax_brackets(self):
+        # R = 2 cm crosses ω_rise at both rates: ω0 is the straight line through the two
+        # bracket midpoints at rate 0, with σ² = (r2 h1)² + (r1 h2)² over (r2 − r1)².
+        md = data("calibration.md")
+        script("calibrate.py", data("calib.h5"), "-o", md, "--astrojax", ASTROJAX)
+        with open(data("calib_thresholds.csv"), newline="") as f:
+            rows = [r for r in csv.DictReader(f) if r["threshold"] == "omega_rise" and "drive_radius=0.02" in r["parameters"]]
+        pts = sorted((float(r["parameters"].split("ramp_rate=")[1]), float(r["before_rad_s"]), float(r["after_rad_s"]))
+                     for r in rows if r["mid_rad_s"])
+        self.assertEqual(len(pts), 2, "the test sweep must cross ω_rise at both rates for R = 2 cm")
+        (r1, a1, b1), (r2, a2, b2) = pts
+        m1, m2, h1, h2 = (a1 + b1) / 2, (a2 + b2) / 2, (b1 - a1) / 2, (b2 - a2) / 2
+        w0 = (r2 * m1 - r1 * m2) / (r2 - r1)
+        s0 = np.hypot(r2 * h1, r1 * h2) / (r2 - r1)
+        with open(data("calibration.csv"), newline="") as f:
+            mine = [r for r in csv.DictReader(f) if r["threshold"] == "omega_rise" and float(r["drive_radius_m"]) == 0.02]
+        self.assertEqual(len(mine), 1)
+        self.assertAlmostEqual(float(mine[0]["omega0_rad_s"]), w0, delta=1e-7 * w0)
+        self.assertAlmostEqual(float(mine[0]["sigma_rad_s"]), s0, delta=1e-5 * s0)
+        with open(md) as f:
+            text = f.read()
+        self.assertIn("## Best fit", text)
+
+
 class cli(unittest.TestCase):
     SCRIPTS = ("plot_hysteresis.py", "plot_branches.py", "plot_phase.py", "plot_orbits.py", "threshold_report.py",
-               "plot_run.py")
+               "plot_run.py", "calibrate.py")
 
     def test_help(self):
         for name in self.SCRIPTS:
@@ -331,7 +378,7 @@ class cli(unittest.TestCase):
 
     def test_bad_input_named(self):
         for name in self.SCRIPTS:
-            out_path = data("x.md" if name == "threshold_report.py" else "x.png")
+            out_path = data("x.md" if name in ("threshold_report.py", "calibrate.py") else "x.png")
             rc, out = script(name, data("missing.h5"), "-o", out_path, check=False)
             self.assertEqual(rc, 2, name)
             self.assertIn("missing.h5", out, name)
