@@ -12,6 +12,7 @@
 
 #include "orbits/continuation.hpp"
 #include "orbits/orbit_families.hpp"
+#include "measured.hpp"
 
 using namespace ajx;
 using namespace ajx::orbits;
@@ -19,11 +20,6 @@ using namespace ajx::orbits;
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-
-void report(const std::string& key, const std::string& value) {
-  ::testing::Test::RecordProperty(key, value);
-  std::printf("measured %s: %s\n", key.c_str(), value.c_str());
-}
 
 // The Table-1-type orbit at 4.7π, bead stuck at the table's s.
 Vec9 table1_orbit(const physics::Model& m, double s) {

@@ -15,6 +15,7 @@
 #include "orbits/orbit_families.hpp"
 #include "orbits/orbit_stability.hpp"
 #include "sim/simulation.hpp"
+#include "measured.hpp"
 
 using namespace ajx;
 using namespace ajx::orbits;
@@ -22,11 +23,6 @@ using namespace ajx::orbits;
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-
-void report(const std::string& key, const std::string& value) {
-  ::testing::Test::RecordProperty(key, value);
-  std::printf("measured %s: %s\n", key.c_str(), value.c_str());
-}
 
 sim::RunOptions tight() {
   sim::RunOptions o;

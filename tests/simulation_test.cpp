@@ -14,6 +14,7 @@
 #include "physics/energy.hpp"
 #include "sim/simulation.hpp"
 #include "steady_orbit.hpp"
+#include "measured.hpp"
 
 using namespace ajx;
 using namespace ajx::physics;
@@ -38,11 +39,6 @@ State table1_state(const Model& m, const MotorSchedule& sched, double omega) {
 }
 
 // Record a measured figure in the test's XML and print it (ctest -V shows it).
-void report(const std::string& key, const std::string& value) {
-  ::testing::Test::RecordProperty(key, value);
-  std::printf("measured %s: %s\n", key.c_str(), value.c_str());
-}
-
 }  // namespace
 
 TEST(Simulation, FreeFrictionlessMotionConservesEnergy) {

@@ -17,6 +17,7 @@
 #include "orbits/steady_orbit.hpp"
 #include "sim/simulation.hpp"
 #include "steady_orbit.hpp"
+#include "measured.hpp"
 
 using namespace ajx;
 using namespace ajx::orbits;
@@ -25,11 +26,6 @@ namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr double kPi = std::numbers::pi;
-
-void report(const std::string& key, const std::string& value) {
-  ::testing::Test::RecordProperty(key, value);
-  std::printf("measured %s: %s\n", key.c_str(), value.c_str());
-}
 
 // Table 1 of the paper (cm → m): the bead on one side, the bottom ball on the other, in the
 // plane y = 0 with the top on the axis (L1 + L2 = 0.8257 m: the tabulated string).
