@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <fstream>
 #include <numbers>
+#include <optional>
 
 #include "app/commands.hpp"
 #include "bench/scene_file.hpp"
@@ -31,7 +32,7 @@ class CsvOutput {
     if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path(), ec);
     stream_.open(path + ".part");
   }
-  bool ok() const { return bool(stream_); }
+
   std::ofstream& stream() { return stream_; }
   // Closes and renames; prints where the table went. Returns the exit code.
   int commit() {
@@ -56,6 +57,14 @@ void require_horizon(double horizon) {
     throw config::ConfigError(fmt::format("--horizon {}: allowed (0, 1e4] s", horizon));
 }
 
+// The CSV of a benchmark, or none (with the error on stderr) when it cannot be written.
+std::optional<CsvOutput> open_csv(const std::string& path) {
+  std::optional<CsvOutput> table(std::in_place, path);
+  if (table->stream()) return table;
+  std::fprintf(stderr, "error: cannot write %s.part\n", path.c_str());
+  return std::nullopt;
+}
+
 }  // namespace
 
 int bench_work_precision_command(const WorkPrecisionArgs& a) {
@@ -73,12 +82,9 @@ int bench_work_precision_command(const WorkPrecisionArgs& a) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return kExitBadInput;
   }
-  CsvOutput table(a.output);
-  if (!table.ok()) {
-    std::fprintf(stderr, "error: cannot write %s.part\n", a.output.c_str());
-    return kExitBadInput;
-  }
-  std::ofstream& csv = table.stream();
+  std::optional<CsvOutput> table = open_csv(a.output);
+  if (!table) return kExitBadInput;
+  std::ofstream& csv = table->stream();
   csv << "# astrojax bench work-precision; reference: dop853 at rtol 1e-13, floor: |reference - dopri5 at rtol 1e-12|\n";
   csv << bench::csv_header() << "\n";
   for (const bench::Scene& scene : scenes) {
@@ -107,12 +113,8 @@ int bench_work_precision_command(const WorkPrecisionArgs& a) {
       }
     }
   }
-  return table.commit();
+  return table->commit();
 }
-
-}  // namespace ajx::app
-
-namespace ajx::app {
 
 int bench_stability_command(const StabilityArgs& a) {
   bench::Scene base;
@@ -131,12 +133,9 @@ int bench_stability_command(const StabilityArgs& a) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return kExitBadInput;
   }
-  CsvOutput table(a.output);
-  if (!table.ok()) {
-    std::fprintf(stderr, "error: cannot write %s.part\n", a.output.c_str());
-    return kExitBadInput;
-  }
-  std::ofstream& csv = table.stream();
+  std::optional<CsvOutput> table = open_csv(a.output);
+  if (!table) return kExitBadInput;
+  std::ofstream& csv = table->stream();
   const bench::StabilityCriteria crit{a.energy_tol};
   csv << fmt::format("# astrojax bench stability {}: hold at omega from the scene's initial state for {} s; pass = "
                      "finished, final mode of the reference (dop853 rtol 1e-13), |energy residual| <= {}\n",
@@ -171,12 +170,8 @@ int bench_stability_command(const StabilityArgs& a) {
       std::fflush(stdout);
     }
   }
-  return table.commit();
+  return table->commit();
 }
-
-}  // namespace ajx::app
-
-namespace ajx::app {
 
 int bench_friction_command(const FrictionArgs& a) {
   bench::Scene base;
@@ -200,12 +195,9 @@ int bench_friction_command(const FrictionArgs& a) {
     return kExitBadInput;
   }
   base.run.integ.max_steps = a.max_steps;
-  CsvOutput table(a.output);
-  if (!table.ok()) {
-    std::fprintf(stderr, "error: cannot write %s.part\n", a.output.c_str());
-    return kExitBadInput;
-  }
-  std::ofstream& csv = table.stream();
+  std::optional<CsvOutput> table = open_csv(a.output);
+  if (!table) return kExitBadInput;
+  std::ofstream& csv = table->stream();
   csv << fmt::format("# astrojax bench friction {}: horizon {} s; eps = 0 is the event-driven stick-slip model; "
                      "references: dop853 at rtol 1e-13 (event-driven), 1e-11 (regularised, per eps)\n",
                      a.scene, a.horizon);
@@ -251,12 +243,8 @@ int bench_friction_command(const FrictionArgs& a) {
     for (double h : a.rk4_steps) measure(scene, ref, eps, "regularised", c_ss, c_kin, "rk4", false, h);
     for (double h : a.radau_steps) measure(scene, ref, eps, "regularised", c_ss, c_kin, "radau_iia", false, h);
   }
-  return table.commit();
+  return table->commit();
 }
-
-}  // namespace ajx::app
-
-namespace ajx::app {
 
 int bench_constraints_command(const ConstraintsArgs& a) {
   bench::Scene scene;
@@ -286,12 +274,9 @@ int bench_constraints_command(const ConstraintsArgs& a) {
                  a.scene.c_str(), ref.run.mode_switches);
     return kExitBadInput;
   }
-  CsvOutput table(a.output);
-  if (!table.ok()) {
-    std::fprintf(stderr, "error: cannot write %s.part\n", a.output.c_str());
-    return kExitBadInput;
-  }
-  std::ofstream& csv = table.stream();
+  std::optional<CsvOutput> table = open_csv(a.output);
+  if (!table) return kExitBadInput;
+  std::ofstream& csv = table->stream();
   csv << fmt::format("# astrojax bench constraints {}: horizon {} s, mode {}; reference dop853 at rtol 1e-13\n", a.scene,
                      a.horizon, physics::to_string(scene.initial.contact.mode));
   csv << "variant,alpha,method,param,status,cpu_s,steps,rhs_evals,max_drift_m,end_drift_m,err_position_m,"
@@ -314,12 +299,8 @@ int bench_constraints_command(const ConstraintsArgs& a) {
                   s.method.c_str(), param, r.cpu, r.max_drift, r.end_drift, err, r.energy_residual, r.status.c_str());
       std::fflush(stdout);
     }
-  return table.commit();
+  return table->commit();
 }
-
-}  // namespace ajx::app
-
-namespace ajx::app {
 
 int bench_threshold_command(const WorkPrecisionArgs& a, double sample_dt) {
   std::vector<bench::Scene> scenes;
@@ -344,12 +325,9 @@ int bench_threshold_command(const WorkPrecisionArgs& a, double sample_dt) {
       return kExitBadInput;
     }
   }
-  CsvOutput table(a.output);
-  if (!table.ok()) {
-    std::fprintf(stderr, "error: cannot write %s.part\n", a.output.c_str());
-    return kExitBadInput;
-  }
-  std::ofstream& csv = table.stream();
+  std::optional<CsvOutput> table = open_csv(a.output);
+  if (!table) return kExitBadInput;
+  std::ofstream& csv = table->stream();
   csv << "# astrojax bench threshold: omega_m at the bead's first landing on the bottom ball; reference dop853 at "
          "rtol 1e-13, floor |reference - dopri5 at rtol 1e-12|\n";
   csv << "scene,method,param_kind,param,status,repeats,cpu_median_s,rhs_evals,found,t_fall_s,omega_fall,"
@@ -378,7 +356,7 @@ int bench_threshold_command(const WorkPrecisionArgs& a, double sample_dt) {
       }
     }
   }
-  return table.commit();
+  return table->commit();
 }
 
 }  // namespace ajx::app
