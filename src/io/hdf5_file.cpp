@@ -75,11 +75,16 @@ bool check_tri(htri_t status, std::string_view call, Where w) {
 Handle own(hid_t id, Kind kind, std::string_view call, Where w) { return Handle(check_id(id, call, w), kind); }
 
 void init_library() {
-  // Every handle is closed by its owner. The library's own clean-up at exit would only close
-  // again a file whose close failed (a full disk), and HDF5 1.10 crashes doing that.
-  H5dont_atexit();
-  H5open();
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  static const bool initialised = [] {
+    // Every handle is closed by its owner. The library's own clean-up at exit would only close
+    // again a file whose close failed (a full disk), and HDF5 1.10 crashes doing that. Only
+    // effective before the library starts, hence once, first.
+    H5dont_atexit();
+    H5open();
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+    return true;
+  }();
+  (void)initialised;
 }
 
 hid_t mem_type_of(DType t) {
