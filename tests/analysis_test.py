@@ -387,6 +387,21 @@ class cli(unittest.TestCase):
         rc, out = script("plot_branches.py", data("phase.h5"), "-o", data("x.jpg"), *THRESHOLD_ARGS, check=False)
         self.assertEqual((rc, "must be .png or .pdf" in out), (2, True), out)
 
+    def test_run_ledger(self):
+        # An exact run (DOP853, rtol 1e-10) closes its ledger: the injection column, what the
+        # integrator adds, is ~1e-9 of the powers (the run's energy residual), far below 1e-6.
+        _, out = script("run_ledger.py", data("run.h5"), "--window", "10", "--tail", "5")
+        rows = [line.split() for line in out.splitlines() if line.strip() and line.split()[0][0].isdigit()]
+        self.assertGreaterEqual(len(rows), 5, out)
+        self.assertIn("last 5 s", out)
+        for r in rows:
+            p_motor, p_drag, injection = float(r[8]), float(r[9]), float(r[12])
+            self.assertLessEqual(abs(injection), 1e-6 * max(abs(p_motor), p_drag, 1e-9), r)
+        rc, out = script("run_ledger.py", data("missing.h5"), check=False)
+        self.assertEqual((rc, "missing.h5" in out), (2, True), out)
+        rc, out = script("run_ledger.py", data("phase.h5"), check=False)
+        self.assertEqual((rc, "not a run file" in out), (2, True), out)
+
     def test_plot_run(self):
         out = data("run.png")
         script("plot_run.py", data("run.h5"), "-o", out, "--size", "8,6", "--dpi", "40")
