@@ -67,7 +67,7 @@ def markdown(path, rows, sweep, seq=()):
     lines += [f"- {k}: `{v}`" for k, v in facts if v]
     lines += [f"- chains: {sweep.n_chains}" + (f", grid axes: {', '.join(sweep.axes)}" if sweep.axes else ""),
               f"- made by `astrojax thresholds {path}{f' --refine {factor}' if factor else ''}"
-              f"{' --hold ' + rows[0]['hold_s'] if rows and rows[0].get('hold_s') else ''}`; definitions in README "
+              f"{' --hold T' if any(r.get('verdict') for r in rows) else ''}`; definitions in README "
               "(\"Thresholds and reclassification\", \"Bifurcation or time limit\").",
               "", "## Every chain", "",
               table_row("chain", "parameters", "threshold", "bracket [π rad/s]", "midpoint [π rad/s]",
@@ -113,21 +113,26 @@ def hold_sections(rows):
     held = [r for r in rows if r.get("verdict")]
     if not held:
         return []
-    hold_s = ajx.number(held[0]["hold_s"])
     lines = ["", "## Bifurcation or time limit", "",
-             f"Each bracket restarted from the stored state before it and ω_m held for {hold_s:.0f} s at its two "
-             "sides; powers, dE/dt and r = dE/dt / P_drag over the last half of the hold; an orbit is sustained when "
-             "|r| ≤ the tolerance (m/(2 c_D T), or twice the scatter of r between windows).", "",
-             table_row("chain", "threshold", "side", "ω_m held [π rad/s]", "sweep's class", "class after the hold",
-                       "P_motor [W]", "P_drag [W]", "dE/dt [W]", "r", "tolerance", "sustained"),
-             "|---:|---|---|---:|---|---|---:|---:|---:|---:|---:|---|"]
+             "Each bracket restarted from the stored state before it and ω_m held for T at its two sides; powers, "
+             "dE/dt and r = dE/dt / P_drag over the last half of the hold; an orbit is sustained when |r| ≤ the "
+             "tolerance (m/(2 c_D T), or twice the standard error of r between windows), undetermined when that "
+             "error cannot tell r = 0 from r = −1.", "",
+             table_row("chain", "threshold", "side", "T [s]", "ω_m held [π rad/s]", "sweep's class",
+                       "class after the hold",
+                       "P_motor [W]", "P_drag [W]", "P_friction+impacts [W]", "dE/dt [W]", "r", "tolerance",
+                       "sustained"),
+             "|---:|---|---|---:|---:|---|---|---:|---:|---:|---:|---:|---:|---|"]
     for r in held:
         for side, name in (("pre", "before the change"), ("post", "after the change")):
-            lines.append(table_row(r["chain"], symbol(r["threshold"]), name, pi_units(r[f"{side}_omega_rad_s"], 3),
+            sustained = ("undetermined" if r[f"{side}_determined"] != "1" else
+                         "yes" if r[f"{side}_sustained"] == "1" else "no")
+            lines.append(table_row(r["chain"], symbol(r["threshold"]), name, f"{ajx.number(r[f'{side}_hold_s']):.1f}",
+                                   pi_units(r[f"{side}_omega_rad_s"], 3),
                                    r[f"{side}_class"], r[f"{side}_final_class"], power(r[f"{side}_motor_power_W"]),
-                                   power(r[f"{side}_drag_power_W"]), power(r[f"{side}_energy_rate_W"]),
-                                   signed(r[f"{side}_ratio"]), signed(r[f"{side}_tolerance"]).lstrip("+"),
-                                   "yes" if r[f"{side}_sustained"] == "1" else "no"))
+                                   power(r[f"{side}_drag_power_W"]), power(r[f"{side}_friction_impact_power_W"]),
+                                   power(r[f"{side}_energy_rate_W"]), signed(r[f"{side}_ratio"]),
+                                   signed(r[f"{side}_tolerance"]).lstrip("+"), sustained))
     rate = "rate_dependent" in held[0]
     lines += ["", table_row("chain", "threshold", "bracket [π rad/s]", "verdict", "reason",
                             *(("rate-dependent (--refine)",) if rate else ())),

@@ -104,15 +104,26 @@ TEST(HoldVerdict, DrivenConicalOrbitIsSustained) {
   EXPECT_LT(std::abs(s.ratio), 1e-3);
   EXPECT_NEAR(s.tolerance, sweep::sustain_tolerance(m.p, kHold), 1e-12);
   EXPECT_TRUE(s.sustained);
+  EXPECT_TRUE(s.determined);
   report("hold_sustained_ratio", fmt::format("{:.2e} (P_drag {:.3e} W)", s.ratio, s.mean.drag));
 
-  // Held after the "change" it ends in another class: a bifurcation; the same class: no change.
+  // Held after the "change" it ends in another class: a bifurcation; it leaves the class and
+  // comes back: an excursion; it never leaves it: the change does not happen at fixed ω_m.
   sweep::HoldSide other = s;
-  other.final_class = OrbitClass::NotSettled;
+  other.final_class = other.classes.back() = OrbitClass::NotSettled;
   EXPECT_EQ(sweep::judge(s, other).verdict, sweep::Verdict::Bifurcation) << sweep::judge(s, other).reason;
   EXPECT_EQ(sweep::judge(s, s).verdict, sweep::Verdict::TimeLimited);
+  sweep::HoldSide back = s;
+  back.classes[0] = OrbitClass::NotSettled;
+  const sweep::Judgement j = sweep::judge(s, back);
+  EXPECT_EQ(j.verdict, sweep::Verdict::Excursion) << j.reason;
+  EXPECT_NE(j.reason.find("back to fallen after 5 s"), std::string::npos) << j.reason;
   other.ok = false;
   EXPECT_EQ(sweep::judge(s, other).verdict, sweep::Verdict::Undecided);
+  // Per-window ratios scattering by ±1/4 (standard error) cannot tell r = 0 from r = −1.
+  sweep::HoldSide noisy = s;
+  noisy.determined = false;
+  EXPECT_EQ(sweep::judge(noisy, back).verdict, sweep::Verdict::Undecided);
 }
 
 TEST(HoldVerdict, FreeWhirlIsATransient) {
@@ -141,6 +152,7 @@ TEST(HoldVerdict, FreeWhirlIsATransient) {
   EXPECT_EQ(s.mean.motor, 0.0);
   EXPECT_NEAR(s.ratio, -1.0, 1e-6);
   EXPECT_FALSE(s.sustained);
+  EXPECT_TRUE(s.determined);  // a uniform decay: every window has r_k = −1
   report("hold_free_whirl_ratio", fmt::format("{:+.7f}", s.ratio));
 
   sweep::HoldSide other = s;

@@ -127,18 +127,22 @@ std::string side_line(const sweep::HoldSide& s) {
   return fmt::format("hold {:.0f} s at {:.3f}π: {} -> {}  P_motor {:.3e} W  P_drag {:.3e} W  dE/dt {:+.2e} W  "
                      "r = dE/dt / P_drag {:+.3f} (sustained if |r| <= {:.3f}): {}",
                      s.hold, s.omega / pi, sweep::to_string(s.reference), sweep::to_string(s.final_class), s.mean.motor,
-                     s.mean.drag, s.mean.energy_rate, s.ratio, s.tolerance, s.sustained ? "sustained" : "not sustained");
+                     s.mean.drag, s.mean.energy_rate, s.ratio, s.tolerance,
+                     !s.determined ? "undetermined" : s.sustained ? "sustained" : "not sustained");
 }
 
 std::string side_csv(const sweep::HoldSide& s) {
   const auto num = [](double v) { return std::isfinite(v) ? fmt::format("{:.9g}", v) : std::string(); };
-  return fmt::format("{},{},{},{},{},{},{},{},{},{}", num(s.omega), sweep::to_string(s.reference),
+  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{}", num(s.hold), num(s.omega), sweep::to_string(s.reference),
                      sweep::to_string(s.final_class), num(s.first_change), num(s.mean.motor), num(s.mean.drag),
-                     num(s.mean.energy_rate), num(s.ratio), num(s.tolerance), s.sustained ? 1 : 0);
+                     num(s.mean.other), num(s.mean.energy_rate), num(s.ratio), num(s.ratio_error), num(s.tolerance),
+                     s.determined ? 1 : 0, s.sustained ? 1 : 0);
 }
 
+constexpr int kSideFields = 14;
 constexpr const char* kSideColumns =
-    "omega_rad_s,class,final_class,first_change_s,motor_power_W,drag_power_W,energy_rate_W,ratio,tolerance,sustained";
+    "hold_s,omega_rad_s,class,final_class,first_change_s,motor_power_W,drag_power_W,friction_impact_power_W,energy_rate_W,"
+    "ratio,ratio_error,tolerance,determined,sustained";
 
 std::string side_header(const char* prefix) {
   std::string out;
@@ -286,7 +290,7 @@ int thresholds_command(const ThresholdsArgs& args) {
   if (args.refine > 0) csv += ",refine_factor,refined_before_rad_s,refined_after_rad_s,refined_mid_rad_s,"
                               "refined_relative_difference,refine_note";
   if (hold) {
-    csv += ",hold_s" + side_header("pre") + side_header("post") + ",verdict,verdict_reason";
+    csv += side_header("pre") + side_header("post") + ",verdict,verdict_reason";
     if (args.refine > 0) csv += ",rate_dependent";
   }
   csv += "\n";
@@ -343,10 +347,10 @@ int thresholds_command(const ThresholdsArgs& args) {
         std::printf("%-6s %-28s %-11s verdict: %s: %s%s\n", "", "", "",
                     std::string(sweep::to_string(h->judgement.verdict)).c_str(), h->judgement.reason.c_str(),
                     flag.c_str());
-        csv += fmt::format(",{:.9g},{},{},{},{}", h->pre.hold, side_csv(h->pre), side_csv(h->post),
+        csv += fmt::format(",{},{},{},{}", side_csv(h->pre), side_csv(h->post),
                            sweep::to_string(h->judgement.verdict), csv_quoted(h->judgement.reason));
       } else {
-        csv += std::string(2 * 10 + 3, ',');  // hold_s, two sides of 10, verdict, reason: empty
+        csv += std::string(2 * kSideFields + 2, ',');  // two sides, verdict, reason: empty
       }
       if (args.refine > 0) csv += "," + rate_dependent;
     }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <optional>
 #include <stdexcept>
 
 #include "physics/drive.hpp"
@@ -43,7 +44,8 @@ ChainSetup held_chain(const ChainSetup& chain, double t_cut, int n_windows, doub
 HoldSide hold_side(const ChainSetup& chain, double t_cut, double hold, double window, const physics::State& start,
                    OrbitClass reference, const ClassifierSettings& settings) {
   if (start.t > t_cut) throw std::invalid_argument("hold: the start state is later than the hold");
-  const int n = std::max(2, int(std::ceil(hold / window - 1e-9)));
+  // At least four windows, so that the measured half has two to estimate the scatter from.
+  const int n = std::max(4, int(std::ceil(hold / window - 1e-9)));
   const ChainSetup held = held_chain(chain, t_cut, n, window);
   const TaskOutput out = run_task(held, TaskSpan{start.t, held.protocol.duration, 0, n}, start);
   const std::vector<OrbitClassification> classes = classify_windows(held, out, settings);
@@ -76,7 +78,7 @@ HoldSide hold_side(const ChainSetup& chain, double t_cut, double hold, double wi
   if (!(chain.model.p.drag > 0.0)) {
     // Without drag nothing decays: the classes alone decide.
     s.tolerance = r_tol;
-    s.sustained = true;
+    s.sustained = s.determined = true;
     return s;
   }
   if (s.mean.drag > 0.0) s.ratio = s.mean.energy_rate / s.mean.drag;
@@ -92,6 +94,7 @@ HoldSide hold_side(const ChainSetup& chain, double t_cut, double hold, double wi
     s.ratio_error = std::sqrt(var / double(r.size()));
   }
   s.tolerance = std::max(r_tol, 2.0 * s.ratio_error);
+  s.determined = 2.0 * s.ratio_error < 0.5;
   // Balls at rest (P_drag = 0) are sustained only if E does not change either.
   s.sustained = std::abs(s.mean.energy_rate) <= s.tolerance * s.mean.drag;
   return s;
@@ -100,6 +103,7 @@ HoldSide hold_side(const ChainSetup& chain, double t_cut, double hold, double wi
 std::string_view to_string(Verdict v) {
   switch (v) {
     case Verdict::Bifurcation: return "bifurcation";
+    case Verdict::Excursion: return "excursion";
     case Verdict::TimeLimited: return "time-limited transient";
     case Verdict::Undecided: return "undecided";
   }
@@ -112,6 +116,11 @@ Judgement judge(const HoldSide& pre, const HoldSide& post) {
   for (const HoldSide* s : {&pre, &post})
     if (!s->ok || s->final_class == OrbitClass::Failed)
       return {Verdict::Undecided, fmt::format("the hold at {:.3f}pi failed: {}", s->omega / pi, s->failure)};
+  if (pre.final_class == pre.reference && !pre.determined)
+    return {Verdict::Undecided,
+            fmt::format("held at {:.3f}pi the energy account of the {} orbit scatters too much between windows "
+                        "(r = {:+.2f} +- {:.2f}) to tell sustained from decaying: hold longer",
+                        pre.omega / pi, name(pre.reference), pre.ratio, pre.ratio_error)};
   if (pre.final_class != pre.reference)
     return {Verdict::TimeLimited,
             fmt::format("held at {:.3f}pi the {} orbit becomes {} (first change after {:.0f} s)", pre.omega / pi,
@@ -120,11 +129,29 @@ Judgement judge(const HoldSide& pre, const HoldSide& post) {
     return {Verdict::TimeLimited,
             fmt::format("held at {:.3f}pi the {} orbit is not sustained: dE/dt = {:+.3f} P_drag (|r| > {:.3f})",
                         pre.omega / pi, name(pre.reference), pre.ratio, pre.tolerance)};
-  if (post.final_class == pre.reference)
-    return {Verdict::TimeLimited, fmt::format("held at {:.3f}pi the orbit returns to {}: the change does not persist",
-                                              post.omega / pi, name(pre.reference))};
+  if (post.final_class == pre.reference) {
+    // When did the held orbit after the change first show the old class, and did it ever leave it?
+    double back = HoldSide::nan;
+    std::optional<OrbitClass> away;  // the first class other than the old one
+    for (std::size_t k = 0; k < post.classes.size(); ++k) {
+      if (!away && post.classes[k] != pre.reference) away = post.classes[k];
+      if (std::isnan(back) && away && post.classes[k] == pre.reference)
+        back = double(k) * post.hold / double(post.classes.size());
+    }
+    const bool left = away.has_value();
+    if (!left)
+      return {Verdict::TimeLimited,
+              fmt::format("held at {:.3f}pi the orbit stays {}: the change the ramp saw does not happen at fixed omega_m",
+                          post.omega / pi, name(pre.reference))};
+    return {Verdict::Excursion,
+            fmt::format("held at {:.3f}pi the {} orbit is sustained (dE/dt = {:+.1e} P_drag); at {:.3f}pi the orbit "
+                        "is {} and back to {} after {:.0f} s (P_drag {:.2e} W, before {:.2e} W): the change does "
+                        "not persist",
+                        pre.omega / pi, name(pre.reference), pre.ratio, post.omega / pi, name(*away),
+                        name(pre.reference), back, post.mean.drag, pre.mean.drag)};
+  }
   return {Verdict::Bifurcation,
-          fmt::format("held at {:.3f}pi the {} orbit is sustained (dE/dt = {:+.3f} P_drag); at {:.3f}pi it ends {}",
+          fmt::format("held at {:.3f}pi the {} orbit is sustained (dE/dt = {:+.1e} P_drag); at {:.3f}pi it ends {}",
                       pre.omega / pi, name(pre.reference), pre.ratio, post.omega / pi, name(post.final_class))};
 }
 

@@ -2,8 +2,9 @@
 // of different class. It is a bifurcation of the driven orbits when the orbit before it is one
 // the motor sustains at fixed ω_m and the orbit after it is a different one; it is a time
 // limit when the orbit before it is a transient that only the ramp's finite duration kept
-// alive (or the change after it does not persist): then the "threshold" moves with the ramp
-// rate and dwell time, and must not be fitted.
+// alive: then the "threshold" moves with the ramp rate and dwell time, and must not be fitted.
+// Between the two, an excursion: the orbit before is sustained, but the change after it does
+// not persist at fixed ω_m (the bead climbs and falls back).
 //
 // The test: restart the chain from its stored state, follow its own motor schedule to the
 // middle of the bracket's window before the change (ω_m = the bracket's `before`) and hold ω_m
@@ -20,8 +21,10 @@
 //   |r| ≤ r_tol = m_min / (2 c_D T)
 // (0.1 for T = 5 m/c_D, a tenth of the free decay's |r| = 1), widened to twice the standard
 // error of the per-window ratios r_k when the orbit's own energy oscillation makes them scatter
-// (a window that is not a whole number of the orbit's periods). A uniform decay has r_k all
-// equal, so this widening does not hide it.
+// (a window that is not a whole number of the orbit's periods, or a slow beat between the
+// driven orbit and a free swing). A uniform decay has r_k all equal, so this widening does not
+// hide it. When the widening reaches 1/2, r can no longer tell a sustained orbit (r = 0) from
+// a free decay (r = −1) at two standard errors each: the side is undetermined (hold longer).
 //
 // Default T = 5 max(m1, m2)/c_D (52 s for the paper's balls), and r is measured over the last
 // half of the hold: the transient the hold's start excites (the ramp stops) has then decayed
@@ -65,29 +68,37 @@ struct HoldSide {
   double ratio_error = nan;            // standard error of the per-window ratios
   double tolerance = nan;              // the |r| accepted as sustained (see above)
   bool sustained = false;              // |dE/dt| ≤ tolerance · P_drag
+  bool determined = false;             // 2 · ratio_error < 1/2: r tells sustained from free decay
   bool ok = true;                      // false: the integration failed (see failure)
   std::string failure;
   double simulated = 0.0;              // seconds integrated [s]
 };
 
 // Holds ω_m from t_cut for `hold` seconds (rounded up to whole windows of `window` s, at least
-// two) from `start`, a state of the chain no later than t_cut; `reference` is the class the
+// four) from `start`, a state of the chain no later than t_cut; `reference` is the class the
 // sweep found there.
 HoldSide hold_side(const ChainSetup& chain, double t_cut, double hold, double window, const physics::State& start,
                    OrbitClass reference, const ClassifierSettings& settings = {});
 
-enum class Verdict { Bifurcation, TimeLimited, Undecided };
-std::string_view to_string(Verdict v);  // "bifurcation", "time-limited transient", "undecided"
+enum class Verdict { Bifurcation, Excursion, TimeLimited, Undecided };
+// "bifurcation", "excursion", "time-limited transient", "undecided"
+std::string_view to_string(Verdict v);
 
 struct Judgement {
   Verdict verdict = Verdict::Undecided;
   std::string reason;  // one line, ASCII
 };
 
-// Bifurcation: held before the change, the orbit keeps the sweep's class and is sustained, and
-// held after it, the orbit ends in another class. Time-limited transient: held before the
-// change the orbit changes class or is not sustained, or held after it the orbit returns to
-// the class before. Undecided: a hold failed.
+// With the orbit before the change sustained and keeping the sweep's class when held there:
+//   bifurcation  held after the change, the orbit ends in another class;
+//   excursion    held after the change, the orbit leaves the old class and returns to it: the
+//                onset is a property of the held ω_m (the orbit before it is sustained), but
+//                what follows it is a transient, not a new steady orbit;
+//   time-limited transient  held after the change, the orbit never leaves the old class: the
+//                change the ramp saw does not happen at fixed ω_m.
+// Time-limited transient also when, held before the change, the orbit changes class or is not
+// sustained: the ramp's finite time kept it alive, and the threshold moves with ramp rate and
+// dwell. Undecided: a hold failed, or the energy account before the change is undetermined.
 Judgement judge(const HoldSide& pre, const HoldSide& post);
 
 }  // namespace ajx::sweep
