@@ -149,9 +149,9 @@ def sequence_sections(seq):
         return []
     direction = {"1": "up", "-1": "down", "0": "held"}
     lines = ["", "## Orbit class sequence", "",
-             "Per chain, the runs of one orbit class on each leg of the protocol (repeats collapsed; one not-settled "
-             "window between two of one class is absorbed and counted as a blip), then the paper's sequence: each "
-             "step looked for after the last one found.", ""]
+             "Per chain, the runs of one orbit class on each leg of the protocol (repeats collapsed; blips: single "
+             "not-settled windows absorbed, with `astrojax thresholds --absorb-blips` only), then the paper's "
+             "sequence: each step looked for after the last one found.", ""]
     for chain in dict.fromkeys(r["chain"] for r in seq):
         mine = [r for r in seq if r["chain"] == chain]
         params = mine[0].get("parameters", "")

@@ -1,5 +1,5 @@
 // The orbit class sequence (sweep/class_sequence.hpp): runs per leg with repeats collapsed,
-// single not-settled blips absorbed, ω_ball's slope against ω_m, and the paper's steps found
+// single not-settled blips absorbed on request, ω_ball's slope against ω_m, and the paper's steps found
 // present, missing or out of order.
 #include <gtest/gtest.h>
 
@@ -32,7 +32,8 @@ TEST(ClassSequence, RunsCollapseRepeatsAndAbsorbSingleBlips) {
   std::vector<double> ob;
   leg(w, ob, 0.0, +1, {C::Fallen, C::Fallen, C::NotSettled, C::Fallen, C::NotSettled, C::NotSettled, C::Flower});
   leg(w, ob, 3.5 * pi, -1, {C::Flower, C::Fallen});
-  const auto runs = class_runs(w, ob);
+  ASSERT_EQ(class_runs(w, ob).size(), 7u);  // by default a blip is a run of its own
+  const auto runs = class_runs(w, ob, true);
   ASSERT_EQ(runs.size(), 5u);
   EXPECT_EQ(runs[0].cls, C::Fallen);
   EXPECT_EQ(runs[0].windows, 4);  // the blip at window 2 absorbed

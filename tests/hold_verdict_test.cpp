@@ -107,17 +107,22 @@ TEST(HoldVerdict, DrivenConicalOrbitIsSustained) {
   EXPECT_TRUE(s.determined);
   report("hold_sustained_ratio", fmt::format("{:.2e} (P_drag {:.3e} W)", s.ratio, s.mean.drag));
 
-  // Held after the "change" it ends in another class: a bifurcation; it leaves the class and
-  // comes back: an excursion; it never leaves it: the change does not happen at fixed ω_m.
+  // Held after the "change" it ends in another class: a bifurcation; it ends in the old class
+  // again: an excursion, back within the hold or already when the hold starts.
   sweep::HoldSide other = s;
   other.final_class = other.classes.back() = OrbitClass::NotSettled;
   EXPECT_EQ(sweep::judge(s, other).verdict, sweep::Verdict::Bifurcation) << sweep::judge(s, other).reason;
-  EXPECT_EQ(sweep::judge(s, s).verdict, sweep::Verdict::TimeLimited);
   sweep::HoldSide back = s;
+  back.reference = OrbitClass::Flower;
   back.classes[0] = OrbitClass::NotSettled;
-  const sweep::Judgement j = sweep::judge(s, back);
+  sweep::Judgement j = sweep::judge(s, back);
   EXPECT_EQ(j.verdict, sweep::Verdict::Excursion) << j.reason;
-  EXPECT_NE(j.reason.find("back to fallen after 5 s"), std::string::npos) << j.reason;
+  EXPECT_NE(j.reason.find("is not-settled and back to fallen after 5 s"), std::string::npos) << j.reason;
+  back.classes[0] = OrbitClass::Fallen;
+  j = sweep::judge(s, back);
+  EXPECT_EQ(j.verdict, sweep::Verdict::Excursion) << j.reason;
+  EXPECT_NE(j.reason.find("back to fallen when the hold starts (the sweep saw flower there)"), std::string::npos)
+      << j.reason;
   other.ok = false;
   EXPECT_EQ(sweep::judge(s, other).verdict, sweep::Verdict::Undecided);
   // Per-window ratios scattering by ±1/4 (standard error) cannot tell r = 0 from r = −1.

@@ -61,6 +61,8 @@ int main(int argc, char** argv) {
   thresholds_cmd->add_flag("--sequence", thresholds.sequence,
                            "Print each chain's orbit class sequence and compare it with the paper's");
   thresholds_cmd->add_option("--sequence-csv", thresholds.sequence_csv, "Also write the class sequence as CSV");
+  thresholds_cmd->add_flag("--absorb-blips", thresholds.absorb_blips,
+                           "In the sequence, absorb one not-settled window between two of the same class");
 
   ajx::app::ClassifyArgs classify;
   CLI::App* classify_cmd = app.add_subcommand(

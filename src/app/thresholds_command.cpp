@@ -340,6 +340,8 @@ int thresholds_command(const ThresholdsArgs& args) {
         std::printf("%-6s %-28s %-11s %s\n", "", "", "", side_line(h->pre).c_str());
         std::printf("%-6s %-28s %-11s %s\n", "", "", "", side_line(h->post).c_str());
         std::string flag;
+        if (rate_dependent == "no")
+          flag = fmt::format("; the {}x slower ramp finds the change inside the bracket", args.refine);
         if (rate_dependent == "yes")
           flag = h->judgement.verdict == sweep::Verdict::Bifurcation
                      ? "; but rate-dependent: the slower ramp lost the change (conflict, look closer)"
@@ -371,14 +373,15 @@ int thresholds_command(const ThresholdsArgs& args) {
     const auto num = [](double v) { return std::isfinite(v) ? fmt::format("{:.9g}", v) : std::string(); };
     const auto dir_name = [](int d) { return d > 0 ? "up" : (d < 0 ? "down" : "held"); };
     if (args.sequence)
-      std::printf("\nclass sequence (one not-settled window between two of one class is absorbed as a blip)\n"
+      std::printf("\nclass sequence%s\n"
                   "%-6s %-28s %-4s %-5s %-17s %-22s %-8s %-6s %-11s %s\n",
+                  args.absorb_blips ? " (one not-settled window between two of one class is absorbed as a blip)" : "",
                   "chain", "parameters", "leg", "dir", "class", "ω_m [π rad/s]", "windows", "blips", "ω_ball [π]",
                   "dω_ball/dω_m");
     std::vector<std::vector<sweep::StepMatch>> matches;
     for (std::size_t c = 0; c < chains.size(); ++c) {
       const std::string params = parameters_of(axes, grid, c);
-      const std::vector<sweep::ClassRun> runs = sweep::class_runs(chains[c], omega_ball[c]);
+      const std::vector<sweep::ClassRun> runs = sweep::class_runs(chains[c], omega_ball[c], args.absorb_blips);
       for (const sweep::ClassRun& r : runs) {
         if (args.sequence)
           std::printf("%-6zu %-28s %-4d %-5s %-17s %8.3f .. %-10.3f %-8d %-6d %-11s %s\n", c, params.c_str(), r.leg,

@@ -20,7 +20,8 @@ double slope(const std::vector<double>& x, const std::vector<double>& y) {
 }
 }  // namespace
 
-std::vector<ClassRun> class_runs(const std::vector<ClassedWindow>& w, const std::vector<double>& omega_ball) {
+std::vector<ClassRun> class_runs(const std::vector<ClassedWindow>& w, const std::vector<double>& omega_ball,
+                                 bool absorb_blips) {
   if (w.size() != omega_ball.size())
     throw std::invalid_argument("class sequence: one omega_ball per window is needed");
   const std::size_t n = w.size();
@@ -31,7 +32,7 @@ std::vector<ClassRun> class_runs(const std::vector<ClassedWindow>& w, const std:
   std::vector<bool> blip(n, false);
   for (std::size_t i = 0; i < n; ++i) {
     cls[i] = w[i].cls;
-    if (i > 0 && i + 1 < n && w[i].cls == OrbitClass::NotSettled && w[i - 1].cls == w[i + 1].cls &&
+    if (absorb_blips && i > 0 && i + 1 < n && w[i].cls == OrbitClass::NotSettled && w[i - 1].cls == w[i + 1].cls &&
         w[i - 1].cls != OrbitClass::NotSettled && leg[i - 1] == leg[i + 1]) {
       cls[i] = w[i - 1].cls;
       blip[i] = true;

@@ -2,10 +2,10 @@
 //
 // A chain's windows in protocol order are cut into legs (maximal stretches of one direction:
 // ω_m rising, falling, or one held level), and each leg into runs of one class, repeats
-// collapsed. One not-settled window between two windows of the same class on the same leg is
-// a blip and is absorbed into that class (counted in `blips`): a single window that fails a
-// steadiness test between two that pass is not a change of orbit. Two or more not-settled
-// windows in a row are a run of their own.
+// collapsed. On request, one not-settled window between two windows of the same class on the
+// same leg is a blip and is absorbed into that class (counted in `blips`). That is off by
+// default: a one-window excursion (the bead climbs and falls back within a window on a slow
+// ramp) is exactly such a window, and absorbing it would hide the paper's "rise" step.
 //
 // The paper's sequence (section 3.2, model.md), as steps in this order:
 //   rise      up: fallen → not fallen (the bead starts to climb at ω_rise)
@@ -44,7 +44,8 @@ struct ClassRun {
 
 // `omega_ball` holds each window's ω_ball (NaN when unreliable), as many as `windows`.
 // Throws std::invalid_argument when the sizes differ.
-std::vector<ClassRun> class_runs(const std::vector<ClassedWindow>& windows, const std::vector<double>& omega_ball);
+std::vector<ClassRun> class_runs(const std::vector<ClassedWindow>& windows, const std::vector<double>& omega_ball,
+                                 bool absorb_blips = false);
 
 enum class PaperStep { Rise, Circular, Fall, Locked, Omega1, Omega2 };
 inline constexpr std::array<PaperStep, 6> kPaperSteps{PaperStep::Rise,   PaperStep::Circular, PaperStep::Fall,

@@ -130,25 +130,23 @@ Judgement judge(const HoldSide& pre, const HoldSide& post) {
             fmt::format("held at {:.3f}pi the {} orbit is not sustained: dE/dt = {:+.3f} P_drag (|r| > {:.3f})",
                         pre.omega / pi, name(pre.reference), pre.ratio, pre.tolerance)};
   if (post.final_class == pre.reference) {
-    // When did the held orbit after the change first show the old class, and did it ever leave it?
+    // Did the held orbit after the change show another class first, and when was it back?
     double back = HoldSide::nan;
-    std::optional<OrbitClass> away;  // the first class other than the old one
+    std::optional<OrbitClass> away;
     for (std::size_t k = 0; k < post.classes.size(); ++k) {
       if (!away && post.classes[k] != pre.reference) away = post.classes[k];
       if (std::isnan(back) && away && post.classes[k] == pre.reference)
         back = double(k) * post.hold / double(post.classes.size());
     }
-    const bool left = away.has_value();
-    if (!left)
-      return {Verdict::TimeLimited,
-              fmt::format("held at {:.3f}pi the orbit stays {}: the change the ramp saw does not happen at fixed omega_m",
-                          post.omega / pi, name(pre.reference))};
+    const std::string after =
+        away ? fmt::format("is {} and back to {} after {:.0f} s", name(*away), name(pre.reference), back)
+             : fmt::format("is back to {} when the hold starts (the sweep saw {} there)", name(pre.reference),
+                           name(post.reference));
     return {Verdict::Excursion,
             fmt::format("held at {:.3f}pi the {} orbit is sustained (dE/dt = {:+.1e} P_drag); at {:.3f}pi the orbit "
-                        "is {} and back to {} after {:.0f} s (P_drag {:.2e} W, before {:.2e} W): the change does "
-                        "not persist",
-                        pre.omega / pi, name(pre.reference), pre.ratio, post.omega / pi, name(*away),
-                        name(pre.reference), back, post.mean.drag, pre.mean.drag)};
+                        "{} (P_drag {:.2e} W, before {:.2e} W): the change does not persist",
+                        pre.omega / pi, name(pre.reference), pre.ratio, post.omega / pi, after, post.mean.drag,
+                        pre.mean.drag)};
   }
   return {Verdict::Bifurcation,
           fmt::format("held at {:.3f}pi the {} orbit is sustained (dE/dt = {:+.1e} P_drag); at {:.3f}pi it ends {}",

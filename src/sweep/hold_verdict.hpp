@@ -91,12 +91,12 @@ struct Judgement {
 
 // With the orbit before the change sustained and keeping the sweep's class when held there:
 //   bifurcation  held after the change, the orbit ends in another class;
-//   excursion    held after the change, the orbit leaves the old class and returns to it: the
-//                onset is a property of the held ω_m (the orbit before it is sustained), but
-//                what follows it is a transient, not a new steady orbit;
-//   time-limited transient  held after the change, the orbit never leaves the old class: the
-//                change the ramp saw does not happen at fixed ω_m.
-// Time-limited transient also when, held before the change, the orbit changes class or is not
+//   excursion    held after the change, the orbit ends in the old class again: the orbit before
+//                the change is sustained, so the onset is not a time limit, but what follows it
+//                is a transient, not a new steady orbit (the hold starts from the sweep's state in
+//                the middle of the window after the change, so a short excursion may be over
+//                before the hold begins).
+// Time-limited transient when, held before the change, the orbit changes class or is not
 // sustained: the ramp's finite time kept it alive, and the threshold moves with ramp rate and
 // dwell. Undecided: a hold failed, or the energy account before the change is undetermined.
 Judgement judge(const HoldSide& pre, const HoldSide& post);
