@@ -236,43 +236,55 @@ int thresholds_command(const ThresholdsArgs& args) {
       return sweep::OrbitClass::Failed;
     };
     // Each refinement and each hold is an independent integration: spread them over threads.
+    // Their start states are read from the file here, in this thread: a site's HDF5 need not be
+    // built thread-safe (Debian's serial one is, its MPI one is not).
     std::vector<std::function<void()>> jobs;
     for (Row& r : rows) {
       if (!r.bracket) continue;
-      const sweep::ChainSetup* chain_setup = &src.plan.setups[r.chain];
-      if (args.refine > 0)
-        jobs.push_back([&, chain_setup] {
-          const sweep::ChainSetup& setup = *chain_setup;
-          const double t_begin = setup.protocol.windows[std::size_t(r.bracket->window_before)].t_begin;
-          try {
-            r.refined = sweep::refine_threshold(r.threshold, setup, src.plan.points[r.chain].protocol, *r.bracket,
-                                                args.refine, src.state_before(r.chain, t_begin), src.settings);
-          } catch (const std::exception& e) {
-            sweep::Refinement bad;
-            bad.ok = false;
-            bad.failure = e.what();
-            r.refined = bad;
-          }
-        });
-      if (hold) {
-        r.held.emplace();
-        for (const bool pre : {true, false})
-          jobs.push_back([&, chain_setup, pre] {
-            const sweep::ChainSetup& setup = *chain_setup;
-            // Hold at the middle of the bracket's window (ω_m there is the bracket's value), from
-            // the last stored state before it, along the chain's own schedule.
-            const int index = pre ? r.bracket->window_before : r.bracket->window_after;
-            const sweep::Window& w = setup.protocol.windows[std::size_t(index)];
-            const double t_cut = 0.5 * (w.t_begin + w.t_end);
-            sweep::HoldSide& side = pre ? r.held->pre : r.held->post;
+      const sweep::ChainSetup* setup = &src.plan.setups[r.chain];
+      if (args.refine > 0) {
+        const double t_begin = setup->protocol.windows[std::size_t(r.bracket->window_before)].t_begin;
+        r.refined.emplace();
+        try {
+          jobs.push_back([&, setup, start = src.state_before(r.chain, t_begin)] {
             try {
-              side = sweep::hold_side(setup, t_cut, hold->seconds(setup.model.p), w.t_end - w.t_begin,
-                                      src.state_before(r.chain, t_cut), class_of(r.chain, index), src.settings);
+              r.refined = sweep::refine_threshold(r.threshold, *setup, src.plan.points[r.chain].protocol, *r.bracket,
+                                                  args.refine, start, src.settings);
             } catch (const std::exception& e) {
-              side.ok = false;
-              side.failure = e.what();
+              r.refined->ok = false;
+              r.refined->failure = e.what();
             }
           });
+        } catch (const std::exception& e) {
+          r.refined->ok = false;
+          r.refined->failure = e.what();
+        }
+      }
+      if (hold) {
+        r.held.emplace();
+        for (const bool pre : {true, false}) {
+          // Hold at the middle of the bracket's window (ω_m there is the bracket's value), from
+          // the last stored state before it, along the chain's own schedule.
+          const int index = pre ? r.bracket->window_before : r.bracket->window_after;
+          const sweep::Window& w = setup->protocol.windows[std::size_t(index)];
+          const double t_cut = 0.5 * (w.t_begin + w.t_end);
+          sweep::HoldSide& side = pre ? r.held->pre : r.held->post;
+          try {
+            jobs.push_back([&, setup, t_cut, window = w.t_end - w.t_begin, reference = class_of(r.chain, index),
+                            start = src.state_before(r.chain, t_cut)] {
+              try {
+                side = sweep::hold_side(*setup, t_cut, hold->seconds(setup->model.p), window, start, reference,
+                                        src.settings);
+              } catch (const std::exception& e) {
+                side.ok = false;
+                side.failure = e.what();
+              }
+            });
+          } catch (const std::exception& e) {
+            side.ok = false;
+            side.failure = e.what();
+          }
+        }
       }
     }
     std::atomic<std::size_t> next{0};
