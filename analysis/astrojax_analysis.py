@@ -270,6 +270,9 @@ def add_threshold_args(ap):
                     help="the astrojax executable (default: $ASTROJAX, build/astrojax, or astrojax on PATH)")
     ap.add_argument("--refine", metavar="F", type=int,
                     help="also refine every bracket F times slower (`astrojax thresholds --refine F`)")
+    ap.add_argument("--hold", metavar="T",
+                    help="also hold both sides of every bracket for T (seconds, or e.g. 5tau) and judge it a "
+                         "bifurcation or a time-limited transient (`astrojax thresholds --hold T`)")
 
 
 def thresholds_for(args, h5_path):
@@ -280,8 +283,36 @@ def thresholds_for(args, h5_path):
     if exe is None:
         fail("cannot find the astrojax executable to compute the thresholds: build it (cmake --build build), "
              "or pass --astrojax PATH or --thresholds CSV")
-    extra = ("--refine", str(args.refine), "-j", str(os.cpu_count() or 1)) if getattr(args, "refine", None) else ()
+    extra = ("--refine", str(args.refine)) if getattr(args, "refine", None) else ()
+    extra += ("--hold", args.hold) if getattr(args, "hold", None) else ()
+    extra += ("-j", str(os.cpu_count() or 1)) if extra else ()
     return run_thresholds(h5_path, exe, extra)[0]
+
+
+def run_sequence(h5_path, astrojax):
+    """Runs `astrojax thresholds FILE --sequence-csv TMP`; returns the rows of that CSV: kind
+    'run' (a run of one orbit class on one leg) and kind 'step' (a step of the paper's
+    sequence: present, out of order or missing)."""
+    with tempfile.TemporaryDirectory() as tmp:
+        out_csv = os.path.join(tmp, "sequence.csv")
+        proc = subprocess.run([astrojax, "thresholds", h5_path, "--sequence-csv", out_csv], capture_output=True,
+                              text=True)
+        if proc.returncode != 0:
+            fail(f"`{astrojax} thresholds {h5_path} --sequence-csv` exited with {proc.returncode}: {proc.stderr.strip()}")
+        return read_sequence_csv(out_csv)
+
+
+def read_sequence_csv(path):
+    """The rows of `astrojax thresholds --sequence-csv` as dicts of strings."""
+    try:
+        with open(path, newline="") as f:
+            rows = list(csv.DictReader(f))
+    except OSError as e:
+        fail(f"{path}: cannot read: {e}")
+    need = {"chain", "kind", "class", "omega_from_rad_s", "omega_to_rad_s", "step", "status"}
+    if rows and not need <= set(rows[0]):
+        fail(f"{path}: not a CSV of `astrojax thresholds --sequence-csv` (columns {sorted(need - set(rows[0]))} missing)")
+    return rows
 
 
 def draw_thresholds(ax, rows, chains, paper=True):

@@ -252,6 +252,22 @@ class orbits(ImageChecks):
         self.assertLess(error, 1e-6)
 
 
+def section(md_path, title):
+    """The lines of a Markdown file's section "## title" (up to the next "## " heading)."""
+    out, inside = [], False
+    with open(md_path) as f:
+        for line in f:
+            if line.startswith("## "):
+                inside = line.strip() == f"## {title}"
+            elif inside:
+                out.append(line)
+    return out
+
+
+def cells(line):
+    return [c.strip() for c in line.strip().strip("|").split("|")]
+
+
 class report(unittest.TestCase):
     def test_numbers_equal_astrojax_thresholds(self):
         md, out_csv = data("report.md"), data("report.csv")
@@ -275,8 +291,7 @@ class report(unittest.TestCase):
                 if m:
                     printed[(m.group(1), m.group(2))] = re.findall(r"[+-]?\d+\.\d+", m.group(3))
         symbols = {"omega_rise": "ω_rise", "omega_fall": "ω_fall", "omega_1": "ω1", "omega_2": "ω2"}
-        with open(md) as f:
-            table = [line for line in f if re.match(r"\| \d+ \|", line)]
+        table = [line for line in section(md, "Every chain") if re.match(r"\| \d+ \|", line)]
         self.assertEqual(len(table), len(theirs))
         for line, b in zip(table, theirs):
             cells = [c.strip() for c in line.strip().strip("|").split("|")]
@@ -296,12 +311,80 @@ class report(unittest.TestCase):
         self.assertTrue(reached, "the test sweep must reach a threshold")
         for r in reached:
             self.assertEqual((r["refined_before_rad_s"], r["refined_after_rad_s"]), (r["before_rad_s"], r["after_rad_s"]))
-        with open(md) as f:
-            table = [line for line in f if re.match(r"\| \d+ \|", line)]
+        table = [line for line in section(md, "Every chain") if re.match(r"\| \d+ \|", line)]
         for line in table:
             cells = [c.strip() for c in line.strip().strip("|").split("|")]
             if cells[3] != "not reached":
                 self.assertEqual(cells[7], cells[3], f"Markdown row {line.strip()}")
+
+
+    def test_hold_verdicts(self):
+        # --hold: the report's CSV carries astrojax's hold and verdict columns verbatim; the
+        # Markdown shows both held sides of every bracket and one verdict per bracket, the same
+        # as the CSV's.
+        md, out_csv, theirs_csv = data("report_hold.md"), data("report_hold.csv"), data("hold_thresholds.csv")
+        script("threshold_report.py", data("calib.h5"), "-o", md, "--csv", out_csv, "--hold", "10", *THRESHOLD_ARGS)
+        run([ASTROJAX, "thresholds", data("calib.h5"), "--hold", "10", "--csv", theirs_csv])
+        with open(theirs_csv, newline="") as f:
+            theirs = list(csv.DictReader(f))
+        with open(out_csv, newline="") as f:
+            ours = list(csv.DictReader(f))
+        self.assertIn("verdict", theirs[0])
+        self.assertEqual(len(ours), len(theirs))
+        for a, b in zip(ours, theirs):
+            for k in b:
+                self.assertEqual(a[k], b[k], f"chain {b['chain']} {b['threshold']} {k}")
+        reached = [b for b in theirs if b["mid_rad_s"]]
+        self.assertTrue(reached, "the test sweep must reach a threshold, or this comparison proves nothing")
+        for b in reached:
+            self.assertIn(b["verdict"], ("bifurcation", "excursion", "time-limited transient", "undecided"))
+            for side in ("pre", "post"):  # 10 s rounded up to whole windows, at least 4
+                self.assertGreaterEqual(float(b[f"{side}_hold_s"]), 10.0)
+        sides = [cells(l) for l in section(md, "Bifurcation or time limit") if re.match(r"\| \d+ \| \S+ \| (before|after)", l)]
+        self.assertEqual(len(sides), 2 * len(reached))
+        for (pre, post), b in zip(zip(sides[::2], sides[1::2]), reached):
+            self.assertEqual((pre[0], pre[5], pre[6]), (b["chain"], b["pre_class"], b["pre_final_class"]))
+            self.assertEqual((post[0], post[5], post[6]), (b["chain"], b["post_class"], b["post_final_class"]))
+            self.assertAlmostEqual(float(pre[11]), float(b["pre_ratio"]), places=3)
+        verdicts = [cells(l) for l in section(md, "Bifurcation or time limit") if re.match(r"\| \d+ \| \S+ \| [\d.]+ \.\.", l)]
+        self.assertEqual([(v[0], v[3].strip("*")) for v in verdicts], [(b["chain"], b["verdict"]) for b in reached])
+
+    def test_sequence(self):
+        # The class sequence: astrojax's --sequence-csv rows verbatim next to the report, one
+        # Markdown row per run and per paper step. Every chain starts from rest, so its first
+        # run is fallen on the way up from ω_m = 0; where astrojax finds ω_rise without a blip
+        # at the change, the paper's "rise" step sits at the bracket's midpoint (the window
+        # boundary between the last fallen window and the first climbing one).
+        md = data("report_seq.md")
+        script("threshold_report.py", data("phase.h5"), "-o", md, "--csv", data("report_seq.csv"), *THRESHOLD_ARGS)
+        run([ASTROJAX, "thresholds", data("phase.h5"), "--sequence-csv", data("sequence.csv")])
+        with open(data("sequence.csv"), newline="") as f:
+            theirs = list(csv.DictReader(f))
+        with open(data("report_seq_sequence.csv"), newline="") as f:
+            ours = list(csv.DictReader(f))
+        self.assertEqual(ours, theirs)
+        with open(data("thresholds.csv"), newline="") as f:
+            brackets = {(r["chain"], r["threshold"]): r for r in csv.DictReader(f)}
+        lines = section(md, "Orbit class sequence")
+        run_rows = [cells(l) for l in lines if re.match(r"\| \d+ \| (up|down|held) \|", l)]
+        step_rows = [cells(l) for l in lines if re.match(r"\| (rise|circular|fall|locked|omega_1|omega_2) \|", l)]
+        runs = [r for r in theirs if r["kind"] == "run"]
+        steps = [r for r in theirs if r["kind"] == "step"]
+        self.assertEqual([(r[2], r[4]) for r in run_rows], [(r["class"], r["windows"]) for r in runs])
+        self.assertEqual([(r[0], r[2]) for r in step_rows], [(r["step"], r["status"]) for r in steps])
+        chains = sorted({r["chain"] for r in runs}, key=int)
+        self.assertEqual(len(chains), 3)
+        checked = 0
+        for c in chains:
+            first = next(r for r in runs if r["chain"] == c)
+            self.assertEqual((first["class"], first["direction"], float(first["omega_from_rad_s"])), ("fallen", "1", 0.0))
+            rise = next(r for r in steps if r["chain"] == c and r["step"] == "rise")
+            b = brackets[(c, "omega_rise")]
+            climb = next((r for r in runs if r["chain"] == c and r["omega_from_rad_s"] == rise["omega_from_rad_s"]), None)
+            if b["mid_rad_s"] and rise["status"] == "present" and climb and climb["blips"] == "0":
+                self.assertAlmostEqual(float(rise["omega_from_rad_s"]), float(b["mid_rad_s"]), delta=1e-6)
+                checked += 1
+        self.assertGreater(checked, 0, "no chain to compare the rise step with astrojax's ω_rise")
 
 
 class studies(ImageChecks):

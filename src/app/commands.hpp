@@ -38,6 +38,10 @@ struct ThresholdsArgs {
   std::string csv;    // also write the table as CSV here, when non-empty
   int refine = 0;     // re-run each bracket this many times slower (0: no refinement)
   int jobs = 1;       // threads for the refinements
+  std::string hold;   // hold both sides of each bracket this long: seconds, or "Ntau" drag times; empty: no hold
+  bool sequence = false;      // print each chain's orbit class sequence against the paper's
+  std::string sequence_csv;   // also write the sequence as CSV here, when non-empty
+  bool absorb_blips = false;  // the sequence absorbs single not-settled windows between two of one class
 };
 int thresholds_command(const ThresholdsArgs& args);
 

@@ -52,7 +52,17 @@ int main(int argc, char** argv) {
                              "Re-run each bracket from the stored state before it, this many times slower "
                              "(ramps: rate/F; staircases: F times more levels)")
       ->check(CLI::Range(1, 1000));
-  thresholds_cmd->add_option("-j,--jobs", thresholds.jobs, "Threads for --refine")->check(CLI::Range(1, 1024));
+  thresholds_cmd->add_option("-j,--jobs", thresholds.jobs, "Threads for --refine and --hold")->check(CLI::Range(1, 1024));
+  thresholds_cmd->add_option("--hold", thresholds.hold,
+                             "Hold ω_m at both sides of each bracket for T (seconds, or e.g. 5tau: drag times "
+                             "max(m1,m2)/c_D; alone: 5tau) and judge: bifurcation or time-limited transient")
+      ->expected(0, 1)
+      ->default_str("5tau");
+  thresholds_cmd->add_flag("--sequence", thresholds.sequence,
+                           "Print each chain's orbit class sequence and compare it with the paper's");
+  thresholds_cmd->add_option("--sequence-csv", thresholds.sequence_csv, "Also write the class sequence as CSV");
+  thresholds_cmd->add_flag("--absorb-blips", thresholds.absorb_blips,
+                           "In the sequence, absorb one not-settled window between two of the same class");
 
   ajx::app::ClassifyArgs classify;
   CLI::App* classify_cmd = app.add_subcommand(

@@ -4,9 +4,6 @@
 
 namespace ajx::sweep {
 
-namespace {
-
-// The schedule up to t_cut, the piece containing t_cut cut there and ending at ω_cut exactly.
 std::vector<physics::DriveSegment> schedule_until(const std::vector<physics::DriveSegment>& schedule, double t_cut,
                                                   double omega_cut) {
   std::vector<physics::DriveSegment> out;
@@ -24,8 +21,6 @@ std::vector<physics::DriveSegment> schedule_until(const std::vector<physics::Dri
   }
   return out;
 }
-
-}  // namespace
 
 ChainSetup refined_chain(const ChainSetup& chain, const std::vector<Segment>& segments, const Bracket& bracket,
                          int factor) {

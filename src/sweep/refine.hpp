@@ -20,6 +20,11 @@
 
 namespace ajx::sweep {
 
+// A chain's motor schedule up to t_cut: the piece containing t_cut is cut there and made to
+// end at ω_cut exactly (the caller's ω_m at t_cut). Shared by refinement and hold tests.
+std::vector<physics::DriveSegment> schedule_until(const std::vector<physics::DriveSegment>& schedule, double t_cut,
+                                                  double omega_cut);
+
 // The refined piece of a chain: a chain setup whose schedule is the old one up to the start of
 // the window before the change, then the slower segment; its windows are the new ones only.
 // `segments` are the chain's protocol segments (windows refer to them by index).

@@ -1,0 +1,79 @@
+#!/usr/bin/env bash
+# astrojax thresholds --hold and --sequence, end to end on the tiny sweep across ω_rise
+# (R = 2 cm). Checks:
+#  - each side is held at the bracket's own ω_m (the middle of its window), for the default
+#    5 drag times (5 · 0.018/1.7245e-3 = 52.2 s) rounded up to whole windows;
+#  - the energy account of each side closes: P_motor = P_drag + P_friction+impacts + dE/dt to
+#    1e-6 of P_motor (the balance closes to 1e-7 per window; the CSV keeps 9 digits);
+#  - the fallen pendulum below ω_rise is an orbit the motor sustains: it stays fallen and its
+#    |dE/dt| / P_drag is below the derived tolerance m/(2 c_D T) (0.096 for T = 54.5 s);
+#  - the verdict follows the rule of sweep/hold_verdict.hpp, re-derived here from the columns;
+#  - with --refine, the rate_dependent column; --sequence finds the paper's "rise" step at the
+#    bracket; bad --hold values exit 2 before any work.
+# Usage: thresholds_hold_test.sh ASTROJAX_BINARY SOURCE_DIR
+set -u
+bin=$1; src=$2
+work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+fail=0; pass=0
+check() { if eval "$2"; then pass=$((pass+1)); else echo "FAIL: $1"; fail=$((fail+1)); fi; }
+
+"$bin" sweep "$src/tests/data/tiny_rise.toml" -o "$work/rise.h5" -q > "$work/sweep.out" 2>&1
+check "sweep: exit 0" "[ $? -eq 0 ]"
+"$bin" thresholds "$work/rise.h5" --hold -j 2 --csv "$work/hold.csv" > "$work/hold.out" 2>&1
+check "--hold: exit 0" "[ $? -eq 0 ]"
+# Columns by name, from the header.
+col() { awk -F, -v name="$1" 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == name) print i }' "$work/hold.csv"; }
+row=$(grep ',omega_rise,' "$work/hold.csv")
+get() { echo "$row" | awk -F, -v i="$(col "$1")" '{ print $i }'; }
+check "the sweep crosses ω_rise" "[ -n \"$(get mid_rad_s)\" ]"
+check "held at the bracket's ω_m" \
+  "awk -v a=$(get pre_omega_rad_s) -v b=$(get before_rad_s) -v c=$(get post_omega_rad_s) -v d=$(get after_rad_s) \
+     'BEGIN { exit !(a - b < 1e-9 * b && b - a < 1e-9 * b && c - d < 1e-9 * d && d - c < 1e-9 * d) }'"
+# The windows: the ramp's 2π rad/s at 0.5 rad/s² in 3 windows of 4.19 s, one bracket apart.
+for side in pre post; do
+  check "$side: hold of 5 drag times rounded up to whole windows" \
+    "awk -v h=$(get ${side}_hold_s) -v b=$(get before_rad_s) -v a=$(get after_rad_s) 'BEGIN { w = (a - b) / 0.5;
+       t = 5 * 0.018 / 1.7245e-3; n = h / w; exit !(h >= t && h < t + w && n - int(n + 0.5) < 1e-6 && int(n + 0.5) - n < 1e-6) }'"
+done
+for side in pre post; do
+  check "$side: P_motor = P_drag + P_other + dE/dt" \
+    "awk -v m=$(get ${side}_motor_power_W) -v d=$(get ${side}_drag_power_W) -v o=$(get ${side}_friction_impact_power_W) \
+         -v e=$(get ${side}_energy_rate_W) 'BEGIN { r = m - d - o - e; if (r < 0) r = -r; exit !(m > 0 && r <= 1e-6 * m) }'"
+done
+check "pre: the sweep saw fallen, and held it stays fallen" \
+  "[ \"$(get pre_class)\" = fallen ] && [ \"$(get pre_final_class)\" = fallen ]"
+check "pre: sustained, |r| below m/(2 c_D T)" \
+  "awk -v r=$(get pre_ratio) -v s=$(get pre_sustained) -v dt=$(get pre_determined) \
+     -v h=$(get pre_hold_s) 'BEGIN { t = 0.018 / (2 * 1.7245e-3 * h); if (r < 0) r = -r; exit !(s == 1 && dt == 1 && r <= t) }'"
+# The rule: pre kept its class and is sustained; post ends in another class -> bifurcation, in
+# the old class -> excursion; pre changed class or is not sustained -> time-limited.
+verdict=$(get verdict)
+expected=$(awk -v pc=$(get pre_class) -v pf=$(get pre_final_class) -v ps=$(get pre_sustained) \
+               -v pd=$(get pre_determined) -v qf=$(get post_final_class) 'BEGIN {
+  if (pd != 1 && pc == pf) print "undecided";
+  else if (pf != pc || ps != 1) print "time-limited transient";
+  else if (qf != pc) print "bifurcation";
+  else print "excursion" }')
+check "verdict '$verdict' follows the rule ('$expected')" "[ \"$expected\" = \"$verdict\" ]"
+check "printed: both sides and the verdict" \
+  "[ \$(grep -c 'hold [0-9]* s at' '$work/hold.out') -eq 2 ] && grep -q \"verdict: $verdict\" '$work/hold.out'"
+
+"$bin" thresholds "$work/rise.h5" --refine 2 --hold 30 -j 2 --csv "$work/both.csv" > /dev/null 2>&1
+check "--refine with --hold: exit 0" "[ $? -eq 0 ]"
+check "--refine with --hold: rate_dependent yes or no on the ω_rise row" \
+  "head -1 '$work/both.csv' | grep -q ',rate_dependent$' && grep ',omega_rise,' '$work/both.csv' | grep -Eq ',(yes|no)$'"
+
+"$bin" thresholds "$work/rise.h5" --sequence --sequence-csv "$work/seq.csv" > "$work/seq.out" 2>&1
+check "--sequence: exit 0" "[ $? -eq 0 ]"
+check "--sequence: the rise step present at the bracket's midpoint" \
+  "grep ',step,' '$work/seq.csv' | grep ',rise,present,' | awk -F, -v m=$(get mid_rad_s) \
+     '{ d = \$7 - m; if (d < 0) d = -d; exit !(d < 1e-6 * m) }'"
+check "--sequence: printed against the paper" "grep -q 'rise *present' '$work/seq.out'"
+
+for bad in -3 abc 0tau 1e9; do
+  "$bin" thresholds "$work/rise.h5" --hold "$bad" > "$work/bad.out" 2>&1
+  check "--hold $bad: exit 2 naming --hold" "[ $? -eq 2 ] && grep -q -- '--hold' '$work/bad.out'"
+done
+
+echo "thresholds_hold: $pass passed, $fail failed"
+[ $fail -eq 0 ]
