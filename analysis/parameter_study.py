@@ -90,7 +90,8 @@ def cm(v):
 
 def mass_changes(eq, gravity):
     """For each orbit at m_min, the same orbit (ω, l, side, rank in s) at m_max: the largest
-    change of a position [m] and of T/(m g)."""
+    change of a radius or height [m], the change of the bead's azimuth relative to the top
+    [deg] (the lag the drag sets), and the largest change of T/(m g)."""
     masses = sorted({m for m, _, _ in eq})
     if len(masses) < 2:
         return []
@@ -104,7 +105,8 @@ def mass_changes(eq, gravity):
         for ra, rb in zip(a, b):
             dpos = max(abs(ra[q] - rb[q]) for q in ("rho1", "z1", "rho2", "z2"))
             dT = max(abs(ra[t] / (masses[0] * gravity) - rb[t] / (masses[-1] * gravity)) for t in ("T1", "T2"))
-            out.append((w, l, sd, ra["s"], dpos, dT, rb["T1"] / ra["T1"], masses[-1] / masses[0]))
+            dphi = np.degrees(abs(np.angle(np.exp(1j * (rb["phase1"] - ra["phase1"])))))
+            out.append((w, l, sd, ra["s"], dpos, dphi, dT, rb["T1"] / ra["T1"], masses[-1] / masses[0]))
     return out
 
 
@@ -121,13 +123,14 @@ def report(eq, held, config, gravity=9.81):
                      f"{'yes' if r['stable'] == 1 else 'no'} |")
     changes = mass_changes(eq, gravity)
     if changes:
-        lines += ["", "Mass change, same orbit: the largest change of a radius or height, of T/(m g), and the "
-                  "tension ratio against the mass ratio:", "",
-                  "| ω_m | l [m] | side | s [m] at the lighter mass | largest Δ position [mm] | largest Δ T/(m g) | "
-                  "T1 ratio | m ratio |", "|---|---|---|---|---|---|---|---|"]
-        for w, l, sd, s, dpos, dT, ratio, mratio in changes:
-            lines.append(f"| {w / PI:.1f}π | {l:g} | {sd} | {s:.4f} | {1e3 * dpos:.3f} | {dT:.2e} | {ratio:.4f} | "
-                         f"{mratio:.4f} |")
+        lines += ["", "Mass change, same orbit: the largest change of a radius or height, the change of the bead's "
+                  "azimuth relative to the top, of T/(m g), and the tension ratio against the mass ratio:", "",
+                  "| ω_m | l [m] | side | s [m] at the lighter mass | largest Δ radius or height [mm] | "
+                  "Δ azimuth of the bead [°] | largest Δ T/(m g) | T1 ratio | m ratio |",
+                  "|---|---|---|---|---|---|---|---|---|"]
+        for w, l, sd, s, dpos, dphi, dT, ratio, mratio in changes:
+            lines.append(f"| {w / PI:.1f}π | {l:g} | {sd} | {s:.4f} | {1e3 * dpos:.3f} | {dphi:.2f} | {dT:.2e} | "
+                         f"{ratio:.4f} | {mratio:.4f} |")
     lines += ["", "## Held (`astrojax sweep`): the orbit each seed settles on", "",
               "| ω_m | seed | m [kg] | l [m] | class | ω_ball | ρ1 | z1 | ρ2 | z2 | T1 | T2 | T1/(m g) |",
               "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
