@@ -448,12 +448,101 @@ class calibration(unittest.TestCase):
         self.assertIn("## Best fit", text)
 
 
+class adequacy(unittest.TestCase):
+    """analysis/model_adequacy.py: the judging on constructed measurements, then a tiny run."""
+
+    @staticmethod
+    def measured(ramp=None, predicted=None, windows=(), holds=()):
+        paper = {"omega_rise": 12.63 * np.pi, "omega_fall": 3.24 * np.pi, "omega_1": 4.80 * np.pi,
+                 "omega_2": 15.00 * np.pi}
+        return {"paper": paper, "ramp": ramp or {}, "predicted": predicted or {}, "ramp_windows": list(windows),
+                "holds": list(holds), "layers": {}, "violations": {}}
+
+    def test_judging(self):
+        import model_adequacy as ma
+        pi = np.pi
+        # 5 % of the paper's value, either side: 12.63π · 1.05 = 13.26π is in, 13.27π out.
+        self.assertTrue(ma.within(13.26 * pi, 12.63 * pi))
+        self.assertFalse(ma.within(13.27 * pi, 12.63 * pi))
+        self.assertFalse(ma.within(np.nan, 12.63 * pi))
+        ladder = [("a", self.measured(ramp={"omega_rise": 11.0 * pi})),  # 12.9 % low: no
+                  ("b", self.measured(ramp={"omega_rise": 12.5 * pi}, predicted={"omega_fall": 3.3 * pi},
+                                      holds=[(4.8 * pi, "circular_high", "locked-circular", 4.8 * pi)])),
+                  ("c", self.measured(ramp={"omega_rise": 12.7 * pi}, windows=[(2 * pi, "fallen")]))]
+        self.assertEqual(ma.smallest(ladder, "omega_rise"), ("b", "ramp"))
+        self.assertEqual(ma.smallest(ladder, "omega_fall"), ("b", "equilibria"))
+        self.assertEqual(ma.smallest(ladder, "omega_1"), (None, None))
+        self.assertEqual(ma.smallest(ladder, "locked-circular"), ("b", "holds"))
+        self.assertEqual(ma.smallest(ladder, "fallen"), ("c", "ramp"))
+        # A prediction that only ran to the end of the continuation range is no threshold.
+        text = ma.threshold_cell(ladder[0][1], "omega_rise")
+        self.assertTrue(text.startswith("no: ramp 11.00π (-12.9 %)"), text)
+
+    def test_tiny_run(self):
+        md, work = data("adequacy.md"), data("adequacy_runs")
+        script("model_adequacy.py", "-o", md, "--work", work, "--astrojax", ASTROJAX,
+               "--ramp", os.path.join(SOURCE, "tests/data/tiny_rise.toml"),
+               "--hold", os.path.join(SOURCE, "tests/data/tiny_adequacy_hold.toml"),
+               "--run-ramp", os.path.join(SOURCE, "tests/data/tiny_adequacy_run_ramp.toml"),
+               "--run-hold", os.path.join(SOURCE, "tests/data/tiny_adequacy_run_hold.toml"),
+               "--threshold-s-points", "2", "--sets-only", "stick_slip + slack")
+        with open(md) as f:
+            text = f.read()
+        rows = {line.split("|")[1].strip(): [c.strip() for c in line.strip().strip("|").split("|")]
+                for line in text.splitlines() if line.startswith("| ")}
+        for item in ("ω_rise", "ω_fall", "ω1", "ω2", "fallen", "locked-circular", "lagging-circular", "flower"):
+            self.assertIn(item, rows)
+        # The ramp's ω_rise is astrojax thresholds' midpoint on the full model's own file.
+        full = os.path.join(work, "bottom_stop-true_friction-stick_slip_slack-true_top_stop-true_ramp.h5")
+        run([ASTROJAX, "thresholds", full, "--csv", data("adequacy_full.csv")])
+        with open(data("adequacy_full.csv"), newline="") as f:
+            rise = [r for r in csv.DictReader(f) if r["threshold"] == "omega_rise"][0]
+        self.assertTrue(rise["mid_rad_s"], "the tiny ramp must cross ω_rise, or this comparison proves nothing")
+        mid = float(rise["mid_rad_s"])
+        self.assertIn(f"ramp {mid / np.pi:.2f}π ({100 * float(rise['relative_difference']):+.1f} %)", rows["ω_rise"][-2])  # the full model's column
+        # No ramp of 14π reaches ω2, and no tiny hold gives a lagging orbit: said, not hidden.
+        self.assertEqual(rows["ω2"][-1], "**not reproduced**")
+        self.assertEqual(rows["lagging-circular"][-1], "**not reproduced**")
+        self.assertIn("top stop (top_stop = false)", rows)
+
+    def test_bad_input(self):
+        rc, out = script("model_adequacy.py", "-o", data("x.md"), "--ramp", data("missing.toml"), check=False)
+        self.assertEqual(rc, 2)
+        self.assertIn("missing.toml", out)
+        rc, out = script("model_adequacy.py", "-o", data("x.md"), "--set", "layers.slack=false", check=False)
+        self.assertEqual((rc, "outside [layers]" in out), (2, True), out)
+
+
+class parameter_study_script(unittest.TestCase):
+    def test_tiny_run(self):
+        md, work = data("parameter_study.md"), data("parameter_study_runs")
+        script("parameter_study.py", os.path.join(SOURCE, "tests/data/tiny_parameter_study.toml"), "-o", md,
+               "--work", work, "--astrojax", ASTROJAX)
+        with open(md) as f:
+            lines = f.read().splitlines()
+        eq = [[c.strip() for c in l.strip().strip("|").split("|")] for l in lines if l.startswith("| 4.8π | 0.")]
+        eq = [row for row in eq if len(row) == 14]  # the equilibria's table (not the mass-change summary)
+        # Each row's numbers are astrojax orbits' (its CSV in the work directory), rounded.
+        self.assertTrue(eq)
+        for row in eq:
+            m, l, s = float(row[1]), float(row[2]), float(row[4])
+            with open(os.path.join(work, f"orbits_m{m:g}_l{l:g}.csv"), newline="") as f:
+                mine = [r for r in csv.DictReader(f) if r["case"] == "2" and abs(float(r["s"]) - s) < 6e-5]
+            self.assertEqual(len(mine), 1, row)
+            self.assertEqual(f"{float(mine[0]['T1']):.4f}", row[9])
+            self.assertEqual(f"{100 * float(mine[0]['z1']):.2f}", row[6])
+        # Held: one row per chain (2 masses × 2 lengths × 1 ω_m × 1 seed).
+        held = [l for l in lines if l.startswith("| 4.8π | locked_orbit |")]
+        self.assertEqual(len(held), 4)
+
+
 class cli(unittest.TestCase):
     SCRIPTS = ("plot_hysteresis.py", "plot_branches.py", "plot_phase.py", "plot_orbits.py", "threshold_report.py",
                "plot_run.py", "calibrate.py")
+    REPORTS = ("model_adequacy.py", "parameter_study.py")
 
     def test_help(self):
-        for name in self.SCRIPTS:
+        for name in self.SCRIPTS + self.REPORTS:
             rc, out = script(name, "--help")
             self.assertEqual(rc, 0)
             self.assertIn("usage:", out)
