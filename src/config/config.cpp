@@ -204,6 +204,7 @@ void parse_common(const toml::table& root, std::string_view file, CommonConfig& 
     p.tie_static_torque = r.number("tie_static_torque", p.tie_static_torque, 0.0, inf, false, true);
     p.tie_kinetic_torque = r.number("tie_kinetic_torque", p.tie_kinetic_torque, 0.0, inf, false, true);
     p.tie_inertia = r.number("tie_inertia", p.tie_inertia, 0.0, inf, true, true);
+    p.tie_damping = r.number("tie_damping", p.tie_damping, 0.0, inf, false, true);
     r.reject_unknown();
     for (const auto& issue : physics::validate(c.model))
       throw ConfigError(fmt::format("{}: key '{}': {} is out of range; allowed {}", file, issue.key,

@@ -30,6 +30,7 @@ std::vector<ParameterIssue> validate(const Model& model) {
   need(p.tie_kinetic_torque >= 0 && p.tie_kinetic_torque <= p.tie_static_torque, "model.tie_kinetic_torque",
        p.tie_kinetic_torque, fmt::format("0 <= τ_k <= τ_s = {} N m", p.tie_static_torque));
   need(p.tie_inertia > 0, "model.tie_inertia", p.tie_inertia, "I_a > 0 kg m²");
+  need(p.tie_damping >= 0, "model.tie_damping", p.tie_damping, "c_a >= 0 N m s");
   const Layers& L = model.layers;
   need(L.regularisation > 0, "layers.regularisation", L.regularisation, "ε > 0 m/s");
   need(L.restitution >= 0 && L.restitution <= 1, "layers.restitution", L.restitution, "0 <= e <= 1");

@@ -21,7 +21,8 @@ struct Parameters {
   // The tie of the string to the motor's rod, used by the tie-clutch layer (physics/tie.hpp):
   double tie_static_torque = 1.0;    // τ_s [N m], the largest torque the tie holds without slipping
   double tie_kinetic_torque = 1.0;   // τ_k [N m], the torque it passes on while slipping, τ_k <= τ_s
-  double tie_inertia = 1e-7;         // I_a [kg m²], of the tie about the motor axis
+  double tie_inertia = 5e-8;         // I_a [kg m²], of the tie about the motor axis (0.5 g at 1 cm)
+  double tie_damping = 1e-7;         // c_a [N m s], viscous part of the clutch: c_a (ω_m - χ̇) while slipping
 };
 
 // Friction between bead and string:

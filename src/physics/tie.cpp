@@ -46,8 +46,8 @@ TopKinematics top_kinematics(const Model& m, const MotorSchedule& schedule, cons
   k1.a_ddot += R * tangential;  // χ̈ = 1 rad/s²
   const Dynamics d1 = evaluate(m, k1, c, y);
   const double lever = R * tangential.dot(d0.g.u1);  // R (ê_χ·u1)
-  const double chi_ddot =
-      (c.tie.sigma * m.p.tie_kinetic_torque + lever * d0.pull) / (m.p.tie_inertia - lever * (d1.pull - d0.pull));
+  const double clutch = c.tie.sigma * m.p.tie_kinetic_torque + m.p.tie_damping * (omega_m - chi_dot);
+  const double chi_ddot = (clutch + lever * d0.pull) / (m.p.tie_inertia - lever * (d1.pull - d0.pull));
   k.omega_dot = chi_ddot;
   k.a_ddot += chi_ddot * R * tangential;
   return k;

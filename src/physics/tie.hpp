@@ -3,14 +3,17 @@
 // moment of inertia I_a at azimuth χ on the same circle, held to the rod by dry friction:
 //   held      χ = φ + δ (δ fixed), while the torque the rod must apply,
 //             τ = I_a ω̇_m − R (ê_χ·u1) F1, stays within |τ| <= τ_s;
-//   slipping  I_a χ̈ = σ τ_k + R (ê_χ·u1) F1,  σ = sgn(ω_m − χ̇),
+//   slipping  I_a χ̈ = σ τ_k + c_a (ω_m − χ̇) + R (ê_χ·u1) F1,  σ = sgn(ω_m − χ̇),
 // with F1 the net pull of the string's upper link on the tie (along u1, towards the bead)
 // and ê_χ = (−sin χ, cos χ, 0). F1 depends on ä = R χ̈ ê_χ − R χ̇² ê_r linearly, so χ̈ solves
 //   χ̈ [I_a − R (ê_χ·u1) ∂F1/∂χ̈] = σ τ_k + R (ê_χ·u1) F1(χ̈ = 0),
 // where −R (ê_χ·u1) ∂F1/∂χ̈ >= 0 (pulling the tie towards the bead slackens the string): the
-// bracket is positive for every I_a > 0. While slipping, the power the top passes to the
-// string, −F1 u1·ȧ, is what the string's ledger counts as motor work; the clutch dissipates
-// τ_k |ω_m − χ̇| of the motor's power before it reaches the tie.
+// bracket is positive for every I_a > 0. The tie on the string is an undamped oscillator
+// (stiffness ≈ R² F1 / L1 against I_a); the clutch's small viscous part c_a damps it at the
+// rate c_a / 2I_a while adding only c_a (ω_m − χ̇) to τ_k (defaults: I_a = 5e-8 kg m², a 0.5 g
+// knot at 1 cm, and c_a = 1e-7 N m s: 1/s, and 3e-6 N m at a slip of 30 rad/s). While slipping, the power the top passes to the string, −F1 u1·ȧ, is
+// what the string's ledger counts as motor work; the clutch dissipates the rest of the
+// motor's power, (σ τ_k + c_a (ω_m − χ̇)) (ω_m − χ̇), before it reaches the tie.
 #pragma once
 #include "numerics/vector.hpp"
 #include "physics/drive.hpp"
