@@ -41,7 +41,7 @@ struct Trajectory {
     contact.push_back(s.dyn.contact);
     L1.push_back(s.dyn.g.L1);
     psi.push_back(s.dyn.g.psi);
-    omega_m.push_back(s.top.omega);
+    omega_m.push_back(s.top.motor_omega);
     phi.push_back(s.top.phi);
     energy.push_back(physics::mechanical_energy(p, s.y));
     motor_work.push_back(s.y(physics::idx::motor_work));

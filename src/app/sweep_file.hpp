@@ -1,6 +1,7 @@
 // The HDF5 file of a sweep (layout in README, "Sweep output"): made at the start with every
 // result "not computed", filled task by task, reopened to resume or to reclassify.
 #pragma once
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <algorithm>
@@ -25,7 +26,9 @@ inline constexpr double kNotComputed = std::numeric_limits<double>::quiet_NaN();
 // writes its windows and its final state and flushes. An interrupted sweep keeps all that.
 class SweepFile {
  public:
-  static constexpr std::size_t kStateCols = physics::idx::dim + 5;
+  // t, mode, sigma, s_star, impact_loss; y (idx::dim); the tie: slip, sigma, offset, χ, χ̇
+  // (χ, χ̇ NaN for a rigid tie).
+  static constexpr std::size_t kStateCols = 5 + physics::idx::dim + 5;
 
   SweepFile(io::File file, std::size_t chains, std::size_t windows, std::size_t cap, std::size_t tasks)
       : f_(std::move(file)), C_(chains), W_(windows), cap_(cap), T_(tasks) {}
@@ -86,7 +89,8 @@ class SweepFile {
     tg.create_filled("steps", {T_}, io::DType::Int64, 0.0, {T_});
     tg.create_filled("final_state", {T_, kStateCols}, io::DType::Float64, kNotComputed, {1, kStateCols})
         .set_attribute("columns", "t, mode, sigma, s_star, impact_loss, then r1, r2, v1, v2, motor_work, drag_loss, "
-                                  "friction_loss (SI units)");
+                                  "friction_loss, then tie_slip, tie_sigma, tie_offset, chi, chi_dot (NaN for a rigid "
+                                  "tie) (SI units)");
     f_.flush();
   }
 
@@ -110,7 +114,15 @@ class SweepFile {
     s.contact.sigma = int(st[2]);
     s.contact.s_star = st[3];
     s.impact_loss = st[4];
+    const double* tie = st + 5 + physics::idx::dim;
+    const bool has_tie = std::isfinite(tie[3]);
+    s.y.resize(has_tie ? physics::idx::dim_tie : physics::idx::dim);
     for (int k = 0; k < physics::idx::dim; ++k) s.y(k) = st[5 + k];
+    if (has_tie) {
+      s.contact.tie = {tie[0] != 0.0, int(tie[1]), tie[2]};
+      s.y(physics::idx::chi) = tie[3];
+      s.y(physics::idx::chi_dot) = tie[4];
+    }
     return s;
   }
 
@@ -129,7 +141,11 @@ class SweepFile {
     ds("tasks/steps").write_region({task}, {1}, std::span<const std::int64_t>(&steps, 1));
     const physics::State& s = out.final_state;
     std::vector<double> row{s.t, double(s.contact.mode), double(s.contact.sigma), s.contact.s_star, s.impact_loss};
-    row.insert(row.end(), s.y.data(), s.y.data() + s.y.size());
+    row.insert(row.end(), s.y.data(), s.y.data() + physics::idx::dim);
+    const bool has_tie = s.y.size() > physics::idx::dim;
+    row.insert(row.end(), {double(s.contact.tie.slip), double(s.contact.tie.sigma), s.contact.tie.offset,
+                           has_tie ? s.y(physics::idx::chi) : kNotComputed,
+                           has_tie ? s.y(physics::idx::chi_dot) : kNotComputed});
     ds("tasks/final_state").write_region({task, 0}, {1, kStateCols}, std::span<const double>(row));
     f_.flush();
   }

@@ -185,6 +185,7 @@ std::vector<physics::DriveSegment> parse_schedule(const toml::table& root, std::
 
 // [model], [layers], [integrator] and [initial]: shared by every command.
 void parse_common(const toml::table& root, std::string_view file, CommonConfig& c) {
+  bool tie_torques_given = false;
   {  // [model]: ranges that depend on each other are checked by physics::validate below.
     Reader r(subtable(root, "model", file), "model", file);
     physics::Parameters& p = c.model.p;
@@ -199,6 +200,11 @@ void parse_common(const toml::table& root, std::string_view file, CommonConfig& 
     p.drive_radius = r.number("drive_radius", p.drive_radius, 0.0, inf, false, true);
     p.contact_distance = r.number("contact_distance", p.contact_distance, 0.0, inf, true, true);
     p.top_stop = r.number("top_stop", p.top_stop, 0.0, inf, false, true);
+    tie_torques_given = r.has("tie_static_torque") && r.has("tie_kinetic_torque");
+    p.tie_static_torque = r.number("tie_static_torque", p.tie_static_torque, 0.0, inf, false, true);
+    p.tie_kinetic_torque = r.number("tie_kinetic_torque", p.tie_kinetic_torque, 0.0, inf, false, true);
+    p.tie_inertia = r.number("tie_inertia", p.tie_inertia, 0.0, inf, true, true);
+    p.tie_damping = r.number("tie_damping", p.tie_damping, 0.0, inf, false, true);
     r.reject_unknown();
     for (const auto& issue : physics::validate(c.model))
       throw ConfigError(fmt::format("{}: key '{}': {} is out of range; allowed {}", file, issue.key,
@@ -219,6 +225,9 @@ void parse_common(const toml::table& root, std::string_view file, CommonConfig& 
     c.model.layers.friction_law =
         law == "capstan" ? physics::FrictionLaw::Capstan : physics::FrictionLaw::PointContact;
     c.model.layers.bottom_stop = r.boolean("bottom_stop", true);
+    c.model.layers.tie_clutch = r.word("tie", "rigid", {"rigid", "clutch"}) == "clutch";
+    if (c.model.layers.tie_clutch && !tie_torques_given)
+      r.fail("tie", "\"clutch\" needs model.tie_static_torque and model.tie_kinetic_torque (τ_s >= τ_k >= 0 [N m])");
     r.reject_unknown();
   }
   {

@@ -21,6 +21,8 @@ physics::TopKinematics corotating_top(double R, double omega) {
   k.a = Vec3(R, 0, 0);
   k.a_dot = Vec3(0, R * omega, 0);
   k.a_ddot = Vec3(-R * omega * omega, 0, 0);
+  k.motor_omega = omega;
+  k.motor_omega_dot = 0.0;
   return k;
 }
 

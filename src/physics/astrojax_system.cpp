@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "physics/string_friction.hpp"
+#include "physics/tie.hpp"
 
 namespace ajx::physics {
 
@@ -67,6 +68,7 @@ Dynamics evaluate(const Model& m, const TopKinematics& top, const Contact& c, co
       d.T1 = d.T2 = 0.0;
       break;
   }
+  d.pull = F1;
   d.acc1 = (-F1 * d.g.u1 + F2 * d.g.u2 + f.f1) / p.bead_mass;
   d.acc2 = (-F2 * d.g.u2 + f.f2) / p.ball_mass;
   d.motor_power = -F1 * d.g.u1.dot(top.a_dot);  // the top pulls link 1 (the stop's push included)
@@ -77,9 +79,9 @@ Dynamics evaluate(const Model& m, const TopKinematics& top, const Contact& c, co
 
 void rhs(const Model& m, const MotorSchedule& schedule, const Contact& c, double t,
          const numerics::Vec& y, numerics::Vec& dydt) {
-  const TopKinematics top = schedule.top(m.p.drive_radius, t);
+  const TopKinematics top = top_kinematics(m, schedule, c, t, y);
   const Dynamics d = evaluate(m, top, c, y);
-  dydt.resize(idx::dim);
+  dydt.resize(y.size());
   dydt.segment<3>(idx::r1) = y.segment<3>(idx::v1);
   dydt.segment<3>(idx::r2) = y.segment<3>(idx::v2);
   dydt.segment<3>(idx::v1) = d.acc1;
@@ -87,6 +89,11 @@ void rhs(const Model& m, const MotorSchedule& schedule, const Contact& c, double
   dydt(idx::motor_work) = d.motor_power;
   dydt(idx::drag_loss) = d.drag_power;
   dydt(idx::friction_loss) = d.friction_power;
+  // The tie: χ̇ and χ̈ of the top (ω_m and ω̇_m while it is held, physics/tie.hpp).
+  if (y.size() > idx::dim) {
+    dydt(idx::chi) = top.omega;
+    dydt(idx::chi_dot) = top.omega_dot;
+  }
 }
 
 }  // namespace ajx::physics

@@ -14,6 +14,7 @@ struct Dynamics {
   Geometry g;
   double T1;              // tension above the bead [N]
   double T2;              // tension below the bead [N]
+  double pull;            // F1, the net pull of the upper link on the top (tension minus a top-stop push) [N]
   double contact;         // push of the stop on the bead (bottom ball or top), >= 0 [N]
   ConeMargins margins;    // friction-cone margins of the stuck or resting bead (+inf while sliding)
   Vec3 acc1, acc2;        // r̈1, r̈2 [m/s²]

@@ -46,6 +46,8 @@ TopKinematics MotorSchedule::top(double R, double t) const {
   k.a = R * radial;
   k.a_dot = R * k.omega * tangential;
   k.a_ddot = R * k.omega_dot * tangential - R * k.omega * k.omega * radial;
+  k.motor_omega = k.omega;
+  k.motor_omega_dot = k.omega_dot;
   return k;
 }
 

@@ -26,6 +26,10 @@ struct TopKinematics {
   Vec3 a;            // a(t) [m]
   Vec3 a_dot;        // ȧ = R ω (-sin φ, cos φ, 0) [m/s]
   Vec3 a_ddot;       // ä = R ω̇ (-sin φ, cos φ, 0) - R ω² (cos φ, sin φ, 0) [m/s²]
+  // The motor's own ω_m and ω̇_m: equal to omega and omega_dot unless the tie slips on the rod
+  // (physics/tie.hpp), when φ, ω above are the tie's χ, χ̇.
+  double motor_omega;
+  double motor_omega_dot;
 };
 
 class MotorSchedule {

@@ -6,6 +6,7 @@
 #include "physics/astrojax_system.hpp"
 #include "physics/contact_modes.hpp"
 #include "physics/string_friction.hpp"
+#include "physics/tie.hpp"
 
 namespace ajx::physics {
 
@@ -20,6 +21,9 @@ std::string_view to_string(Guard g) {
     case Guard::Taut: return "taut";
     case Guard::ReachBall: return "the bead reached the bottom ball";
     case Guard::ReachTop: return "the bead reached the top";
+    case Guard::TieSlipAhead: return "tie_slip_ahead";
+    case Guard::TieSlipBehind: return "tie_slip_behind";
+    case Guard::TieLock: return "tie_lock";
     case Guard::WatchTension: return "negative tension without the slack layer";
     case Guard::WatchStick: return "ṡ = 0 inside the static cone without stick-slip";
     case Guard::WatchBottom: return "bead below the bottom stop without that layer";
@@ -67,6 +71,14 @@ std::vector<GuardSpec> guards(const Model& m, const Contact& c) {
       if (L.top_stop) add(Guard::LandTop, -1);
       break;
   }
+  if (L.tie_clutch) {
+    if (c.tie.slip) {
+      add(Guard::TieLock, -1);
+    } else {
+      add(Guard::TieSlipAhead, -1);
+      add(Guard::TieSlipBehind, -1);
+    }
+  }
   return out;
 }
 
@@ -89,6 +101,9 @@ double guard_value(Guard g, const Model& m, const TopKinematics& top, const Cont
     }
     case Guard::SlipUp: return evaluate(m, top, c, y).margins.up;
     case Guard::SlipDown: return evaluate(m, top, c, y).margins.down;
+    case Guard::TieSlipAhead: return m.p.tie_static_torque - tie_torque_needed(m, top, c, y);
+    case Guard::TieSlipBehind: return m.p.tie_static_torque + tie_torque_needed(m, top, c, y);
+    case Guard::TieLock: return c.tie.sigma * (top.motor_omega - top.omega);
     case Guard::Slacken:
     case Guard::WatchTension: {
       const Dynamics d = evaluate(m, top, c, y);

@@ -22,6 +22,9 @@ enum class Guard {
   Taut,        // L1 + L2 - l rises through 0: the slack string pulls taut (an impact)
   ReachBall,   // L2 falls to 1e-4 l without the bottom stop: singular, the run ends
   ReachTop,    // L1 falls to 1e-4 l without the top stop: singular, the run ends
+  TieSlipAhead,   // τ_s - τ falls through 0: the rod cannot drag the held tie along, it slips back
+  TieSlipBehind,  // τ_s + τ falls through 0: the tie overruns the rod and slips ahead
+  TieLock,        // σ (ω_m - χ̇) falls through 0: the slipping tie has caught the rod's speed
   // Watches of omitted layers (both directions: entering and leaving the violation).
   WatchTension,  // min(T1, T2) < 0 without the slack layer
   WatchStick,    // ṡ = 0 without a stuck mode (regularised friction creeps through it)

@@ -26,6 +26,11 @@ std::vector<ParameterIssue> validate(const Model& model) {
        p.contact_distance, fmt::format("0 < d < l = {} m", l));
   need(p.top_stop >= 0 && p.top_stop < l - p.contact_distance, "model.top_stop", p.top_stop,
        fmt::format("0 <= s_min < l - d = {} m", l - p.contact_distance));
+  need(p.tie_static_torque >= 0, "model.tie_static_torque", p.tie_static_torque, "τ_s >= 0 N m");
+  need(p.tie_kinetic_torque >= 0 && p.tie_kinetic_torque <= p.tie_static_torque, "model.tie_kinetic_torque",
+       p.tie_kinetic_torque, fmt::format("0 <= τ_k <= τ_s = {} N m", p.tie_static_torque));
+  need(p.tie_inertia > 0, "model.tie_inertia", p.tie_inertia, "I_a > 0 kg m²");
+  need(p.tie_damping >= 0, "model.tie_damping", p.tie_damping, "c_a >= 0 N m s");
   const Layers& L = model.layers;
   need(L.regularisation > 0, "layers.regularisation", L.regularisation, "ε > 0 m/s");
   need(L.restitution >= 0 && L.restitution <= 1, "layers.restitution", L.restitution, "0 <= e <= 1");

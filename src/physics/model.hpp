@@ -18,6 +18,11 @@ struct Parameters {
   double drive_radius = 0.01;        // R [m], to calibrate (1-20 mm)
   double contact_distance = 0.03;    // d [m], L2 >= d (bead resting on the bottom ball)
   double top_stop = 0.05;            // s_min [m], L1 >= s_min (used by the top-stop layer)
+  // The tie of the string to the motor's rod, used by the tie-clutch layer (physics/tie.hpp):
+  double tie_static_torque = 1.0;    // τ_s [N m], the largest torque the tie holds without slipping
+  double tie_kinetic_torque = 1.0;   // τ_k [N m], the torque it passes on while slipping, τ_k <= τ_s
+  double tie_inertia = 5e-8;         // I_a [kg m²], of the tie about the motor axis (0.5 g at 1 cm)
+  double tie_damping = 1e-7;         // c_a [N m s], viscous part of the clutch: c_a (ω_m - χ̇) while slipping
 };
 
 // Friction between bead and string:
@@ -39,6 +44,7 @@ struct Layers {
   bool top_stop = true;              // one-sided contact L1 >= s_min
   bool slack = true;                 // the string may go slack (else negative tensions are reported)
   double restitution = 0.0;          // e of the re-taut impact of a slack string, in [0, 1]
+  bool tie_clutch = false;           // the tie slips on the rod past τ_s (else it is rigid: χ = φ)
 };
 
 struct Model {

@@ -4,6 +4,7 @@
 
 #include "numerics/vector.hpp"
 #include "physics/drive.hpp"
+#include "physics/model.hpp"
 
 namespace ajx::physics {
 
@@ -19,9 +20,18 @@ std::string_view to_string(Mode m);
 
 // The discrete part of the state: the mode and what it holds fixed.
 struct Contact {
+  Contact() = default;
+  Contact(Mode mode_, int sigma_ = 0, double s_star_ = 0.0) : mode(mode_), sigma(sigma_), s_star(s_star_) {}
   Mode mode = Mode::BottomStop;
   int sigma = 0;        // sliding direction sgn ṡ used by the friction law (+1 down, -1 up)
   double s_star = 0.0;  // L1 held while stuck [m]
+  // The tie-clutch layer (physics/tie.hpp): the tie is held at χ = φ + offset, or slips.
+  // Independent of the bead's mode: a change of the bead's mode keeps it.
+  struct Tie {
+    bool slip = false;
+    int sigma = 0;          // while slipping: sgn(ω_m - χ̇), the sense of the clutch torque
+    double offset = 0.0;    // χ - φ while held [rad]
+  } tie;
 };
 
 // Layout of the flat vector the integrators see. The three work integrals are quadratures
@@ -36,7 +46,15 @@ inline constexpr int motor_work = 12;  // ∫ P_motor dt [J]
 inline constexpr int drag_loss = 13;   // ∫ c_D (|v1|² + |v2|²) dt [J]
 inline constexpr int friction_loss = 14;  // ∫ (T1 - T2) ṡ dt [J]
 inline constexpr int dim = 15;
+// With the tie-clutch layer only (physics/tie.hpp), two more:
+inline constexpr int chi = 15;         // χ, azimuth of the string's tie about the motor axis [rad]
+inline constexpr int chi_dot = 16;     // χ̇ [rad/s] (= ω_m while the tie is held)
+inline constexpr int dim_tie = 17;
 }  // namespace idx
+
+// The length of y for a model: the tie's χ, χ̇ only where the layer needs them, so that a
+// model without it integrates exactly the 15 components it always had.
+inline int state_dim(const Model& m) { return m.layers.tie_clutch ? idx::dim_tie : idx::dim; }
 
 struct State {
   double t = 0.0;                 // [s]

@@ -1,6 +1,7 @@
 #include "sim/simulation.hpp"
 
 #include "physics/mode_transitions.hpp"
+#include "physics/tie.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -41,13 +42,17 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
   using physics::Guard;
   const physics::Parameters& p = model_.p;
   const physics::Layers& layers = model_.layers;
-  const double R = p.drive_radius;
   auto stepper = numerics::make_stepper(opt_.method);
   RunSummary sum;
   const State begin = s;
   Contact& contact = s.contact;
   numerics::IntegrateOptions integ = opt_.integ;
-  const auto top_at = [&](double t) { return schedule_.top(R, t); };
+  // The top of the string: the motor's a(t), or the tie's (physics/tie.hpp), for the bead's
+  // mode c (a slipping tie's χ̈ depends on the string's pull in that mode).
+  const auto top_for = [&](const Contact& c, double t, const Vec& y) {
+    return physics::top_kinematics(model_, schedule_, c, t, y);
+  };
+  const auto top_at = [&](double t, const Vec& y) { return top_for(contact, t, y); };
 
   const numerics::System f = [&](double t, const Vec& y, Vec& dydt) {
     physics::rhs(model_, schedule_, contact, t, y, dydt);
@@ -84,7 +89,7 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
   };
   // The cone margin a stuck bead would have here: > 0 means a model with stick would hold it.
   const auto stick_margin = [&](double t, const Vec& y) {
-    const physics::TopKinematics top = top_at(t);
+    const physics::TopKinematics top = top_at(t, y);
     Model held_model = model_;
     held_model.layers.friction = physics::Friction::StickSlip;
     const Contact held{Mode::Stuck, 0, (Vec3(y.segment<3>(physics::idx::r1)) - top.a).norm()};
@@ -94,7 +99,7 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
   const auto follow_watches = [&](double t, const Vec& y) {
     for (auto& [g, w] : watches) {
       if (!w.inside || g == Guard::WatchStick) continue;
-      w.v.worst = std::max(w.v.worst, -physics::guard_value(g, model_, top_at(t), contact, y));
+      w.v.worst = std::max(w.v.worst, -physics::guard_value(g, model_, top_at(t, y), contact, y));
     }
   };
 
@@ -106,7 +111,7 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
     // A violation already present at a segment start is never seen as a crossing: check here.
     for (const auto& g : specs) {
       if (!physics::is_watch(g.kind) || g.kind == Guard::WatchStick) continue;
-      const double value = physics::guard_value(g.kind, model_, top_at(s.t), contact, s.y);
+      const double value = physics::guard_value(g.kind, model_, top_at(s.t, s.y), contact, s.y);
       Watch& w = watch(g.kind);
       if (value < 0.0 && !w.inside) enter_violation(g.kind, s.t, -value);
       w.inside = value < 0.0;
@@ -115,7 +120,7 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
     for (const auto& g : specs) {
       const bool force = g.kind == Guard::SlipUp || g.kind == Guard::SlipDown || g.kind == Guard::Slacken;
       events.push_back({[&, kind = g.kind, force](double t, const Vec& y) {
-                          return physics::guard_value(kind, model_, top_at(t), contact, y) + (force ? band : 0.0);
+                          return physics::guard_value(kind, model_, top_at(t, y), contact, y) + (force ? band : 0.0);
                         },
                         g.direction});
     }
@@ -138,7 +143,7 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
   sum.min_friction_power = std::numeric_limits<double>::infinity();
 
   const auto emit = [&](double t, const Vec& y) {
-    const physics::TopKinematics top = top_at(t);
+    const physics::TopKinematics top = top_at(t, y);
     const physics::Dynamics dyn = physics::evaluate(model_, top, contact, y);
     sum.max_sample_drift =
         std::max(sum.max_sample_drift, physics::constraint_drift(model_, contact, top, y).position);
@@ -182,7 +187,7 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
   const auto post_step = [&](double t, Vec& y) {
     follow_watches(t, y);
     if (contact.mode == Mode::Slack) return false;
-    const physics::TopKinematics top = top_at(t);
+    const physics::TopKinematics top = top_at(t, y);
     const physics::Drift drift = physics::constraint_drift(model_, contact, top, y);
     sum.max_drift = std::max(sum.max_drift, drift.position);
     if (drift.position <= opt_.projection_tol && drift.velocity <= opt_.projection_tol) return false;
@@ -194,7 +199,8 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
   // Enter a taut mode: snap onto its constraints with an impulse (restitution e; zero work for
   // a consistent switch), then let the cones and ṡ decide the final mode.
   const auto enter = [&](Contact next, double e) {
-    const physics::TopKinematics top = top_at(s.t);
+    next.tie = contact.tie;  // the bead's mode changes, the tie's state stays
+    const physics::TopKinematics top = top_for(next, s.t, s.y);
     if (next.mode != Mode::Slack) {
       physics::project_positions(model_, next, top, s.y);
       const physics::ProjectionEnergy pe = physics::project_velocities(model_, next, top, s.y, e);
@@ -218,7 +224,7 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
   const auto meet_stop = [&](bool bottom) {
     if (contact.mode == Mode::Slack) {
       impact_account(bottom ? physics::collide_with_ball(model_, s.y, 0.0)
-                            : physics::collide_with_top(model_, top_at(s.t), s.y, 0.0));
+                            : physics::collide_with_top(model_, top_at(s.t, s.y), s.y, 0.0));
       return;
     }
     const double w0 = s.y(physics::idx::motor_work), l0 = s.impact_loss;
@@ -229,7 +235,7 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
   // L1 + L2 = l, together with a stop the bead touches at that instant (the bead resting on the
   // ball moves with it). With e > 0 the string rebounds and stays slack; with e = 0 it is taut.
   const auto pull_taut = [&] {
-    const physics::TopKinematics top = top_at(s.t);
+    const physics::TopKinematics top = top_at(s.t, s.y);
     const Vec3 r1 = s.y.segment<3>(physics::idx::r1), r2 = s.y.segment<3>(physics::idx::r2);
     Contact set{Mode::Sliding, 0, 0.0};
     if (layers.bottom_stop && (r2 - r1).norm() - p.contact_distance <= on_surface)
@@ -262,12 +268,47 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
     recent_switches.clear();
   };
 
+  // The tie (physics/tie.hpp). It slips from where it is held, with χ and χ̇ continuous.
+  const auto slip_tie = [&](int sigma) {
+    const physics::TopKinematics held = top_at(s.t, s.y);
+    s.y(physics::idx::chi) = held.phi;
+    s.y(physics::idx::chi_dot) = held.omega;
+    contact.tie = {true, sigma, 0.0};
+    if (sum.tie_slips++ == 0) sum.first_tie_slip = s.t;
+    ++sum.mode_switches;
+  };
+  // The slipping tie has caught the rod: held at the present offset if the torque it needs
+  // is within τ_s, else it slips on in the sense that torque asks.
+  const auto lock_tie = [&] {
+    double phi, omega, omega_dot;
+    schedule_.phase(s.t, phi, omega, omega_dot);
+    Contact held = contact;
+    held.tie = {false, 0, s.y(physics::idx::chi) - phi};
+    const double tau = physics::tie_torque_needed(model_, top_for(held, s.t, s.y), held, s.y);
+    ++sum.mode_switches;
+    if (std::abs(tau) <= p.tie_static_torque + band) {
+      contact.tie = held.tie;
+      physics::hold_tie(schedule_, s.t, held.tie.offset, s.y);
+    } else {
+      contact.tie = {true, tau > 0.0 ? +1 : -1, 0.0};
+    }
+  };
+  // A held tie whose torque is already past τ_s (at the start, or after ä jumped) slips now.
+  const auto tie_slips_now = [&] {
+    if (!layers.tie_clutch || contact.tie.slip) return false;
+    const double tau = physics::tie_torque_needed(model_, top_at(s.t, s.y), contact, s.y);
+    if (std::abs(tau) <= p.tie_static_torque + band) return false;
+    slip_tie(tau > 0.0 ? +1 : -1);
+    return true;
+  };
+
   // After an impact, and at every segment start, the state may sit on a guard's surface while
   // moving into its forbidden side, where no crossing is ever seen: act on it here. A taut
   // mode must also satisfy its cone (settle) and, with the slack layer, positive tensions.
   const auto resolve_now = [&] {
     for (int pass = 0; pass < 20; ++pass) {
-      const physics::TopKinematics top = top_at(s.t);
+      if (tie_slips_now()) continue;
+      const physics::TopKinematics top = top_at(s.t, s.y);
       const physics::Geometry g =
           physics::geometry(top, s.y.segment<3>(physics::idx::r1), s.y.segment<3>(physics::idx::r2),
                             s.y.segment<3>(physics::idx::v1), s.y.segment<3>(physics::idx::v2));
@@ -339,7 +380,7 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
         break;
       }
       const Guard g = specs[std::size_t(r.event_index)].kind;
-      const physics::TopKinematics top = top_at(s.t);
+      const physics::TopKinematics top = top_at(s.t, s.y);
       if (physics::is_watch(g)) {
         // Entering or leaving an omitted layer's bad side; the mode goes on.
         const double value = physics::guard_value(g, model_, top, contact, s.y);
@@ -381,6 +422,13 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
         case Guard::Taut:
           pull_taut();
           break;
+        case Guard::TieSlipAhead:
+        case Guard::TieSlipBehind:
+          slip_tie(g == Guard::TieSlipAhead ? +1 : -1);
+          break;
+        case Guard::TieLock:
+          lock_tie();
+          break;
         case Guard::ReachBall:
         case Guard::ReachTop:
           sum.failure = fmt::format("at t = {:.6f} s {} (the {} layer is off): the equations are singular there",
@@ -415,7 +463,8 @@ State hanging_at_rest(const physics::Model& model, const physics::MotorSchedule&
   State s;
   s.t = t0;
   s.contact = {Mode::BottomStop, 0, 0.0};
-  s.y.setZero(dim);
+  s.y.setZero(physics::state_dim(model));
+  if (s.y.size() > dim) physics::hold_tie(schedule, t0, 0.0, s.y);
   s.y.segment<3>(physics::idx::r1) = top.a - (p.string_length - p.contact_distance) * Vec3::UnitZ();
   s.y.segment<3>(physics::idx::r2) = top.a - p.string_length * Vec3::UnitZ();
   return s;
@@ -429,7 +478,8 @@ State explicit_state(const physics::Model& model, const physics::MotorSchedule& 
   State s;
   s.t = t0;
   s.contact = {mode, 0, mode == Mode::Stuck ? (r1 - top.a).norm() : 0.0};
-  s.y.setZero(dim);
+  s.y.setZero(physics::state_dim(model));
+  if (s.y.size() > dim) physics::hold_tie(schedule, t0, 0.0, s.y);
   s.y.segment<3>(physics::idx::r1) = r1;
   s.y.segment<3>(physics::idx::r2) = r2;
   s.y.segment<3>(physics::idx::v1) = v1;

@@ -56,6 +56,8 @@ struct RunSummary {
   long sticks = 0;                 // times the bead stuck to the string (ṡ = 0 inside the cone)
   double first_stick = -1.0;       // time of the first [s], -1 if none
   long slack_phases = 0;           // times the string went slack
+  long tie_slips = 0;              // times the tie slipped on the rod (tie-clutch layer)
+  double first_tie_slip = -1.0;    // time of the first [s], -1 if none
   long chatter = 0;                // chattering episodes detected (many switches in a short time)
   double first_chatter = -1.0;     // [s]
   std::vector<Violation> violations;  // assumptions of omitted layers that did not hold

@@ -22,7 +22,7 @@ TaskOutput run_task(const ChainSetup& chain, const TaskSpan& span, physics::Stat
     if (w == out.windows.size() || s.t < windows[std::size_t(out.windows[w].index)].t_begin) return;
     WindowRecord& rec = out.windows[w];
     rec.t.push_back(s.t);
-    rec.omega_m.push_back(s.top.omega);
+    rec.omega_m.push_back(s.top.motor_omega);
     for (int k = 0; k < 3; ++k) {
       rec.r1.push_back(s.y(physics::idx::r1 + k));
       rec.r2.push_back(s.y(physics::idx::r2 + k));
@@ -90,6 +90,9 @@ void put_state(ByteWriter& w, const physics::State& s) {
   w.put(static_cast<std::int32_t>(s.contact.sigma));
   w.put(s.contact.s_star);
   w.put(s.impact_loss);
+  w.put(static_cast<std::int32_t>(s.contact.tie.slip));
+  w.put(static_cast<std::int32_t>(s.contact.tie.sigma));
+  w.put(s.contact.tie.offset);
   w.put_vector(std::vector<double>(s.y.data(), s.y.data() + s.y.size()));
 }
 physics::State get_state(ByteReader& r) {
@@ -99,6 +102,9 @@ physics::State get_state(ByteReader& r) {
   s.contact.sigma = r.get<std::int32_t>();
   s.contact.s_star = r.get<double>();
   s.impact_loss = r.get<double>();
+  s.contact.tie.slip = r.get<std::int32_t>() != 0;
+  s.contact.tie.sigma = r.get<std::int32_t>();
+  s.contact.tie.offset = r.get<double>();
   const auto y = r.get_vector<double>();
   s.y = numerics::Vec::Map(y.data(), Eigen::Index(y.size()));
   return s;

@@ -1,0 +1,69 @@
+#include "physics/tie.hpp"
+
+#include <cmath>
+
+#include "physics/astrojax_system.hpp"
+
+namespace ajx::physics {
+
+namespace {
+
+// The schedule's top turned by δ about the motor axis.
+TopKinematics held_top(const MotorSchedule& schedule, double R, double t, double offset) {
+  TopKinematics k = schedule.top(R, t);
+  if (offset == 0.0) return k;
+  k.phi += offset;
+  const double c = std::cos(k.phi), s = std::sin(k.phi);
+  const Vec3 radial(c, s, 0.0), tangential(-s, c, 0.0);
+  k.a = R * radial;
+  k.a_dot = R * k.omega * tangential;
+  k.a_ddot = R * k.omega_dot * tangential - R * k.omega * k.omega * radial;
+  return k;
+}
+
+}  // namespace
+
+TopKinematics top_kinematics(const Model& m, const MotorSchedule& schedule, const Contact& c, double t,
+                             const numerics::Vec& y) {
+  const double R = m.p.drive_radius;
+  if (!m.layers.tie_clutch || !c.tie.slip) return held_top(schedule, R, t, m.layers.tie_clutch ? c.tie.offset : 0.0);
+  // Slipping: a, ȧ from χ, χ̇; ä from the tie's equation with the string's pull.
+  double phi_m, omega_m, omega_m_dot;
+  schedule.phase(t, phi_m, omega_m, omega_m_dot);
+  const double chi = y(idx::chi), chi_dot = y(idx::chi_dot);
+  const Vec3 radial(std::cos(chi), std::sin(chi), 0.0), tangential(-std::sin(chi), std::cos(chi), 0.0);
+  TopKinematics k;
+  k.phi = chi;
+  k.omega = chi_dot;
+  k.motor_omega = omega_m;
+  k.motor_omega_dot = omega_m_dot;
+  k.a = R * radial;
+  k.a_dot = R * chi_dot * tangential;
+  k.a_ddot = -R * chi_dot * chi_dot * radial;  // χ̈ = 0
+  k.omega_dot = 0.0;
+  const Dynamics d0 = evaluate(m, k, c, y);
+  TopKinematics k1 = k;
+  k1.a_ddot += R * tangential;  // χ̈ = 1 rad/s²
+  const Dynamics d1 = evaluate(m, k1, c, y);
+  const double lever = R * tangential.dot(d0.g.u1);  // R (ê_χ·u1)
+  const double clutch = c.tie.sigma * m.p.tie_kinetic_torque + m.p.tie_damping * (omega_m - chi_dot);
+  const double chi_ddot = (clutch + lever * d0.pull) / (m.p.tie_inertia - lever * (d1.pull - d0.pull));
+  k.omega_dot = chi_ddot;
+  k.a_ddot += chi_ddot * R * tangential;
+  return k;
+}
+
+double tie_torque_needed(const Model& m, const TopKinematics& held, const Contact& c, const numerics::Vec& y) {
+  const Dynamics d = evaluate(m, held, c, y);
+  const Vec3 tangential(-std::sin(held.phi), std::cos(held.phi), 0.0);
+  return m.p.tie_inertia * held.motor_omega_dot - m.p.drive_radius * tangential.dot(d.g.u1) * d.pull;
+}
+
+void hold_tie(const MotorSchedule& schedule, double t, double offset, numerics::Vec& y) {
+  double phi, omega, omega_dot;
+  schedule.phase(t, phi, omega, omega_dot);
+  y(idx::chi) = phi + offset;
+  y(idx::chi_dot) = omega;
+}
+
+}  // namespace ajx::physics
