@@ -574,6 +574,25 @@ class cli(unittest.TestCase):
         rc, out = script("run_ledger.py", data("phase.h5"), check=False)
         self.assertEqual((rc, "not a run file" in out), (2, True), out)
 
+    def test_tie_scan(self):
+        # The scene of sweeps/scenes/lock_to_lag.toml with the rigid tie and one clutch: the
+        # rigid orbit loses its lock and falls (the motor feeds a lagging orbit nothing); the
+        # clutch keeps the bead up on a lagging orbit the motor sustains (dE/dt ≈ 0: the
+        # decay at the drag rate would read −1; 0.01 leaves two decades).
+        out = data("tie_scan.md")
+        script("tie_scan.py", "-o", out, "--static", "8.8e-4", "--ratio", "1")
+        rows = [[c.strip() for c in line.strip("|").split("|")] for line in open(out) if line.startswith("| ")]
+        rows = [r for r in rows if r[0] in ("rigid", "clutch")]
+        self.assertEqual([r[0] for r in rows], ["rigid", "clutch"])
+        rigid, clutch = rows
+        self.assertIn("(fallen)", rigid[7])
+        self.assertNotIn("(fallen)", clutch[7])
+        self.assertLess(abs(float(clutch[10])), 0.01)
+        end_omega = float(clutch[7].rstrip("π"))
+        self.assertLess(end_omega, 0.5 * 16.0)  # lagging far behind ω_m = 16π at the end
+        rc, out = script("tie_scan.py", "-o", data("x.md"), "--ratio", "1.5", check=False)
+        self.assertEqual((rc, "--ratio" in out), (2, True), out)
+
     def test_plot_run(self):
         out = data("run.png")
         script("plot_run.py", data("run.h5"), "-o", out, "--size", "8,6", "--dpi", "40")

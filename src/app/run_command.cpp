@@ -156,6 +156,8 @@ int run_command(const RunArgs& args) {
   sg.set_attribute("sticks", sum.sticks);
   sg.set_attribute("first_stick", sum.first_stick);
   sg.set_attribute("slack_phases", sum.slack_phases);
+  sg.set_attribute("tie_slips", sum.tie_slips);
+  sg.set_attribute("first_tie_slip", sum.first_tie_slip);
   sg.set_attribute("chatter_episodes", sum.chatter);
   sg.set_attribute("first_chatter", sum.first_chatter);
   // Assumptions of omitted layers that the run found violated, one group each.
