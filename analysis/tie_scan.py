@@ -50,12 +50,20 @@ def run(astrojax, scene, out, overrides):
 
 
 def string_params(path):
-    """l and d of the run, from its stored configuration."""
+    """l and d of the run: its stored configuration, then its --set overrides."""
+    import tomllib
     with h5py.File(path, "r") as f:
         text = ajx.as_text(f["config"][()])
-    import tomllib
+        overrides = ajx.text_attr(f["config"], "overrides")
     model = tomllib.loads(text).get("model", {})
-    return model.get("string_length", 0.826), model.get("contact_distance", 0.03)
+    l, d = model.get("string_length", 0.826), model.get("contact_distance", 0.03)
+    for kv in overrides.splitlines():
+        key, _, value = kv.partition("=")
+        if key.strip() == "model.string_length":
+            l = float(value)
+        elif key.strip() == "model.contact_distance":
+            d = float(value)
+    return l, d
 
 
 def summarise(path, window, tail):

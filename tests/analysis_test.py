@@ -593,6 +593,24 @@ class cli(unittest.TestCase):
         rc, out = script("tie_scan.py", "-o", data("x.md"), "--ratio", "1.5", check=False)
         self.assertEqual((rc, "--ratio" in out), (2, True), out)
 
+    def test_table1_scan(self):
+        # One point, R = 1 cm and d = 3 cm: Table 1's orbit held at 4π locks; ramped down the
+        # bead slides below 4π (it starts stuck inside its cone there); ramped up the lock is lost
+        # near the fold of its branch of circular orbits (4.988π, tests/continuation_test), a
+        # ramp at 0.1 rad/s² crossing it within a few tenths of π.
+        out = data("table1_scan.md")
+        script("table1_scan.py", "-o", out, "--radii", "0.01", "--distances", "0.03")
+        row = [line for line in open(out) if line.startswith("| 10 | 3 |")]
+        self.assertEqual(len(row), 1, open(out).read())
+        cells = [c.strip() for c in row[0].strip().strip("|").split("|")]
+        self.assertIn("locked", cells[2])
+        slide = float(cells[3].split("π")[0])
+        lost = float(cells[5].split("π")[0])
+        self.assertTrue(3.0 < slide < 4.0, cells)
+        self.assertTrue(4.5 < lost < 5.2, cells)
+        rc, out = script("table1_scan.py", "-o", data("x.md"), "--set", "drive_radius=0.01", check=False)
+        self.assertEqual((rc, "--set" in out), (2, True), out)
+
     def test_plot_run(self):
         out = data("run.png")
         script("plot_run.py", data("run.h5"), "-o", out, "--size", "8,6", "--dpi", "40")
