@@ -72,7 +72,7 @@ int bench_work_precision_command(const WorkPrecisionArgs& a) {
   try {
     require_horizon(a.horizon);
     if (a.repeats < 1) throw config::ConfigError(fmt::format("--repeats {}: allowed >= 1", a.repeats));
-    for (const auto& m : a.methods) (void)numerics::make_stepper(m);
+    for (const auto& m : a.methods) (void)numerics::make_stepper(bench::stepper_name(m));
     for (double r : a.rtols)
       if (!(r >= 1e-15 && r < 1.0)) throw config::ConfigError(fmt::format("--rtols {}: allowed [1e-15, 1)", r));
     for (double h : a.steps)
@@ -97,7 +97,7 @@ int bench_work_precision_command(const WorkPrecisionArgs& a) {
     std::printf("  %-7s %9s %10s %10s %10s %10s %10s %6s\n", "method", "rtol|h", "cpu [s]", "err [m]",
                 "drift [m]", "energy", "evals", "status");
     for (const auto& m : a.methods) {
-      const bool adaptive = numerics::make_stepper(m)->adaptive();
+      const bool adaptive = numerics::make_stepper(bench::stepper_name(m))->adaptive();
       for (double param : adaptive ? a.rtols : a.steps) {
         bench::Setting set{m, adaptive ? param : 0.0, adaptive ? 0.0 : param};
         bench::Row row{scene.name, m, adaptive ? "rtol" : "step", param, {}, {}, 0.0};
@@ -121,7 +121,7 @@ int bench_stability_command(const StabilityArgs& a) {
   try {
     require_horizon(a.horizon);
     for (const auto& m : a.methods)
-      if (numerics::make_stepper(m)->adaptive())
+      if (numerics::make_stepper(bench::stepper_name(m))->adaptive())
         throw config::ConfigError(fmt::format("--methods {}: allowed the fixed-step methods euler, rk4, radau_iia", m));
     for (double w : a.omegas_pi)
       if (!(w >= 0.0 && w * std::numbers::pi <= 2000.0))
@@ -308,7 +308,7 @@ int bench_threshold_command(const WorkPrecisionArgs& a, double sample_dt) {
     require_horizon(a.horizon);
     if (!(sample_dt > 0.0 && sample_dt <= 0.1))
       throw config::ConfigError(fmt::format("--sample {}: allowed (0, 0.1] s", sample_dt));
-    for (const auto& m : a.methods) (void)numerics::make_stepper(m);
+    for (const auto& m : a.methods) (void)numerics::make_stepper(bench::stepper_name(m));
     for (const auto& p : a.scenes) scenes.push_back(bench::load_scene(p, a.overrides, a.horizon));
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
@@ -317,7 +317,7 @@ int bench_threshold_command(const WorkPrecisionArgs& a, double sample_dt) {
   // The references first: a scene where the bead never lands is bad input, found before any file.
   std::vector<std::pair<bench::Fall, bench::Fall>> refs;
   for (const bench::Scene& scene : scenes) {
-    refs.emplace_back(bench::first_fall(scene, {"dop853", 1e-13, 0.0}, sample_dt),
+    refs.emplace_back(bench::first_fall(scene, {"dop853/lab", 1e-13, 0.0}, sample_dt),
                       bench::first_fall(scene, {"dopri5", 1e-12, 0.0}, sample_dt));
     if (!refs.back().first.found) {
       std::fprintf(stderr, "error: %s: the bead never lands on the bottom ball within %g s\n", scene.name.c_str(),
@@ -339,7 +339,7 @@ int bench_threshold_command(const WorkPrecisionArgs& a, double sample_dt) {
     std::printf("%s: reference ω_fall = %.9f rad/s (%.6fπ) at t = %.6f s, floor %.1e rad/s\n", scene.name.c_str(),
                 ref.omega, ref.omega / std::numbers::pi, ref.t, floor);
     for (const auto& m : a.methods) {
-      const bool adaptive = numerics::make_stepper(m)->adaptive();
+      const bool adaptive = numerics::make_stepper(bench::stepper_name(m))->adaptive();
       for (double param : adaptive ? a.rtols : a.steps) {
         const bench::Setting set{m, adaptive ? param : 0.0, adaptive ? 0.0 : param};
         const bench::Outcome o = bench::run_point(scene, set, a.repeats, a.cpu_budget);

@@ -28,6 +28,11 @@ struct Scene {
   double horizon = 10.0;  // the error is measured at initial.t + horizon [s]
 };
 
+// A method as the benchmarks name it: a stepper name (numerics::make_stepper) integrated in
+// the product's default axes (rotating), or with the suffix "/lab" in the lab axes.
+std::string_view stepper_name(std::string_view method);
+sim::Axes axes_of(std::string_view method);
+
 // One point of a diagram: a method with either rtol (adaptive, atol = 1e-3 rtol) or a
 // fixed step h.
 struct Setting {

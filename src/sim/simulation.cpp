@@ -1,6 +1,7 @@
 #include "sim/simulation.hpp"
 
 #include "physics/mode_transitions.hpp"
+#include "physics/rotating_axes.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -47,11 +48,26 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
   const State begin = s;
   Contact& contact = s.contact;
   numerics::IntegrateOptions integ = opt_.integ;
-  const auto top_at = [&](double t) { return schedule_.top(R, t); };
-
-  const numerics::System f = [&](double t, const Vec& y, Vec& dydt) {
-    physics::rhs(model_, schedule_, contact, t, y, dydt);
+  // In rotating axes every physics function takes the top at φ = 0 and the rotated state y'
+  // (they are invariant under rotations about z); s.y is rotated in here and back at the end.
+  const bool rotating = opt_.axes == Axes::Rotating;
+  const auto top_at = [&](double t) {
+    return rotating ? physics::top_in_rotating_axes(schedule_, R, t) : schedule_.top(R, t);
   };
+  // The angle from the integrator's axes to the lab's: φ(t), or 0 in the lab.
+  const auto axes_angle = [&](double t) {
+    if (!rotating) return 0.0;
+    double phi, w, wd;
+    schedule_.phase(t, phi, w, wd);
+    return phi;
+  };
+
+  const numerics::System f = rotating ? numerics::System([&](double t, const Vec& y, Vec& dydt) {
+    physics::rhs_in_rotating_axes(model_, schedule_, contact, t, y, dydt);
+  })
+                                      : numerics::System([&](double t, const Vec& y, Vec& dydt) {
+    physics::rhs(model_, schedule_, contact, t, y, dydt);
+  });
 
   // Chatter resolution: after a storm of switches the force guards (cone margins, tensions)
   // switch only past a band of `band` newtons, and impacts become plastic. Deterministic:
@@ -122,7 +138,9 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
   };
 
 
-  // Samples on the grid origin + k sample_dt, and the azimuths for ω_ball.
+  if (rotating) physics::rotate_about_z(s.y, -axes_angle(s.t));
+  // Samples on the grid origin + k sample_dt, and the azimuths for ω_ball (in the integrator's
+  // axes; the lab azimuth adds the axes' angle φ).
   const double t_start = s.t;
   const double origin = std::isfinite(sample_origin) ? sample_origin : t_start;
   long next_sample = sample_dt > 0.0 ? long(std::ceil((t_start - origin) / sample_dt - 1e-9)) : 0;
@@ -137,15 +155,35 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
   sum.min_tension = std::numeric_limits<double>::infinity();
   sum.min_friction_power = std::numeric_limits<double>::infinity();
 
+  Vec ylab(dim);
+  // Samples are handed out in the lab.
   const auto emit = [&](double t, const Vec& y) {
-    const physics::TopKinematics top = top_at(t);
-    const physics::Dynamics dyn = physics::evaluate(model_, top, contact, y);
+    ylab = y;
+    if (rotating) physics::rotate_about_z(ylab, axes_angle(t));
+    const physics::TopKinematics top = schedule_.top(R, t);
+    const physics::Dynamics dyn = physics::evaluate(model_, top, contact, ylab);
     sum.max_sample_drift =
-        std::max(sum.max_sample_drift, physics::constraint_drift(model_, contact, top, y).position);
+        std::max(sum.max_sample_drift, physics::constraint_drift(model_, contact, top, ylab).position);
     if (contact.mode != Mode::Slack) sum.min_tension = std::min({sum.min_tension, dyn.T1, dyn.T2});
     sum.min_friction_power = std::min(sum.min_friction_power, dyn.friction_power);
-    if (on_sample) on_sample(Sample{t, contact, y, dyn, top, s.impact_loss});
+    if (on_sample) on_sample(Sample{t, contact, ylab, dyn, top, s.impact_loss});
   };
+  // The larger |dθ/dt| of the two balls about the axis, in the integrator's axes:
+  // θ̇ = (x w_y − y w_x)/(x² + y²), w the velocity seen in the axes (v − Ω×r when rotating).
+  const auto azimuth_rate = [&](double t, const Vec& y) {
+    double phi, w, wd;
+    schedule_.phase(t, phi, w, wd);
+    double rate = 0.0;
+    for (int b : {physics::idx::r1, physics::idx::r2}) {
+      const double x = y(b), yy = y(b + 1), vx = y(b + 6), vy = y(b + 7);
+      const double rho2 = x * x + yy * yy;
+      const double lab_rate = rho2 > 0.0 ? (x * vy - yy * vx) / rho2 : 0.0;
+      rate = std::max(rate, std::abs(rotating ? lab_rate - w : lab_rate));
+    }
+    return rate;
+  };
+  Vec yend(dim);
+  double rate_start = azimuth_rate(s.t, s.y);
   const auto observe = [&](const numerics::StepView& step) {
     // Samples in (t0, t1] (the first one at t_start is emitted before integrating).
     while (sample_dt > 0.0) {
@@ -157,14 +195,19 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
       }
       ++next_sample;
     }
-    // Azimuths in increments small enough to unwrap (< 0.25 rad of motor phase).
-    double phi0, phi1, w, wd;
-    schedule_.phase(step.t0(), phi0, w, wd);
-    schedule_.phase(step.t1(), phi1, w, wd);
-    const int n = 1 + int(std::abs(phi1 - phi0) / 0.25);
+    // Azimuths in increments small enough to unwrap (< 0.25 rad, with the rates of both ends of
+    // the step). One increment takes the end state and leaves the interpolant alone (DOP853's
+    // costs 3 extra evaluations per step).
+    step.end(yend);
+    const double rate_end = azimuth_rate(step.t1(), yend);
+    const int n = 1 + int(std::min(1e3, std::max(rate_start, rate_end) * std::abs(step.t1() - step.t0()) / 0.25));
+    rate_start = rate_end;
     for (int k = 1; k <= n; ++k) {
       const double t = step.t0() + (step.t1() - step.t0()) * k / n;
-      step.at(t, ybuf);
+      if (k == n)
+        ybuf = yend;
+      else
+        step.at(t, ybuf);
       if (!window_started && t >= t_window) {
         Vec yw(dim);
         step.at(t_window, yw);
@@ -397,13 +440,17 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
     s.y = last_good;
     sum.failure = fmt::format("the friction law failed after t = {:.6f} s: {}", s.t, e.what());
   }
+  double theta_axes_window = 0.0;  // the axes' angle at t_window
+  if (window > 0 && window_started) theta_axes_window = axes_angle(std::max(t_window, t_start));
+  if (rotating) physics::rotate_about_z(s.y, axes_angle(s.t));
   if (sum.failure.empty()) sum.status = numerics::IntegrateStatus::Reached;
   for (auto& [g, w] : watches) sum.violations.push_back(w.v);
   sum.t_end = s.t;
   sum.rhs_evals = stepper->rhs_evals();
   sum.energy = physics::energy_balance(p, begin, s);
   if (window > 0 && window_started)
-    sum.omega_ball = (0.5 * (az1.theta + az2.theta) - theta_window) / (s.t - t_window);
+    sum.omega_ball =
+        (0.5 * (az1.theta + az2.theta) - theta_window + axes_angle(s.t) - theta_axes_window) / (s.t - t_window);
   if (!std::isfinite(sum.min_tension)) sum.min_tension = 0.0;
   if (!std::isfinite(sum.min_friction_power)) sum.min_friction_power = 0.0;
   return sum;
