@@ -18,15 +18,22 @@ using physics::Vec3;
 
 namespace {
 
-// Unwrapped azimuth of a point about the motor axis, advanced in small increments.
+// Unwrapped azimuth of a point about the motor axis, advanced in small increments. The
+// increment is measured in a frame that turned by dbeta against these axes since the last
+// point (where it is smaller): Δθ = ∠(last, Rz(−dbeta) now) + dbeta.
 struct Azimuth {
   double theta = 0.0;
   Eigen::Vector2d last = Eigen::Vector2d::Zero();
   void reset(const Vec3& r) { theta = 0.0; last = r.head<2>(); }
-  void advance(const Vec3& r) {
+  void advance(const Vec3& r, double dbeta = 0.0) {
     const Eigen::Vector2d now = r.head<2>();
-    const double cross = last.x() * now.y() - last.y() * now.x();
-    theta += std::atan2(cross, last.dot(now));
+    Eigen::Vector2d seen = now;
+    if (dbeta != 0.0) {
+      const double c = std::cos(dbeta), s = std::sin(dbeta);
+      seen = Eigen::Vector2d(c * now.x() + s * now.y(), -s * now.x() + c * now.y());
+    }
+    const double cross = last.x() * seen.y() - last.y() * seen.x();
+    theta += std::atan2(cross, last.dot(seen)) + dbeta;
     last = now;
   }
 };
@@ -114,6 +121,26 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
     }
   };
 
+  // The force guards of a mode (two cone margins, the tensions) share one evaluation at (t, y).
+  struct {
+    bool valid = false;
+    double t = 0.0;
+    Vec y;
+    physics::Dynamics d;
+    const physics::Dynamics& at(double tq, const physics::TopKinematics& top, const Vec& yq, const Model& m,
+                                const Contact& c) {
+      if (!(valid && tq == t && yq.size() == y.size() && (yq.array() == y.array()).all())) {
+        d = physics::evaluate(m, top, c, yq);
+        t = tq;
+        y = yq;
+        valid = true;
+      }
+      return d;
+    }
+  } guard_store;
+  const auto guard_cache_at = [&](double t, const physics::TopKinematics& top, const Vec& y) -> const physics::Dynamics& {
+    return guard_store.at(t, top, y, model_, contact);
+  };
   // The guards of the current mode as events; force guards are shifted by the band.
   std::vector<physics::GuardSpec> specs;
   std::vector<numerics::Event> events;
@@ -128,10 +155,14 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
       w.inside = value < 0.0;
     }
     events.clear();
+    guard_store.valid = false;
     for (const auto& g : specs) {
       const bool force = g.kind == Guard::SlipUp || g.kind == Guard::SlipDown || g.kind == Guard::Slacken;
       events.push_back({[&, kind = g.kind, force](double t, const Vec& y) {
-                          return physics::guard_value(kind, model_, top_at(t), contact, y) + (force ? band : 0.0);
+                          const physics::TopKinematics top = top_at(t);
+                          if (!physics::needs_dynamics(kind)) return physics::guard_value(kind, model_, top, contact, y);
+                          return physics::guard_value(kind, model_, top, contact, y, guard_cache_at(t, top, y)) +
+                                 (force ? band : 0.0);
                         },
                         g.direction});
     }
@@ -170,20 +201,26 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
   };
   // The larger |dθ/dt| of the two balls about the axis, in the integrator's axes:
   // θ̇ = (x w_y − y w_x)/(x² + y²), w the velocity seen in the axes (v − Ω×r when rotating).
-  const auto azimuth_rate = [&](double t, const Vec& y) {
+  // and in the other frame (the lab's θ̇ = θ̇' + ω, or the rotating θ̇' = θ̇ − ω).
+  struct Rates {
+    double own = 0.0, other = 0.0;
+  };
+  const auto azimuth_rates = [&](double t, const Vec& y) {
     double phi, w, wd;
     schedule_.phase(t, phi, w, wd);
-    double rate = 0.0;
+    Rates r;
     for (int b : {physics::idx::r1, physics::idx::r2}) {
       const double x = y(b), yy = y(b + 1), vx = y(b + 6), vy = y(b + 7);
       const double rho2 = x * x + yy * yy;
-      const double lab_rate = rho2 > 0.0 ? (x * vy - yy * vx) / rho2 : 0.0;
-      rate = std::max(rate, std::abs(rotating ? lab_rate - w : lab_rate));
+      const double lab_rate = rho2 > 0.0 ? (x * vy - yy * vx) / rho2 : 0.0;  // v is the lab velocity
+      const double rot_rate = lab_rate - w;
+      r.own = std::max(r.own, std::abs(rotating ? rot_rate : lab_rate));
+      r.other = std::max(r.other, std::abs(rotating ? lab_rate : rot_rate));
     }
-    return rate;
+    return r;
   };
   Vec yend(dim);
-  double rate_start = azimuth_rate(s.t, s.y);
+  Rates rate_start = azimuth_rates(s.t, s.y);
   const auto observe = [&](const numerics::StepView& step) {
     // Samples in (t0, t1] (the first one at t_start is emitted before integrating).
     while (sample_dt > 0.0) {
@@ -198,12 +235,27 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
     // Azimuths in increments small enough to unwrap (< 0.25 rad, with the rates of both ends of
     // the step). One increment takes the end state and leaves the interpolant alone (DOP853's
     // costs 3 extra evaluations per step).
+    // The increments are measured in the integrator's axes or in the other frame (the lab or
+    // the rotating one, turned by β = ∓φ against them), whichever the balls turn slower in.
     step.end(yend);
-    const double rate_end = azimuth_rate(step.t1(), yend);
-    const int n = 1 + int(std::min(1e3, std::max(rate_start, rate_end) * std::abs(step.t1() - step.t0()) / 0.25));
+    const Rates rate_end = azimuth_rates(step.t1(), yend);
+    const double dt_step = std::abs(step.t1() - step.t0());
+    const double own = std::max(rate_start.own, rate_end.own), other = std::max(rate_start.other, rate_end.other);
+    const bool use_other = other < own;
+    const int n = 1 + int(std::min(1e3, std::min(own, other) * dt_step / 0.25));
     rate_start = rate_end;
+    // β(t): the other frame's angle against the integrator's axes (−φ from rotating axes to the
+    // lab, +φ from the lab to rotating axes).
+    const auto beta = [&](double t) {
+      if (!use_other) return 0.0;
+      double phi, w, wd;
+      schedule_.phase(t, phi, w, wd);
+      return rotating ? -phi : phi;
+    };
+    double t_prev = step.t0(), beta_prev = beta(t_prev);
     for (int k = 1; k <= n; ++k) {
       const double t = step.t0() + (step.t1() - step.t0()) * k / n;
+      const double beta_t = beta(t);
       if (k == n)
         ybuf = yend;
       else
@@ -211,14 +263,17 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
       if (!window_started && t >= t_window) {
         Vec yw(dim);
         step.at(t_window, yw);
+        const double dbw = beta(t_window) - beta_prev;
         Azimuth a1 = az1, a2 = az2;
-        a1.advance(yw.segment<3>(physics::idx::r1));
-        a2.advance(yw.segment<3>(physics::idx::r2));
+        a1.advance(yw.segment<3>(physics::idx::r1), dbw);
+        a2.advance(yw.segment<3>(physics::idx::r2), dbw);
         theta_window = 0.5 * (a1.theta + a2.theta);
         window_started = true;
       }
-      az1.advance(ybuf.segment<3>(physics::idx::r1));
-      az2.advance(ybuf.segment<3>(physics::idx::r2));
+      az1.advance(ybuf.segment<3>(physics::idx::r1), beta_t - beta_prev);
+      az2.advance(ybuf.segment<3>(physics::idx::r2), beta_t - beta_prev);
+      t_prev = t;
+      beta_prev = beta_t;
     }
     return true;
   };
