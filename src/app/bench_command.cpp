@@ -90,10 +90,17 @@ int bench_work_precision_command(const WorkPrecisionArgs& a) {
   for (const bench::Scene& scene : scenes) {
     const bench::Reference ref = bench::reference(scene);
     std::printf("%s: horizon %g s, reference %s, %ld mode switches, final mode %s, floor %.1e m, "
-                "amplification of a 1e-9 kick %.1e%s\n",
+                "amplification of a 1e-9 kick %.1e, Lyapunov exponent %.2f /s (chaos above %.2f)%s\n",
                 scene.name.c_str(), scene.horizon, ref.run.status.c_str(), ref.run.mode_switches,
                 std::string(physics::to_string(ref.run.final.contact.mode)).c_str(), ref.floor, ref.amplification,
-                ref.chaotic() ? " (chaotic: compare statistics)" : "");
+                ref.sep.lyapunov, ref.sep.threshold, ref.chaotic() ? " (chaotic: compare statistics)" : "");
+    // A chaotic scene is measured by statistics over the horizon, against the reference's.
+    bench::Statistics ref_stats;
+    if (ref.chaotic()) {
+      ref_stats = bench::statistics(scene, {"dop853/lab", 1e-13, 0.0});
+      std::printf("  reference statistics: class %s, mean radius %.6f m, omega_ball %.6f rad/s\n",
+                  ref_stats.orbit_class.c_str(), ref_stats.mean_radius, ref_stats.omega_ball);
+    }
     std::printf("  %-7s %9s %10s %10s %10s %10s %10s %6s\n", "method", "rtol|h", "cpu [s]", "err [m]",
                 "drift [m]", "energy", "evals", "status");
     for (const auto& m : a.methods) {
@@ -104,6 +111,13 @@ int bench_work_precision_command(const WorkPrecisionArgs& a) {
         row.out = bench::run_point(scene, set, a.repeats, a.cpu_budget);
         row.err = bench::compare(row.out.final, ref.run.final);
         row.omega_ball_error = std::abs(row.out.omega_ball - ref.run.omega_ball);
+        if (ref.chaotic()) {
+          const bench::Statistics st = bench::statistics(scene, set);
+          row.orbit_class = st.orbit_class;
+          row.same_class = st.orbit_class == ref_stats.orbit_class;
+          row.mean_radius_error = std::abs(st.mean_radius - ref_stats.mean_radius);
+          row.omega_ball_error = std::abs(st.omega_ball - ref_stats.omega_ball);
+        }
         csv << bench::csv_line(row, ref) << "\n";
         csv.flush();
         std::printf("  %-7s %9.2e %10.3e %10.2e %10.2e %10.2e %10ld %s\n", m.c_str(), param, row.out.cpu_median,
