@@ -125,7 +125,7 @@ TEST(WorkPrecision, RepeatsAreBoundedByTheBudget) {
 TEST(WorkPrecision, CsvLineHasTheHeadersColumns) {
   const bench::Scene s = locked(0.5);
   bench::Reference ref;
-  bench::Row row{s.name, "dopri5", "rtol", 1e-6, bench::run_point(s, {"dopri5", 1e-6, 0.0}, 1, 0.0), {}, 0.0};
+  bench::Row row{s.name, "dopri5", "rtol", 1e-6, bench::run_point(s, {"dopri5", 1e-6, 0.0}, 1, 0.0), {}, 0.0, {}, true, NAN};
   const auto count = [](const std::string& x) { return std::count(x.begin(), x.end(), ','); };
   EXPECT_EQ(count(bench::csv_line(row, ref)), count(bench::csv_header()));
 }

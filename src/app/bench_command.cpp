@@ -107,7 +107,7 @@ int bench_work_precision_command(const WorkPrecisionArgs& a) {
       const bool adaptive = numerics::make_stepper(bench::stepper_name(m))->adaptive();
       for (double param : adaptive ? a.rtols : a.steps) {
         bench::Setting set{m, adaptive ? param : 0.0, adaptive ? 0.0 : param};
-        bench::Row row{scene.name, m, adaptive ? "rtol" : "step", param, {}, {}, 0.0};
+        bench::Row row{scene.name, m, adaptive ? "rtol" : "step", param, {}, {}, 0.0, {}, true, NAN};
         row.out = bench::run_point(scene, set, a.repeats, a.cpu_budget);
         row.err = bench::compare(row.out.final, ref.run.final);
         row.omega_ball_error = std::abs(row.out.omega_ball - ref.run.omega_ball);

@@ -240,7 +240,7 @@ int main(int argc, char** argv) {
     const State y0(y_start.data(), y_start.data() + y_start.size());
     for (const auto& [name, solve] : solvers) {
       for (double rtol : rtols) {
-        bench::Row row{scene.name, rotating ? name + "/rotating" : name, "rtol", rtol, {}, {}, NAN};
+        bench::Row row{scene.name, rotating ? name + "/rotating" : name, "rtol", rtol, {}, {}, NAN, {}, true, NAN};
         std::vector<double> times;
         double spent = 0.0;
         State y;
