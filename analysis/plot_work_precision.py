@@ -73,7 +73,9 @@ def main():
     fig, axes = plt.subplots((n + cols - 1) // cols, cols, figsize=(5.2 * cols, 4.4 * ((n + cols - 1) // cols)),
                              squeeze=False)
     methods = list(dict.fromkeys(r["method"] for r in rows))
-    colors = {m: plt.cm.tab10(i % 10) for i, m in enumerate(methods)}
+    # One colour per solver; a formulation suffix (/lab, /rotating) keeps the colour, dashed.
+    bases = list(dict.fromkeys(m.split("/")[0] for m in methods))
+    colors = {m: plt.cm.tab20(bases.index(m.split("/")[0]) % 20) for m in methods}
     for k, scene in enumerate(scenes):
         ax = axes[k // cols][k % cols]
         rs = [r for r in rows if r["scene"] == scene]
@@ -86,7 +88,7 @@ def main():
             if not good:
                 continue
             xs, ys = [g[0] for g in good], [g[1] for g in good]
-            ax.plot(xs, ys, "-", color=colors[m], lw=1, label=m)
+            ax.plot(xs, ys, "--" if "/" in m else "-", color=colors[m], lw=2.5 if m == "dop853" else 1, label=m)
             for x, y, p in good:
                 filled = p.get("same_final_mode", "1") == "1"
                 ax.plot(x, y, "o", ms=4, color=colors[m], mfc=colors[m] if filled else "none")

@@ -39,6 +39,7 @@ Track run(const bench::Scene& scene, const std::string& method, double step) {
   sim::RunOptions opt = scene.run;
   opt.method = method;
   opt.integ.h_fixed = step;
+  opt.axes = sim::Axes::Lab;  // the paper integrated in the lab frame
   sim::Simulation simulation(scene.model, scene.schedule, opt);
   physics::State s = scene.initial;
   Track k;

@@ -72,7 +72,7 @@ int bench_work_precision_command(const WorkPrecisionArgs& a) {
   try {
     require_horizon(a.horizon);
     if (a.repeats < 1) throw config::ConfigError(fmt::format("--repeats {}: allowed >= 1", a.repeats));
-    for (const auto& m : a.methods) (void)numerics::make_stepper(m);
+    for (const auto& m : a.methods) (void)numerics::make_stepper(bench::stepper_name(m));
     for (double r : a.rtols)
       if (!(r >= 1e-15 && r < 1.0)) throw config::ConfigError(fmt::format("--rtols {}: allowed [1e-15, 1)", r));
     for (double h : a.steps)
@@ -90,20 +90,34 @@ int bench_work_precision_command(const WorkPrecisionArgs& a) {
   for (const bench::Scene& scene : scenes) {
     const bench::Reference ref = bench::reference(scene);
     std::printf("%s: horizon %g s, reference %s, %ld mode switches, final mode %s, floor %.1e m, "
-                "amplification of a 1e-9 kick %.1e%s\n",
+                "amplification of a 1e-9 kick %.1e, Lyapunov exponent %.2f /s (chaos above %.2f)%s\n",
                 scene.name.c_str(), scene.horizon, ref.run.status.c_str(), ref.run.mode_switches,
                 std::string(physics::to_string(ref.run.final.contact.mode)).c_str(), ref.floor, ref.amplification,
-                ref.chaotic() ? " (chaotic: compare statistics)" : "");
+                ref.sep.lyapunov, ref.sep.threshold, ref.chaotic() ? " (chaotic: compare statistics)" : "");
+    // A chaotic scene is measured by statistics over the horizon, against the reference's.
+    bench::Statistics ref_stats;
+    if (ref.chaotic()) {
+      ref_stats = bench::statistics(scene, {"dop853/lab", 1e-13, 0.0});
+      std::printf("  reference statistics: class %s, mean radius %.6f m, omega_ball %.6f rad/s\n",
+                  ref_stats.orbit_class.c_str(), ref_stats.mean_radius, ref_stats.omega_ball);
+    }
     std::printf("  %-7s %9s %10s %10s %10s %10s %10s %6s\n", "method", "rtol|h", "cpu [s]", "err [m]",
                 "drift [m]", "energy", "evals", "status");
     for (const auto& m : a.methods) {
-      const bool adaptive = numerics::make_stepper(m)->adaptive();
+      const bool adaptive = numerics::make_stepper(bench::stepper_name(m))->adaptive();
       for (double param : adaptive ? a.rtols : a.steps) {
         bench::Setting set{m, adaptive ? param : 0.0, adaptive ? 0.0 : param};
-        bench::Row row{scene.name, m, adaptive ? "rtol" : "step", param, {}, {}, 0.0};
+        bench::Row row{scene.name, m, adaptive ? "rtol" : "step", param, {}, {}, 0.0, {}, true, NAN};
         row.out = bench::run_point(scene, set, a.repeats, a.cpu_budget);
         row.err = bench::compare(row.out.final, ref.run.final);
         row.omega_ball_error = std::abs(row.out.omega_ball - ref.run.omega_ball);
+        if (ref.chaotic()) {
+          const bench::Statistics st = bench::statistics(scene, set);
+          row.orbit_class = st.orbit_class;
+          row.same_class = st.orbit_class == ref_stats.orbit_class;
+          row.mean_radius_error = std::abs(st.mean_radius - ref_stats.mean_radius);
+          row.omega_ball_error = std::abs(st.omega_ball - ref_stats.omega_ball);
+        }
         csv << bench::csv_line(row, ref) << "\n";
         csv.flush();
         std::printf("  %-7s %9.2e %10.3e %10.2e %10.2e %10.2e %10ld %s\n", m.c_str(), param, row.out.cpu_median,
@@ -121,7 +135,7 @@ int bench_stability_command(const StabilityArgs& a) {
   try {
     require_horizon(a.horizon);
     for (const auto& m : a.methods)
-      if (numerics::make_stepper(m)->adaptive())
+      if (numerics::make_stepper(bench::stepper_name(m))->adaptive())
         throw config::ConfigError(fmt::format("--methods {}: allowed the fixed-step methods euler, rk4, radau_iia", m));
     for (double w : a.omegas_pi)
       if (!(w >= 0.0 && w * std::numbers::pi <= 2000.0))
@@ -308,7 +322,7 @@ int bench_threshold_command(const WorkPrecisionArgs& a, double sample_dt) {
     require_horizon(a.horizon);
     if (!(sample_dt > 0.0 && sample_dt <= 0.1))
       throw config::ConfigError(fmt::format("--sample {}: allowed (0, 0.1] s", sample_dt));
-    for (const auto& m : a.methods) (void)numerics::make_stepper(m);
+    for (const auto& m : a.methods) (void)numerics::make_stepper(bench::stepper_name(m));
     for (const auto& p : a.scenes) scenes.push_back(bench::load_scene(p, a.overrides, a.horizon));
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
@@ -317,7 +331,7 @@ int bench_threshold_command(const WorkPrecisionArgs& a, double sample_dt) {
   // The references first: a scene where the bead never lands is bad input, found before any file.
   std::vector<std::pair<bench::Fall, bench::Fall>> refs;
   for (const bench::Scene& scene : scenes) {
-    refs.emplace_back(bench::first_fall(scene, {"dop853", 1e-13, 0.0}, sample_dt),
+    refs.emplace_back(bench::first_fall(scene, {"dop853/lab", 1e-13, 0.0}, sample_dt),
                       bench::first_fall(scene, {"dopri5", 1e-12, 0.0}, sample_dt));
     if (!refs.back().first.found) {
       std::fprintf(stderr, "error: %s: the bead never lands on the bottom ball within %g s\n", scene.name.c_str(),
@@ -339,7 +353,7 @@ int bench_threshold_command(const WorkPrecisionArgs& a, double sample_dt) {
     std::printf("%s: reference ω_fall = %.9f rad/s (%.6fπ) at t = %.6f s, floor %.1e rad/s\n", scene.name.c_str(),
                 ref.omega, ref.omega / std::numbers::pi, ref.t, floor);
     for (const auto& m : a.methods) {
-      const bool adaptive = numerics::make_stepper(m)->adaptive();
+      const bool adaptive = numerics::make_stepper(bench::stepper_name(m))->adaptive();
       for (double param : adaptive ? a.rtols : a.steps) {
         const bench::Setting set{m, adaptive ? param : 0.0, adaptive ? 0.0 : param};
         const bench::Outcome o = bench::run_point(scene, set, a.repeats, a.cpu_budget);

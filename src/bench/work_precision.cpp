@@ -7,6 +7,7 @@
 
 #include "physics/contact_modes.hpp"
 #include "physics/energy.hpp"
+#include "sweep/orbit_classifier.hpp"
 
 namespace ajx::bench {
 
@@ -17,10 +18,23 @@ double cpu_seconds() {
 }
 
 namespace {
+constexpr std::string_view kLabSuffix = "/lab";
+}  // namespace
+
+std::string_view stepper_name(std::string_view method) {
+  return method.ends_with(kLabSuffix) ? method.substr(0, method.size() - kLabSuffix.size()) : method;
+}
+
+sim::Axes axes_of(std::string_view method) {
+  return method.ends_with(kLabSuffix) ? sim::Axes::Lab : sim::Axes::Rotating;
+}
+
+namespace {
 
 sim::RunOptions options_for(const Scene& scene, const Setting& setting) {
   sim::RunOptions o = scene.run;
-  o.method = setting.method;
+  o.method = std::string(stepper_name(setting.method));
+  o.axes = axes_of(setting.method);
   if (setting.rtol > 0.0) o.integ.tol = {setting.rtol, 1e-3 * setting.rtol};
   if (setting.step > 0.0) o.integ.h_fixed = setting.step;
   return o;
@@ -76,25 +90,99 @@ Errors compare(const physics::State& s, const physics::State& ref) {
 
 Reference reference(const Scene& scene) {
   Reference ref;
-  ref.run = run_point(scene, {"dop853", 1e-13, 0.0}, 1, 0.0);
+  // The reference in the lab axes, the check in the rotating ones: the floor also bounds the
+  // difference of the two formulations.
+  ref.run = run_point(scene, {"dop853/lab", 1e-13, 0.0}, 1, 0.0);
   const Outcome check = run_point(scene, {"dopri5", 1e-12, 0.0}, 1, 0.0);
   ref.floor = compare(check.final, ref.run.final).position;
-  // The kicked copy: δv = 1e-9 m/s on the bead along x, made consistent with the constraints.
-  constexpr double kick = 1e-9;
-  Scene kicked = scene;
-  kicked.initial.y(physics::idx::v1) += kick;
-  const physics::TopKinematics top = scene.schedule.top(scene.model.p.drive_radius, scene.initial.t);
-  physics::project_velocities(scene.model, kicked.initial.contact, top, kicked.initial.y);
-  const double d0 = compare(kicked.initial, scene.initial).velocity;
-  const Outcome k = run_point(kicked, {"dop853", 1e-13, 0.0}, 1, 0.0);
-  ref.amplification = d0 > 0.0 ? compare(k.final, ref.run.final).velocity / d0 : 0.0;
+  ref.sep = separation(scene);
+  ref.amplification = ref.sep.amplification;
   return ref;
+}
+
+Separation separation(const Scene& scene, int samples) {
+  // The kicked copy: δv = 1e-9 m/s on the bead, made consistent with the constraints; the
+  // first of x, y, z whose kick survives the projection.
+  constexpr double kick = 1e-9, saturation = 0.1;
+  Scene kicked = scene;
+  double d0 = 0.0;
+  const physics::TopKinematics top = scene.schedule.top(scene.model.p.drive_radius, scene.initial.t);
+  for (int axis = 0; axis < 3 && !(d0 > 0.1 * kick); ++axis) {
+    kicked.initial = scene.initial;
+    kicked.initial.y(physics::idx::v1 + axis) += kick;
+    physics::project_velocities(scene.model, kicked.initial.contact, top, kicked.initial.y);
+    d0 = compare(kicked.initial, scene.initial).velocity;
+  }
+  const double dt = scene.horizon / samples;
+  std::vector<double> v[2];
+  for (int k = 0; k < 2; ++k) {
+    sim::RunOptions o = options_for(k == 0 ? scene : kicked, {"dop853/lab", 1e-13, 0.0});
+    sim::Simulation sim((k == 0 ? scene : kicked).model, scene.schedule, o);
+    physics::State st = k == 0 ? scene.initial : kicked.initial;
+    sim.run(st, scene.initial.t + scene.horizon, dt, [&](const sim::Sample& x) {
+      for (int i = 0; i < 6; ++i) v[k].push_back(x.y(physics::idx::v1 + i));
+    });
+  }
+  Separation sep;
+  const double T = scene.horizon;
+  sep.threshold = 3.0 * std::log(4.0) / (0.75 * T);
+  const std::size_t n = std::min(v[0].size(), v[1].size()) / 6;
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = double(i) * dt;
+    Eigen::Vector3d a1, a2;
+    for (int c = 0; c < 3; ++c) {
+      a1[c] = v[0][6 * i + c] - v[1][6 * i + c];
+      a2[c] = v[0][6 * i + 3 + c] - v[1][6 * i + 3 + c];
+    }
+    const double d = std::max(a1.norm(), a2.norm());
+    if (i + 1 == n) sep.amplification = d0 > 0.0 ? d / d0 : 0.0;
+    if (t < 0.25 * T - 1e-12 || !(d > 0.0) || d >= saturation) continue;
+    sx += t;
+    sy += std::log(d);
+    sxx += t * t;
+    sxy += t * std::log(d);
+    ++sep.fitted;
+  }
+  const double den = sep.fitted * sxx - sx * sx;
+  sep.lyapunov = sep.fitted >= 2 && den > 0.0 ? (sep.fitted * sxy - sx * sy) / den : 0.0;
+  return sep;
+}
+
+Statistics statistics(const Scene& scene, const Setting& setting) {
+  sim::Simulation simulation(scene.model, scene.schedule, options_for(scene, setting));
+  physics::State s = scene.initial;
+  std::vector<double> t, w, r1, r2, L1, T1, T2;
+  std::vector<int> mode;
+  const sim::RunSummary sum = simulation.run(s, scene.initial.t + scene.horizon, 1.0 / 200.0, [&](const sim::Sample& x) {
+    t.push_back(x.t);
+    w.push_back(x.top.omega);
+    for (int c = 0; c < 3; ++c) {
+      r1.push_back(x.y(physics::idx::r1 + c));
+      r2.push_back(x.y(physics::idx::r2 + c));
+    }
+    L1.push_back(x.dyn.g.L1);
+    T1.push_back(x.dyn.T1);
+    T2.push_back(x.dyn.T2);
+    mode.push_back(int(x.contact.mode));
+  });
+  sweep::OrbitWindow win{t, w, r1, r2, L1, T1, T2, mode, !sum.ok(), sum.failure};
+  const sweep::OrbitClassification c = sweep::classify_orbit(win, sweep::orbit_scales(scene.model.p));
+  Statistics st;
+  st.orbit_class = std::string(sweep::to_string(c.cls));
+  double rho = 0.0;
+  for (std::size_t i = 0; i < t.size(); ++i)
+    rho += std::hypot(r1[3 * i], r1[3 * i + 1]) + std::hypot(r2[3 * i], r2[3 * i + 1]);
+  st.mean_radius = t.empty() ? 0.0 : rho / (2.0 * double(t.size()));
+  st.omega_ball = sum.omega_ball;
+  return st;
 }
 
 std::string csv_header() {
   return "scene,method,param_kind,param,status,repeats,cpu_median_s,cpu_min_s,steps,rejected,rhs_evals,"
          "mode_switches,err_position_m,err_velocity_mps,same_final_mode,omega_ball_error,max_drift_m,"
-         "energy_residual_rel,reference_floor_m,amplification,chaotic";
+         "energy_residual_rel,reference_floor_m,amplification,chaotic,lyapunov_per_s,orbit_class,same_class,"
+         "mean_radius_error_m";
 }
 
 std::string csv_line(const Row& r, const Reference& ref) {
@@ -103,7 +191,9 @@ std::string csv_line(const Row& r, const Reference& ref) {
                      r.scene, r.method, r.param_kind, r.param, o.status, o.repeats, o.cpu_median, o.cpu_min,
                      o.steps, o.rejected, o.rhs_evals, o.mode_switches, r.err.position, r.err.velocity,
                      r.err.same_mode ? 1 : 0, r.omega_ball_error, o.max_drift, o.energy_residual, ref.floor,
-                     ref.amplification, ref.chaotic() ? 1 : 0);
+                     ref.amplification, ref.chaotic() ? 1 : 0) +
+         fmt::format(",{:.6e},{},{},{:.6e}", ref.sep.lyapunov, r.orbit_class, r.same_class ? 1 : 0,
+                     r.mean_radius_error);
 }
 
 }  // namespace ajx::bench
@@ -111,11 +201,7 @@ std::string csv_line(const Row& r, const Reference& ref) {
 namespace ajx::bench {
 
 Fall first_fall(const Scene& scene, const Setting& setting, double sample_dt) {
-  sim::RunOptions o = scene.run;
-  o.method = setting.method;
-  if (setting.rtol > 0.0) o.integ.tol = {setting.rtol, 1e-3 * setting.rtol};
-  if (setting.step > 0.0) o.integ.h_fixed = setting.step;
-  sim::Simulation simulation(scene.model, scene.schedule, o);
+  sim::Simulation simulation(scene.model, scene.schedule, options_for(scene, setting));
   physics::State s = scene.initial;
   Fall fall;
   bool have_prev = false;

@@ -5,6 +5,7 @@
 // method (Dormand-Prince at rtol 1e-12), and their difference is the floor below which
 // errors are not resolved. Knows nothing of files: the application loads scenes and writes.
 #pragma once
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,11 @@ struct Scene {
   sim::RunOptions run;  // projection, event bounds, ...; method and tolerances set per point
   double horizon = 10.0;  // the error is measured at initial.t + horizon [s]
 };
+
+// A method as the benchmarks name it: a stepper name (numerics::make_stepper) integrated in
+// the product's default axes (rotating), or with the suffix "/lab" in the lab axes.
+std::string_view stepper_name(std::string_view method);
+sim::Axes axes_of(std::string_view method);
 
 // One point of a diagram: a method with either rtol (adaptive, atol = 1e-3 rtol) or a
 // fixed step h.
@@ -61,17 +67,45 @@ struct Errors {
 };
 Errors compare(const physics::State& s, const physics::State& ref);
 
+// Separation of nearby runs: the scene and a copy whose bead got a velocity kick of 1e-9 m/s
+// at t0 (projected onto the constraints), both DOP853 at rtol 1e-13 in the lab axes, their
+// velocity separation δ(t) = max(|Δv1|, |Δv2|) sampled `samples` times over the horizon.
+// The finite-time Lyapunov exponent λ is the least-squares slope of ln δ over the last three
+// quarters of the horizon (the first quarter lets the kick align with the growing direction),
+// using only samples below saturation (δ < 0.1 m/s, a tenth of the balls' speeds).
+// Regular motion (a limit cycle, a quasi-periodic flower) separates at most linearly,
+// δ ∝ t, whose log-slope over [T/4, T] is at most ln 4 / (3T/4); chaos is declared when λ is
+// three times that, i.e. when δ grows 64x over the window where linear growth gives 4x.
+struct Separation {
+  double amplification = 0.0;  // δ(horizon)/δ(0)
+  double lyapunov = 0.0;       // λ [1/s]
+  double threshold = 0.0;      // λ above which the scene is chaotic [1/s]
+  int fitted = 0;              // samples in the fit
+  bool chaotic() const { return fitted >= 4 && lyapunov > threshold; }
+};
+Separation separation(const Scene& scene, int samples = 40);
+
 struct Reference {
-  Outcome run;              // DOP853 at rtol 1e-13
-  double floor = 0.0;       // |reference - DOPRI5 at rtol 1e-12| in position [m]
-  // Sensitivity: a velocity kick of 1e-9 m/s on the bead at t0 (projected onto the
-  // constraints) grows to `amplification` x 1e-9 in velocity at the horizon. Above 1e6 the
-  // scene is chaotic over the horizon: pointwise errors below ~1e-16 x amplification cannot
-  // be reached by any method, and statistics (ω_ball, the orbit class) are the measure.
-  double amplification = 0.0;
-  bool chaotic() const { return amplification > 1e6; }
+  Outcome run;              // DOP853 at rtol 1e-13 (lab axes)
+  double floor = 0.0;       // |reference - DOPRI5 at rtol 1e-12 (rotating axes)| in position [m]
+  // Sensitivity (see Separation). A chaotic scene's pointwise errors grow like e^{λT} from any
+  // method's round-off: no method reaches them, and statistics (orbit class, mean radius,
+  // ω_ball over the horizon) are the measure.
+  Separation sep;
+  double amplification = 0.0;  // sep.amplification
+  bool chaotic() const { return sep.chaotic(); }
 };
 Reference reference(const Scene& scene);
+
+// Statistics of one run over the horizon (sampled 200 times per second), the measure of a
+// chaotic scene: the orbit class of sweep::classify_orbit over the horizon, the mean
+// horizontal radius of the two balls, and ω_ball (the classifier's least-squares slope).
+struct Statistics {
+  std::string orbit_class;
+  double mean_radius = 0.0;  // [m]
+  double omega_ball = 0.0;   // [rad/s]
+};
+Statistics statistics(const Scene& scene, const Setting& setting);
 
 // One row of the work-precision table (also written by the peers' driver, same columns).
 struct Row {
@@ -80,6 +114,10 @@ struct Row {
   Outcome out;
   Errors err;
   double omega_ball_error = 0.0;  // |ω_ball - ω_ball of the reference| [rad/s]
+  // Chaotic scenes only (NaN / empty otherwise): the statistics against the reference's.
+  std::string orbit_class;
+  bool same_class = true;
+  double mean_radius_error = std::numeric_limits<double>::quiet_NaN();  // [m]
 };
 std::string csv_header();
 std::string csv_line(const Row& r, const Reference& ref);

@@ -10,6 +10,13 @@ namespace ajx::numerics {
 
 void StepView::at(double t, Vec& out) const { s_.dense(f_, (t - t0_) / h_, out); }
 
+void StepView::end(Vec& out) const {
+  if (y1_)
+    out = *y1_;
+  else
+    at(t1_, out);
+}
+
 std::string to_string(IntegrateStatus s) {
   switch (s) {
     case IntegrateStatus::Reached:
@@ -210,13 +217,13 @@ IntegrateResult integrate(const System& f, Stepper& stepper, double t0, Vec& y, 
         res.status = IntegrateStatus::Event;
         res.event_index = best;
         // The observer sees the truncated step; its return value cannot stop more.
-        if (observe) observe(StepView(stepper, f, t, t_best, hs));
+        if (observe) observe(StepView(stepper, f, t, t_best, hs, &y));
         return true;
       }
     }
     // The observer runs before the projection; a stop still completes the step (post-step
     // hook included) so that the returned state is a regular one.
-    const bool stop = observe && !observe(StepView(stepper, f, t, t1, hs));
+    const bool stop = observe && !observe(StepView(stepper, f, t, t1, hs, &y_new));
     y = y_new;
     res.t = t1;
     if (post_step && post_step(t1, y)) {

@@ -26,19 +26,24 @@ class StepView {
  public:
   StepView(Stepper& s, const System& f, double t0, double t1)
       : s_(s), f_(f), t0_(t0), t1_(t1), h_(t1 - t0) {}
-  // A step of size h cut short at t1 (an event inside it): theta = (t - t0) / h.
-  StepView(Stepper& s, const System& f, double t0, double t1, double h)
-      : s_(s), f_(f), t0_(t0), t1_(t1), h_(h) {}
+  // A step of size h cut short at t1 (an event inside it): theta = (t - t0) / h. y1, when
+  // given, is y(t1), which end() then hands out without touching the interpolant.
+  StepView(Stepper& s, const System& f, double t0, double t1, double h, const Vec* y1 = nullptr)
+      : s_(s), f_(f), t0_(t0), t1_(t1), h_(h), y1_(y1) {}
   double t0() const { return t0_; }
   double t1() const { return t1_; }
-  // y(t) for t in [t0, t1] from the stepper's interpolant.
+  // y(t) for t in [t0, t1] from the stepper's interpolant (DOP853 pays 3 extra stages for it,
+  // once per step).
   void at(double t, Vec& out) const;
+  // y(t1) (free when the driver passed it).
+  void end(Vec& out) const;
 
  private:
   Stepper& s_;
   const System& f_;
   double t0_, t1_;
   double h_;  // size of the stepper's step starting at t0 (t1 - t0 unless cut by an event)
+  const Vec* y1_ = nullptr;
 };
 
 struct IntegrateOptions {

@@ -9,13 +9,16 @@
 
 namespace ajx::physics {
 
-Dynamics evaluate(const Model& m, const TopKinematics& top, const Contact& c, const numerics::Vec& y) {
+Dynamics evaluate(const Model& m, const TopKinematics& top, const Contact& c, const numerics::Vec& y,
+                  bool motion_only) {
   const Parameters& p = m.p;
   const Vec3 r1 = y.segment<3>(idx::r1), r2 = y.segment<3>(idx::r2);
   const Vec3 v1 = y.segment<3>(idx::v1), v2 = y.segment<3>(idx::v2);
   constexpr double inf = std::numeric_limits<double>::infinity();
   Dynamics d;
-  d.g = geometry(top, r1, r2, v1, v2);
+  // ψ enters the motion only through the sliding law.
+  const bool need_cone = !motion_only || c.mode == Mode::Sliding;
+  d.g = geometry(top, r1, r2, v1, v2, need_cone);
   const AppliedForces f = applied_forces(p, v1, v2);
 
   // F1, F2: the net pulls of the two links on the bead (tension minus any contact push).
@@ -39,6 +42,12 @@ Dynamics evaluate(const Model& m, const TopKinematics& top, const Contact& c, co
       const Eigen::Vector2d tf = two_link_forces(p, d.g, f, top.a_ddot);
       F1 = tf(0);
       F2 = tf(1);
+      if (!need_cone) {  // the motion needs the net pulls only
+        d.T1 = F1;
+        d.T2 = F2;
+        d.margins = {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()};
+        break;
+      }
       const FrictionCone cone = friction_cone(m.layers.friction_law, sticking_mu(m), d.g.psi);
       const ConeMargins both = cone_margins(m, d.g, F1, F2);
       if (c.mode == Mode::Stuck) {
@@ -80,7 +89,7 @@ Dynamics evaluate(const Model& m, const TopKinematics& top, const Contact& c, co
 void rhs(const Model& m, const MotorSchedule& schedule, const Contact& c, double t,
          const numerics::Vec& y, numerics::Vec& dydt) {
   const TopKinematics top = top_kinematics(m, schedule, c, t, y);
-  const Dynamics d = evaluate(m, top, c, y);
+  const Dynamics d = evaluate(m, top, c, y, true);
   dydt.resize(y.size());
   dydt.segment<3>(idx::r1) = y.segment<3>(idx::v1);
   dydt.segment<3>(idx::r2) = y.segment<3>(idx::v2);

@@ -23,7 +23,10 @@ struct Dynamics {
   double friction_power;  // (T1 - T2) ṡ [W], >= 0 whenever the tensions are
 };
 
-Dynamics evaluate(const Model& m, const TopKinematics& top, const Contact& c, const numerics::Vec& y);
+// motion_only: what the equations of motion need (accelerations and powers); in the two-link
+// modes the tensions are then the net pulls F1, F2, and ψ and the cone margins are NaN.
+Dynamics evaluate(const Model& m, const TopKinematics& top, const Contact& c, const numerics::Vec& y,
+                  bool motion_only = false);
 
 // dy/dt in the layout of idx (accelerations and the three power quadratures).
 void rhs(const Model& m, const MotorSchedule& schedule, const Contact& c, double t,

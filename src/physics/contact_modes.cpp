@@ -18,7 +18,7 @@ double normal_rate_term(const Vec3& u, const Vec3& w, double L) {
 }  // namespace
 
 Geometry geometry(const TopKinematics& top, const Vec3& r1, const Vec3& r2, const Vec3& v1,
-                  const Vec3& v2) {
+                  const Vec3& v2, bool with_psi) {
   Geometry g;
   const Vec3 d1 = r1 - top.a, d2 = r2 - r1;
   g.L1 = d1.norm();
@@ -32,7 +32,7 @@ Geometry geometry(const TopKinematics& top, const Vec3& r1, const Vec3& r2, cons
   g.q1 = normal_rate_term(g.u1, g.w1, g.L1);
   g.q2 = normal_rate_term(g.u2, g.w2, g.L2);
   g.cos_psi = g.u1.dot(g.u2);
-  g.psi = deflection(g.u1, g.u2);
+  g.psi = with_psi ? deflection(g.u1, g.u2) : std::numeric_limits<double>::quiet_NaN();
   return g;
 }
 

@@ -19,10 +19,12 @@ struct Geometry {
   double L2_dot;      // u2·w2 [m/s]
   double q1, q2;      // |w⊥|²/L: the velocity part of L̈1, L̈2 [m/s²]
   double cos_psi;     // u1·u2
-  double psi;         // ψ, deflection of the string at the bead [rad]
+  double psi;         // ψ, deflection of the string at the bead [rad] (NaN when not asked for)
 };
+// with_psi = false skips ψ (an atan2): the equations of motion of the two-link modes do not
+// need it, only their friction cones do.
 Geometry geometry(const TopKinematics& top, const Vec3& r1, const Vec3& r2, const Vec3& v1,
-                  const Vec3& v2);
+                  const Vec3& v2, bool with_psi = true);
 
 // Applied forces other than the string: f_i = -c_D v_i - m_i g ẑ.
 struct AppliedForces {

@@ -99,18 +99,30 @@ double guard_value(Guard g, const Model& m, const TopKinematics& top, const Cont
       const double sdot = u1.dot(Vec3(y.segment<3>(idx::v1)) - top.a_dot);
       return g == Guard::Rest ? c.sigma * sdot : sdot;
     }
-    case Guard::SlipUp: return evaluate(m, top, c, y).margins.up;
-    case Guard::SlipDown: return evaluate(m, top, c, y).margins.down;
     case Guard::TieSlipAhead: return m.p.tie_static_torque - tie_torque_needed(m, top, c, y);
     case Guard::TieSlipBehind: return m.p.tie_static_torque + tie_torque_needed(m, top, c, y);
     case Guard::TieLock: return c.tie.sigma * (top.motor_omega - top.omega);
+    case Guard::SlipUp:
+    case Guard::SlipDown:
     case Guard::Slacken:
-    case Guard::WatchTension: {
-      const Dynamics d = evaluate(m, top, c, y);
-      return std::min(d.T1, d.T2);
-    }
+    case Guard::WatchTension: return guard_value(g, m, top, c, y, evaluate(m, top, c, y));
   }
   return 1.0;
+}
+
+bool needs_dynamics(Guard g) {
+  return g == Guard::SlipUp || g == Guard::SlipDown || g == Guard::Slacken || g == Guard::WatchTension;
+}
+
+double guard_value(Guard g, const Model& m, const TopKinematics& top, const Contact& c,
+                   const numerics::Vec& y, const Dynamics& d) {
+  switch (g) {
+    case Guard::SlipUp: return d.margins.up;
+    case Guard::SlipDown: return d.margins.down;
+    case Guard::Slacken:
+    case Guard::WatchTension: return std::min(d.T1, d.T2);
+    default: return guard_value(g, m, top, c, y);
+  }
 }
 
 Contact at_rest(const Model& m, const TopKinematics& top, const numerics::Vec& y, double band) {

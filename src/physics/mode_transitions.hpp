@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "numerics/vector.hpp"
+#include "physics/astrojax_system.hpp"
 #include "physics/drive.hpp"
 #include "physics/model.hpp"
 #include "physics/state.hpp"
@@ -45,6 +46,11 @@ std::vector<GuardSpec> guards(const Model& m, const Contact& c);
 // The guard's value at (t, y) in mode c; zero at the switch.
 double guard_value(Guard g, const Model& m, const TopKinematics& top, const Contact& c,
                    const numerics::Vec& y);
+// The force guards (cone margins, tensions) need physics::evaluate at (t, y); the others not.
+bool needs_dynamics(Guard g);
+// The same value with d = evaluate(m, top, c, y) computed once for all guards of a mode.
+double guard_value(Guard g, const Model& m, const TopKinematics& top, const Contact& c,
+                   const numerics::Vec& y, const Dynamics& d);
 
 // The mode the bead takes when it is at rest on the string (ṡ = 0): stuck while the forces
 // of the held bead lie inside the sticking cone, else sliding in the direction of the violated

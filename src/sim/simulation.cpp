@@ -1,6 +1,7 @@
 #include "sim/simulation.hpp"
 
 #include "physics/mode_transitions.hpp"
+#include "physics/rotating_axes.hpp"
 #include "physics/tie.hpp"
 
 #include <algorithm>
@@ -18,15 +19,22 @@ using physics::Vec3;
 
 namespace {
 
-// Unwrapped azimuth of a point about the motor axis, advanced in small increments.
+// Unwrapped azimuth of a point about the motor axis, advanced in small increments. The
+// increment is measured in a frame that turned by dbeta against these axes since the last
+// point (where it is smaller): Δθ = ∠(last, Rz(−dbeta) now) + dbeta.
 struct Azimuth {
   double theta = 0.0;
   Eigen::Vector2d last = Eigen::Vector2d::Zero();
   void reset(const Vec3& r) { theta = 0.0; last = r.head<2>(); }
-  void advance(const Vec3& r) {
+  void advance(const Vec3& r, double dbeta = 0.0) {
     const Eigen::Vector2d now = r.head<2>();
-    const double cross = last.x() * now.y() - last.y() * now.x();
-    theta += std::atan2(cross, last.dot(now));
+    Eigen::Vector2d seen = now;
+    if (dbeta != 0.0) {
+      const double c = std::cos(dbeta), s = std::sin(dbeta);
+      seen = Eigen::Vector2d(c * now.x() + s * now.y(), -s * now.x() + c * now.y());
+    }
+    const double cross = last.x() * seen.y() - last.y() * seen.x();
+    theta += std::atan2(cross, last.dot(seen)) + dbeta;
     last = now;
   }
 };
@@ -42,21 +50,37 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
   using physics::Guard;
   const physics::Parameters& p = model_.p;
   const physics::Layers& layers = model_.layers;
+  const double R = p.drive_radius;
   auto stepper = numerics::make_stepper(opt_.method);
   RunSummary sum;
   const State begin = s;
   Contact& contact = s.contact;
   numerics::IntegrateOptions integ = opt_.integ;
-  // The top of the string: the motor's a(t), or the tie's (physics/tie.hpp), for the bead's
-  // mode c (a slipping tie's χ̈ depends on the string's pull in that mode).
+  // In rotating axes every physics function takes the top at φ = 0 and the rotated state y'
+  // (they are invariant under rotations about z); s.y is rotated in here and back at the end.
+  // A tie that may slip on the rod (physics/tie.hpp) is not at φ: with it the run stays in the lab.
+  const bool rotating = opt_.axes == Axes::Rotating && !layers.tie_clutch;
+  // The top of the string: the motor's a(t), or the tie's, for the bead's mode c (a slipping
+  // tie's χ̈ depends on the string's pull in that mode).
   const auto top_for = [&](const Contact& c, double t, const Vec& y) {
-    return physics::top_kinematics(model_, schedule_, c, t, y);
+    return rotating ? physics::top_in_rotating_axes(schedule_, R, t)
+                    : physics::top_kinematics(model_, schedule_, c, t, y);
   };
   const auto top_at = [&](double t, const Vec& y) { return top_for(contact, t, y); };
-
-  const numerics::System f = [&](double t, const Vec& y, Vec& dydt) {
-    physics::rhs(model_, schedule_, contact, t, y, dydt);
+  // The angle from the integrator's axes to the lab's: φ(t), or 0 in the lab.
+  const auto axes_angle = [&](double t) {
+    if (!rotating) return 0.0;
+    double phi, w, wd;
+    schedule_.phase(t, phi, w, wd);
+    return phi;
   };
+
+  const numerics::System f = rotating ? numerics::System([&](double t, const Vec& y, Vec& dydt) {
+    physics::rhs_in_rotating_axes(model_, schedule_, contact, t, y, dydt);
+  })
+                                      : numerics::System([&](double t, const Vec& y, Vec& dydt) {
+    physics::rhs(model_, schedule_, contact, t, y, dydt);
+  });
 
   // Chatter resolution: after a storm of switches the force guards (cone margins, tensions)
   // switch only past a band of `band` newtons, and impacts become plastic. Deterministic:
@@ -103,6 +127,26 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
     }
   };
 
+  // The force guards of a mode (two cone margins, the tensions) share one evaluation at (t, y).
+  struct {
+    bool valid = false;
+    double t = 0.0;
+    Vec y;
+    physics::Dynamics d;
+    const physics::Dynamics& at(double tq, const physics::TopKinematics& top, const Vec& yq, const Model& m,
+                                const Contact& c) {
+      if (!(valid && tq == t && yq.size() == y.size() && (yq.array() == y.array()).all())) {
+        d = physics::evaluate(m, top, c, yq);
+        t = tq;
+        y = yq;
+        valid = true;
+      }
+      return d;
+    }
+  } guard_store;
+  const auto guard_cache_at = [&](double t, const physics::TopKinematics& top, const Vec& y) -> const physics::Dynamics& {
+    return guard_store.at(t, top, y, model_, contact);
+  };
   // The guards of the current mode as events; force guards are shifted by the band.
   std::vector<physics::GuardSpec> specs;
   std::vector<numerics::Event> events;
@@ -117,21 +161,27 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
       w.inside = value < 0.0;
     }
     events.clear();
+    guard_store.valid = false;
     for (const auto& g : specs) {
       const bool force = g.kind == Guard::SlipUp || g.kind == Guard::SlipDown || g.kind == Guard::Slacken;
       events.push_back({[&, kind = g.kind, force](double t, const Vec& y) {
-                          return physics::guard_value(kind, model_, top_at(t, y), contact, y) + (force ? band : 0.0);
+                          const physics::TopKinematics top = top_at(t, y);
+                          if (!physics::needs_dynamics(kind)) return physics::guard_value(kind, model_, top, contact, y);
+                          return physics::guard_value(kind, model_, top, contact, y, guard_cache_at(t, top, y)) +
+                                 (force ? band : 0.0);
                         },
                         g.direction});
     }
   };
 
 
-  // Samples on the grid origin + k sample_dt, and the azimuths for ω_ball.
+  if (rotating) physics::rotate_about_z(s.y, -axes_angle(s.t));
+  // Samples on the grid origin + k sample_dt, and the azimuths for ω_ball (in the integrator's
+  // axes; the lab azimuth adds the axes' angle φ).
   const double t_start = s.t;
   const double origin = std::isfinite(sample_origin) ? sample_origin : t_start;
   long next_sample = sample_dt > 0.0 ? long(std::ceil((t_start - origin) / sample_dt - 1e-9)) : 0;
-  Vec ybuf(dim);
+  Vec ybuf(s.y.size());
   Azimuth az1, az2;
   az1.reset(s.y.segment<3>(physics::idx::r1));
   az2.reset(s.y.segment<3>(physics::idx::r2));
@@ -142,15 +192,41 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
   sum.min_tension = std::numeric_limits<double>::infinity();
   sum.min_friction_power = std::numeric_limits<double>::infinity();
 
+  Vec ylab(s.y.size());
+  // Samples are handed out in the lab.
   const auto emit = [&](double t, const Vec& y) {
-    const physics::TopKinematics top = top_at(t, y);
-    const physics::Dynamics dyn = physics::evaluate(model_, top, contact, y);
+    ylab = y;
+    if (rotating) physics::rotate_about_z(ylab, axes_angle(t));
+    const physics::TopKinematics top = physics::top_kinematics(model_, schedule_, contact, t, ylab);
+    const physics::Dynamics dyn = physics::evaluate(model_, top, contact, ylab);
     sum.max_sample_drift =
-        std::max(sum.max_sample_drift, physics::constraint_drift(model_, contact, top, y).position);
+        std::max(sum.max_sample_drift, physics::constraint_drift(model_, contact, top, ylab).position);
     if (contact.mode != Mode::Slack) sum.min_tension = std::min({sum.min_tension, dyn.T1, dyn.T2});
     sum.min_friction_power = std::min(sum.min_friction_power, dyn.friction_power);
-    if (on_sample) on_sample(Sample{t, contact, y, dyn, top, s.impact_loss});
+    if (on_sample) on_sample(Sample{t, contact, ylab, dyn, top, s.impact_loss});
   };
+  // The larger |dθ/dt| of the two balls about the axis, in the integrator's axes:
+  // θ̇ = (x w_y − y w_x)/(x² + y²), w the velocity seen in the axes (v − Ω×r when rotating).
+  // and in the other frame (the lab's θ̇ = θ̇' + ω, or the rotating θ̇' = θ̇ − ω).
+  struct Rates {
+    double own = 0.0, other = 0.0;
+  };
+  const auto azimuth_rates = [&](double t, const Vec& y) {
+    double phi, w, wd;
+    schedule_.phase(t, phi, w, wd);
+    Rates r;
+    for (int b : {physics::idx::r1, physics::idx::r2}) {
+      const double x = y(b), yy = y(b + 1), vx = y(b + 6), vy = y(b + 7);
+      const double rho2 = x * x + yy * yy;
+      const double lab_rate = rho2 > 0.0 ? (x * vy - yy * vx) / rho2 : 0.0;  // v is the lab velocity
+      const double rot_rate = lab_rate - w;
+      r.own = std::max(r.own, std::abs(rotating ? rot_rate : lab_rate));
+      r.other = std::max(r.other, std::abs(rotating ? lab_rate : rot_rate));
+    }
+    return r;
+  };
+  Vec yend(dim);
+  Rates rate_start = azimuth_rates(s.t, s.y);
   const auto observe = [&](const numerics::StepView& step) {
     // Samples in (t0, t1] (the first one at t_start is emitted before integrating).
     while (sample_dt > 0.0) {
@@ -162,25 +238,48 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
       }
       ++next_sample;
     }
-    // Azimuths in increments small enough to unwrap (< 0.25 rad of motor phase).
-    double phi0, phi1, w, wd;
-    schedule_.phase(step.t0(), phi0, w, wd);
-    schedule_.phase(step.t1(), phi1, w, wd);
-    const int n = 1 + int(std::abs(phi1 - phi0) / 0.25);
+    // Azimuths in increments small enough to unwrap (< 0.25 rad, with the rates of both ends of
+    // the step). One increment takes the end state and leaves the interpolant alone (DOP853's
+    // costs 3 extra evaluations per step).
+    // The increments are measured in the integrator's axes or in the other frame (the lab or
+    // the rotating one, turned by β = ∓φ against them), whichever the balls turn slower in.
+    step.end(yend);
+    const Rates rate_end = azimuth_rates(step.t1(), yend);
+    const double dt_step = std::abs(step.t1() - step.t0());
+    const double own = std::max(rate_start.own, rate_end.own), other = std::max(rate_start.other, rate_end.other);
+    const bool use_other = other < own;
+    const int n = 1 + int(std::min(1e3, std::min(own, other) * dt_step / 0.25));
+    rate_start = rate_end;
+    // β(t): the other frame's angle against the integrator's axes (−φ from rotating axes to the
+    // lab, +φ from the lab to rotating axes).
+    const auto beta = [&](double t) {
+      if (!use_other) return 0.0;
+      double phi, w, wd;
+      schedule_.phase(t, phi, w, wd);
+      return rotating ? -phi : phi;
+    };
+    double t_prev = step.t0(), beta_prev = beta(t_prev);
     for (int k = 1; k <= n; ++k) {
       const double t = step.t0() + (step.t1() - step.t0()) * k / n;
-      step.at(t, ybuf);
+      const double beta_t = beta(t);
+      if (k == n)
+        ybuf = yend;
+      else
+        step.at(t, ybuf);
       if (!window_started && t >= t_window) {
-        Vec yw(dim);
+        Vec yw(s.y.size());
         step.at(t_window, yw);
+        const double dbw = beta(t_window) - beta_prev;
         Azimuth a1 = az1, a2 = az2;
-        a1.advance(yw.segment<3>(physics::idx::r1));
-        a2.advance(yw.segment<3>(physics::idx::r2));
+        a1.advance(yw.segment<3>(physics::idx::r1), dbw);
+        a2.advance(yw.segment<3>(physics::idx::r2), dbw);
         theta_window = 0.5 * (a1.theta + a2.theta);
         window_started = true;
       }
-      az1.advance(ybuf.segment<3>(physics::idx::r1));
-      az2.advance(ybuf.segment<3>(physics::idx::r2));
+      az1.advance(ybuf.segment<3>(physics::idx::r1), beta_t - beta_prev);
+      az2.advance(ybuf.segment<3>(physics::idx::r2), beta_t - beta_prev);
+      t_prev = t;
+      beta_prev = beta_t;
     }
     return true;
   };
@@ -445,13 +544,17 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
     s.y = last_good;
     sum.failure = fmt::format("the friction law failed after t = {:.6f} s: {}", s.t, e.what());
   }
+  double theta_axes_window = 0.0;  // the axes' angle at t_window
+  if (window > 0 && window_started) theta_axes_window = axes_angle(std::max(t_window, t_start));
+  if (rotating) physics::rotate_about_z(s.y, axes_angle(s.t));
   if (sum.failure.empty()) sum.status = numerics::IntegrateStatus::Reached;
   for (auto& [g, w] : watches) sum.violations.push_back(w.v);
   sum.t_end = s.t;
   sum.rhs_evals = stepper->rhs_evals();
   sum.energy = physics::energy_balance(p, begin, s);
   if (window > 0 && window_started)
-    sum.omega_ball = (0.5 * (az1.theta + az2.theta) - theta_window) / (s.t - t_window);
+    sum.omega_ball =
+        (0.5 * (az1.theta + az2.theta) - theta_window + axes_angle(s.t) - theta_axes_window) / (s.t - t_window);
   if (!std::isfinite(sum.min_tension)) sum.min_tension = 0.0;
   if (!std::isfinite(sum.min_friction_power)) sum.min_friction_power = 0.0;
   return sum;

@@ -36,6 +36,7 @@
 #include "numerics/integrate.hpp"
 #include "physics/contact_modes.hpp"
 #include "physics/energy.hpp"
+#include "physics/rotating_axes.hpp"
 
 namespace {
 
@@ -44,15 +45,20 @@ using numerics::Vec;
 using State = std::vector<double>;
 namespace odeint = boost::numeric::odeint;
 
-// The scene's RHS in its initial contact mode, counting evaluations.
+// The scene's RHS in its initial contact mode, counting evaluations; in the lab axes or (with
+// --axes rotating) in the axes turning with the motor, the product's formulation.
 struct Rhs {
   const bench::Scene& scene;
+  bool rotating = false;
   long evals = 0;
   Vec y{physics::idx::dim}, dydt{physics::idx::dim};
   void operator()(double t, const double* in, double* out) {
     ++evals;
     y = Eigen::Map<const Eigen::VectorXd>(in, physics::idx::dim);
-    physics::rhs(scene.model, scene.schedule, scene.initial.contact, t, y, dydt);
+    if (rotating)
+      physics::rhs_in_rotating_axes(scene.model, scene.schedule, scene.initial.contact, t, y, dydt);
+    else
+      physics::rhs(scene.model, scene.schedule, scene.initial.contact, t, y, dydt);
     Eigen::Map<Eigen::VectorXd>(out, physics::idx::dim) = dydt;
   }
 };
@@ -185,6 +191,10 @@ int main(int argc, char** argv) {
   app.add_option("--rtols", rtols, "Relative tolerances (atol = 1e-3 rtol)")->delimiter(',');
   app.add_option("--repeats", repeats, "Timed runs per point (median kept)")->capture_default_str();
   app.add_option("--budget", budget, "Stop repeating a point after this much CPU [s]")->capture_default_str();
+  std::string axes = "lab";
+  app.add_option("--axes", axes, "Axes of every solver's RHS: lab, or rotating (turning with the motor)")
+      ->check(CLI::IsMember({"lab", "rotating"}))
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 
   const std::vector<std::pair<std::string, Solver>> solvers = {
@@ -219,16 +229,24 @@ int main(int argc, char** argv) {
     std::printf("%s: one contact mode (%s), floor %.1e m\n", scene.name.c_str(),
                 std::string(physics::to_string(scene.initial.contact.mode)).c_str(), ref.floor);
     const double t0 = scene.initial.t, t1 = t0 + scene.horizon;
-    const State y0(scene.initial.y.data(), scene.initial.y.data() + scene.initial.y.size());
+    const bool rotating = axes == "rotating";
+    const auto axes_angle = [&](double t) {
+      double phi, w, wd;
+      scene.schedule.phase(t, phi, w, wd);
+      return rotating ? phi : 0.0;
+    };
+    Vec y_start = scene.initial.y;
+    physics::rotate_about_z(y_start, -axes_angle(t0));
+    const State y0(y_start.data(), y_start.data() + y_start.size());
     for (const auto& [name, solve] : solvers) {
       for (double rtol : rtols) {
-        bench::Row row{scene.name, name, "rtol", rtol, {}, {}, NAN};
+        bench::Row row{scene.name, rotating ? name + "/rotating" : name, "rtol", rtol, {}, {}, NAN, {}, true, NAN};
         std::vector<double> times;
         double spent = 0.0;
         State y;
         long evals = 0;
         for (int k = 0; k < repeats; ++k) {
-          Rhs f{scene};
+          Rhs f{scene, rotating};
           y = y0;
           const double c0 = cpu_seconds();
           const std::string status = solve(f, t0, t1, y, rtol);
@@ -250,6 +268,7 @@ int main(int argc, char** argv) {
         row.out.final = scene.initial;
         row.out.final.t = t1;
         row.out.final.y = Eigen::Map<const Eigen::VectorXd>(y.data(), Eigen::Index(y.size()));
+        physics::rotate_about_z(row.out.final.y, axes_angle(t1));
         const physics::TopKinematics top = scene.schedule.top(scene.model.p.drive_radius, t1);
         row.out.max_drift = physics::constraint_drift(scene.model, scene.initial.contact, top, row.out.final.y).position;
         row.out.energy_residual = physics::energy_balance(scene.model.p, scene.initial, row.out.final).relative();

@@ -1,0 +1,44 @@
+#include "physics/rotating_axes.hpp"
+
+#include <cmath>
+
+namespace ajx::physics {
+
+TopKinematics top_in_rotating_axes(const MotorSchedule& schedule, double R, double t) {
+  TopKinematics k;
+  double phi;
+  schedule.phase(t, phi, k.omega, k.omega_dot);
+  k.phi = 0.0;
+  k.a = Vec3(R, 0.0, 0.0);
+  k.a_dot = Vec3(0.0, R * k.omega, 0.0);
+  k.a_ddot = Vec3(-R * k.omega * k.omega, R * k.omega_dot, 0.0);
+  return k;
+}
+
+void rhs_in_rotating_axes(const Model& m, const MotorSchedule& schedule, const Contact& c, double t,
+                          const numerics::Vec& y, numerics::Vec& dydt) {
+  const TopKinematics top = top_in_rotating_axes(schedule, m.p.drive_radius, t);
+  const Dynamics d = evaluate(m, top, c, y, true);
+  const double w = top.omega;
+  // Ω×x = ω (−x_y, x_x, 0)
+  const auto omega_cross = [w](const auto& x) { return Vec3(-w * x.y(), w * x.x(), 0.0); };
+  dydt.resize(idx::dim);
+  dydt.segment<3>(idx::r1) = y.segment<3>(idx::v1) - omega_cross(y.segment<3>(idx::r1));
+  dydt.segment<3>(idx::r2) = y.segment<3>(idx::v2) - omega_cross(y.segment<3>(idx::r2));
+  dydt.segment<3>(idx::v1) = d.acc1 - omega_cross(y.segment<3>(idx::v1));
+  dydt.segment<3>(idx::v2) = d.acc2 - omega_cross(y.segment<3>(idx::v2));
+  dydt(idx::motor_work) = d.motor_power;
+  dydt(idx::drag_loss) = d.drag_power;
+  dydt(idx::friction_loss) = d.friction_power;
+}
+
+void rotate_about_z(numerics::Vec& y, double angle) {
+  const double c = std::cos(angle), s = std::sin(angle);
+  for (int k : {idx::r1, idx::r2, idx::v1, idx::v2}) {
+    const double x = y(k), yy = y(k + 1);
+    y(k) = c * x - s * yy;
+    y(k + 1) = s * x + c * yy;
+  }
+}
+
+}  // namespace ajx::physics
