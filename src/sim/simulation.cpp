@@ -201,6 +201,10 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
   const auto enter = [&](Contact next, double e) {
     next.tie = contact.tie;  // the bead's mode changes, the tie's state stays
     const physics::TopKinematics top = top_for(next, s.t, s.y);
+    // The string goes slack from taut: start the flight on L1 + L2 = l (to rounding, not to the
+    // step's drift), strictly on the slack side of the Taut guard (physics::surface_tolerance).
+    if (next.mode == Mode::Slack && contact.mode != Mode::Slack)
+      physics::project_positions(model_, contact, top_for(contact, s.t, s.y), s.y);
     if (next.mode != Mode::Slack) {
       physics::project_positions(model_, next, top, s.y);
       const physics::ProjectionEnergy pe = physics::project_velocities(model_, next, top, s.y, e);
@@ -218,7 +222,7 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
     s.impact_loss += pe.dissipated;
     ++sum.impacts;
   };
-  const double on_surface = 1e-10 * p.string_length;  // a state this close sits on a surface [m]
+  const double on_surface = physics::surface_tolerance(p);  // a state this close sits on a surface [m]
   // The bead meets a stop (the bottom ball, or the top). In free flight: a plastic collision,
   // and the string stays slack. On a taut string: a plastic landing onto the two-link set.
   const auto meet_stop = [&](bool bottom) {
