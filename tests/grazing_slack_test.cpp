@@ -1,10 +1,11 @@
 // A slack flight that starts on the taut surface (L1 + L2 = l, a grazing slack where the
 // tensions pass through zero) must still end when the string pulls taut. Regression: chain 11
 // of sweeps/parameter_study.toml (m1 = m2 = 0.1 kg, l = 0.826 m, ω_m = 15π, seed
-// circular_high) went slack at t ≈ 231.94 s with L̇ of rounding size; the Taut guard
+// circular_high) went slack at t ≈ 231.94 s with L̇ of rounding size. The Taut guard
 // L1 + L2 - l was exactly 0 at the start, its sign just after the start was rounding noise
-// (> 0), and the one step of free flight that dipped below and came back above the surface
-// showed no sign change: the balls fell freely to 1.6e4 m until the settle ended at 300 s.
+// (not negative), and the first step of free flight (0.05 s) ended 5 mm stretched with no sign
+// change seen: the balls fell freely until the settle ended at t = 300 s, 1.6e4 m below, where
+// the segment restart pulled the string taut from there.
 #include <gtest/gtest.h>
 
 #include "config/config.hpp"
