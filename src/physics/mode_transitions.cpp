@@ -90,7 +90,7 @@ double guard_value(Guard g, const Model& m, const TopKinematics& top, const Cont
     case Guard::WatchBottom: return (r2 - r1).norm() - m.p.contact_distance;
     case Guard::LandTop:
     case Guard::WatchTop: return (r1 - top.a).norm() - m.p.top_stop;
-    case Guard::Taut: return (r1 - top.a).norm() + (r2 - r1).norm() - m.p.string_length;
+    case Guard::Taut: return (r1 - top.a).norm() + (r2 - r1).norm() - m.p.string_length - taut_margin(m.p);
     case Guard::ReachBall: return (r2 - r1).norm() - 1e-4 * m.p.string_length;
     case Guard::ReachTop: return (r1 - top.a).norm() - 1e-4 * m.p.string_length;
     case Guard::Rest:

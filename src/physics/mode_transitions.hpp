@@ -20,7 +20,7 @@ enum class Guard {
   SlipUp,      // T1 - κ_lo T2 falls through 0: the held bead slips up
   SlipDown,    // κ_hi T2 - T1 falls through 0: the held bead slips down
   Slacken,     // min(T1, T2) falls through 0: the string goes slack
-  Taut,        // L1 + L2 - l rises through 0: the slack string pulls taut (an impact)
+  Taut,        // L1 + L2 - l - δ_s rises through 0 (δ_s = taut_margin): the slack string pulls taut (an impact)
   ReachBall,   // L2 falls to 1e-4 l without the bottom stop: singular, the run ends
   ReachTop,    // L1 falls to 1e-4 l without the top stop: singular, the run ends
   TieSlipAhead,   // τ_s - τ falls through 0: the rod cannot drag the held tie along, it slips back
@@ -34,6 +34,14 @@ enum class Guard {
 };
 std::string_view to_string(Guard g);
 bool is_watch(Guard g);
+
+// δ_s [m]: the Taut guard fires δ_s beyond L1 + L2 = l. A slack flight starts on the surface
+// (projected onto it, to the rounding of L1 + L2 - l, a few 1e-16 l), so with δ_s above that
+// rounding it starts strictly on the slack side: a step that ends stretched is a sign change
+// even if the flight dipped below the surface and came back within it, and the sign just after
+// the start is never rounding noise. The plastic re-taut then removes the stretch δ_s, a
+// potential energy of at most (m1 + m2) g δ_s, far below any energy balance the runs check.
+inline double taut_margin(const Parameters& p) { return 1e-14 * p.string_length; }
 
 struct GuardSpec {
   Guard kind;

@@ -300,6 +300,10 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
   const auto enter = [&](Contact next, double e) {
     next.tie = contact.tie;  // the bead's mode changes, the tie's state stays
     const physics::TopKinematics top = top_for(next, s.t, s.y);
+    // The string goes slack from taut: start the flight on L1 + L2 = l (to rounding, not to the
+    // step's drift), strictly on the slack side of the Taut guard (physics::taut_margin).
+    if (next.mode == Mode::Slack && contact.mode != Mode::Slack)
+      physics::project_positions(model_, contact, top_for(contact, s.t, s.y), s.y);
     if (next.mode != Mode::Slack) {
       physics::project_positions(model_, next, top, s.y);
       const physics::ProjectionEnergy pe = physics::project_velocities(model_, next, top, s.y, e);
@@ -347,6 +351,9 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
                                                   s.y.segment<3>(physics::idx::v2));
     const double approach = g.L1_dot + g.L2_dot;
     if (restitution > 0.0 && approach > opt_.rest_speed) {
+      // The rebound flight starts on L1 + L2 = l, on the slack side of the Taut guard (the event
+      // was located δ_s beyond it, physics::taut_margin).
+      physics::project_positions(model_, set, top, s.y);
       impact_account(physics::project_velocities(model_, set, top, s.y, restitution));
     } else {
       const double l0 = s.impact_loss;
