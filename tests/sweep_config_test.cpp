@@ -5,7 +5,10 @@
 #include <fstream>
 #include <sstream>
 
+#include <cstdio>
+
 #include "config/config.hpp"
+#include "sweep/plan.hpp"
 
 using namespace ajx::config;
 
@@ -104,4 +107,34 @@ TEST(SweepConfig, HoldModeParsesAndRejectsBadSeeds) {
   EXPECT_NE(err({"hold.omega=[-1.0]"}).find("hold.omega[0]"), std::string::npos);
   EXPECT_NE(err({"hold.measure=0"}).find("hold.measure"), std::string::npos);
   EXPECT_NE(err({"protocol.start_omega=1.0"}).find("either [protocol]"), std::string::npos);
+}
+
+// [protocol] start_seed: a protocol may start from a seed orbit instead of rest. The plan's
+// start state is that seed turning at start_omega (sweeps/table1.toml starts on Table 1's orbit).
+TEST(SweepConfig, ProtocolStartsFromASeed) {
+  const SweepConfig rest = parse_sweep_config(quick(), "sweeps/quick.toml");
+  EXPECT_EQ(rest.start_seed, "hanging");
+  const double w = 4.0 * 3.141592653589793;
+  const SweepConfig c = parse_sweep_config(
+      quick(), "sweeps/quick.toml",
+      {"protocol.start_seed=circular_high", "protocol.start_omega=" + std::to_string(w),
+       "protocol.segment=[{kind=\"ramp\", from=" + std::to_string(w) + ", to=20.0, rate=0.5, window=5.0}]"});
+  EXPECT_EQ(c.start_seed, "circular_high");
+  const ajx::sweep::SweepPlan plan = ajx::sweep::make_plan(c);
+  const ajx::physics::State s = plan.start_state(0);
+  // Table 1's orbit: the bead high on the string (|r1| ≈ 0.545 m, well short of l − d), both
+  // balls turning about the axis at start_omega. The seed sets v = ω ẑ × r, then projects the
+  // positions onto the string: Table 1's positions miss l by δ = L1 + L2 − l (computed here
+  // from the paper's numbers), which moves a radius ρ by at most δ, so the rate ρ-weighted
+  // about the axis moves by at most δ/ρ_min of ω.
+  const Eigen::Vector3d t1(-0.14427, 0.0, -0.52483), t2(0.11924, 0.0, -0.62353), a(c.model.p.drive_radius, 0, 0);
+  const double delta = (t1 - a).norm() + (t2 - t1).norm() - 0.826, rho_min = 0.11924;
+  const Eigen::Vector3d r1 = s.r1(), v1 = s.v1(), r2 = s.r2(), v2 = s.v2();
+  EXPECT_LT(r1.norm(), 0.7 * c.model.p.string_length);
+  const double w1 = r1.cross(v1).z() / r1.head<2>().squaredNorm(), w2 = r2.cross(v2).z() / r2.head<2>().squaredNorm();
+  std::printf("measured seed angular velocities: %.6f %.6f rad/s at start_omega %.6f (bound %.4f)\n", w1, w2, w,
+              delta / rho_min * w);
+  EXPECT_NEAR(w1, w, delta / rho_min * w);
+  EXPECT_NEAR(w2, w, delta / rho_min * w);
+  EXPECT_NE(error_of({"protocol.start_seed=spinning"}).find("protocol.start_seed"), std::string::npos);
 }

@@ -367,6 +367,7 @@ std::vector<sweep::Segment> parse_protocol(const toml::table& root, std::string_
   const toml::table& pt = subtable(root, "protocol", file);
   Reader r(pt, "protocol", file);
   c.start_omega = r.number("start_omega", 0.0, 0.0, kOmegaMax);
+  c.start_seed = r.word("start_seed", "hanging", {"hanging", "circular_high", "locked_orbit"});
   c.windows_per_task = int(r.number("windows_per_task", 10.0, 1.0, 1e6));
   c.sample_rate = r.number("sample_rate", 100.0, 0.0, 1e5, true);
   const toml::array* arr = pt.get_as<toml::array>("segment");

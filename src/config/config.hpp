@@ -72,6 +72,7 @@ struct HoldSpec {
 struct SweepConfig : CommonConfig {
   std::vector<sweep::Segment> protocol;
   double start_omega = 0.0;   // ω_m at t = 0 [rad/s]
+  std::string start_seed = "hanging";  // the state at t = 0: a seed of sweep/seeds.hpp at start_omega
   int windows_per_task = 10;  // granularity of the farm's tasks
   double sample_rate = 100.0; // samples per second stored for every window [1/s]
   std::vector<GridAxis> grid;

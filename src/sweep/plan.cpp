@@ -12,7 +12,7 @@ SweepPlan make_plan(const config::SweepConfig& cfg) {
   SweepPlan plan;
   for (const config::GridPoint& g : config::expand_grid(cfg)) {
     if (!cfg.hold) {
-      plan.starts.push_back({"hanging", cfg.start_omega, 0});
+      plan.starts.push_back({cfg.start_seed, cfg.start_omega, 0});
       plan.points.push_back(g);
       continue;
     }
