@@ -52,6 +52,10 @@ LADDER = [
     ("stick_slip", dict(FULL, slack="false", top_stop="false")),
     ("stick_slip + slack", dict(FULL, top_stop="false")),
     ("stick_slip + slack + top_stop (full)", dict(FULL)),
+    # The layer beyond the paper's model (README, "The tie clutch"), at the torques of the README's
+    # one parameter set, which was found at this script's point (R = 15 mm, d = 3.5 cm).
+    ("full + tie clutch", dict(FULL, tie="clutch", **{"model.tie_static_torque": "1.5e-3",
+                                                     "model.tie_kinetic_torque": "1.35e-3"})),
 ]
 # The full model with one layer omitted: (what is omitted, layers).
 OMITTED = [
@@ -82,7 +86,8 @@ def run(cmd, allowed=(0,)):
 def overrides(layers, extra):
     out = []
     for k, v in sorted(layers.items()):
-        out += ["--set", f"layers.{k}={v}"]
+        # A dotted key is a model parameter the layer needs (the tie clutch's torques).
+        out += ["--set", f"{k}={v}" if "." in k else f"layers.{k}={v}"]
     for kv in extra:
         out += ["--set", kv]
     return out
