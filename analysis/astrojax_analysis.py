@@ -234,14 +234,36 @@ def find_astrojax(explicit=None):
     return None
 
 
+def require_astrojax(explicit=None):
+    """find_astrojax, or a clear error naming how to get one."""
+    exe = find_astrojax(explicit)
+    if exe is None:
+        fail("cannot find the astrojax executable: build it (cmake --build build) or pass --astrojax PATH")
+    return exe
+
+
+def run_checked(cmd, allowed=(0,)):
+    """Runs a command (astrojax, mostly); an exit code outside `allowed` is an error that quotes
+    the command and what it printed. Returns the completed process."""
+    proc = subprocess.run([str(c) for c in cmd], capture_output=True, text=True)
+    if proc.returncode not in allowed:
+        fail(f"`{' '.join(str(c) for c in cmd)}` exited with {proc.returncode}: {(proc.stderr or proc.stdout).strip()}")
+    return proc
+
+
+def write_report(path, text, stream=sys.stdout):
+    """Writes a text report, making its folder, and says so on `stream`."""
+    os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
+    with open(path, "w") as f:
+        f.write(text)
+    print(f"wrote {path}", file=stream)
+
+
 def run_thresholds(h5_path, astrojax, extra=()):
     """Runs `astrojax thresholds FILE --csv TMP [extra]`; returns (rows of its CSV, its stdout)."""
     with tempfile.TemporaryDirectory() as tmp:
         out_csv = os.path.join(tmp, "thresholds.csv")
-        proc = subprocess.run([astrojax, "thresholds", h5_path, "--csv", out_csv, *extra], capture_output=True,
-                              text=True)
-        if proc.returncode != 0:
-            fail(f"`{astrojax} thresholds {h5_path}` exited with {proc.returncode}: {proc.stderr.strip()}")
+        proc = run_checked([astrojax, "thresholds", h5_path, "--csv", out_csv, *extra])
         return read_thresholds_csv(out_csv), proc.stdout
 
 
@@ -295,10 +317,7 @@ def run_sequence(h5_path, astrojax):
     sequence: present, out of order or missing)."""
     with tempfile.TemporaryDirectory() as tmp:
         out_csv = os.path.join(tmp, "sequence.csv")
-        proc = subprocess.run([astrojax, "thresholds", h5_path, "--sequence-csv", out_csv], capture_output=True,
-                              text=True)
-        if proc.returncode != 0:
-            fail(f"`{astrojax} thresholds {h5_path} --sequence-csv` exited with {proc.returncode}: {proc.stderr.strip()}")
+        run_checked([astrojax, "thresholds", h5_path, "--sequence-csv", out_csv])
         return read_sequence_csv(out_csv)
 
 

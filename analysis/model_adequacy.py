@@ -26,7 +26,6 @@ bottom ball, which the configuration allows only with layers.bottom_stop = true.
 usage: /usr/bin/python3 analysis/model_adequacy.py -o out/adequacy.md [--work out/adequacy] [--set model.KEY=V]
 """
 import os
-import subprocess
 import sys
 
 import h5py
@@ -76,13 +75,6 @@ def layer_label(layers):
 
 # ---- running astrojax ------------------------------------------------------------------
 
-def run(cmd, allowed=(0,)):
-    p = subprocess.run(cmd, capture_output=True, text=True)
-    if p.returncode not in allowed:
-        ajx.fail(f"`{' '.join(cmd)}` exited with {p.returncode}: {(p.stderr or p.stdout).strip()}")
-    return p
-
-
 def overrides(layers, extra):
     out = []
     for k, v in sorted(layers.items()):
@@ -103,7 +95,7 @@ def simulate(exe, layers, files, work, name, extra, s_points):
         for stale in (path, path + ".part", path + ".journal"):
             if os.path.exists(stale):
                 os.remove(stale)
-        run([exe, "sweep", src, "-o", path, "-q", *sets], allowed=(0, 3))  # 3: some task failed, reported
+        ajx.run_checked([exe, "sweep", src, "-o", path, "-q", *sets], allowed=(0, 3))  # 3: some task failed, reported
     rows, _ = ajx.run_thresholds(ramp_h5, exe)
     out["ramp"] = {r["threshold"]: ajx.number(r["mid_rad_s"]) for r in rows if int(r["chain"]) == 0}
     out["ramp_bracket"] = {r["threshold"]: (ajx.number(r["before_rad_s"]), ajx.number(r["after_rad_s"]))
@@ -123,11 +115,11 @@ def simulate(exe, layers, files, work, name, extra, s_points):
     out["violations"] = {}
     for key in ("run_ramp", "run_hold"):
         path = os.path.join(work, f"{name}_{key}.h5")
-        run([exe, "run", files[key], "-o", path, "-q", *sets], allowed=(0, 3))
+        ajx.run_checked([exe, "run", files[key], "-o", path, "-q", *sets], allowed=(0, 3))
         out["violations"][key] = read_violations(path)
     orbits_h5 = os.path.join(work, f"{name}_orbits.h5")
-    run([exe, "orbits", files["ramp"], "--omega", "4.8pi", "--thresholds", "--threshold-s-points", str(s_points),
-         "-o", orbits_h5, *sets])
+    ajx.run_checked([exe, "orbits", files["ramp"], "--omega", "4.8pi", "--thresholds", "--threshold-s-points",
+                     str(s_points), "-o", orbits_h5, *sets])
     with h5py.File(orbits_h5, "r") as f:
         out["predicted"] = {k: predicted_value(g) for k, g in f["thresholds"].items()}
     return out
@@ -355,9 +347,7 @@ def main():
     for k, path in files.items():
         if not os.path.isfile(path):
             ajx.fail(f"--{k.replace('_', '-')} {path}: no such file")
-    exe = ajx.find_astrojax(args.astrojax)
-    if exe is None:
-        ajx.fail("cannot find the astrojax executable: build it (cmake --build build) or pass --astrojax PATH")
+    exe = ajx.require_astrojax(args.astrojax)
     work = args.work or os.path.splitext(args.output)[0] + "_runs"
     ladder_sets = LADDER
     if args.sets_only:
@@ -388,11 +378,8 @@ def main():
             "runs": f"`{os.path.relpath(args.ramp)}`, `{os.path.relpath(args.hold)}`, `{os.path.relpath(args.run_ramp)}`, "
                     f"`{os.path.relpath(args.run_hold)}`" + (f"; overrides {' '.join(args.sets)}" if args.sets else "")}
     text = report(ladder, omitted, full, meta)
-    os.makedirs(os.path.dirname(os.path.abspath(args.output)), exist_ok=True)
-    with open(args.output, "w") as f:
-        f.write(text)
+    ajx.write_report(args.output, text, sys.stderr)
     print(text)
-    print(f"wrote {args.output}", file=sys.stderr)
 
 
 if __name__ == "__main__":

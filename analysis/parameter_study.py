@@ -18,7 +18,6 @@ usage: /usr/bin/python3 analysis/parameter_study.py -o out/parameter_study.md [F
 """
 import csv
 import os
-import subprocess
 import sys
 
 import numpy as np
@@ -31,22 +30,15 @@ DEFAULT = os.path.join(HERE, "..", "sweeps", "parameter_study.toml")
 FRICTIONLESS = 2  # the 'case' column of astrojax orbits --csv
 
 
-def run(cmd):
-    p = subprocess.run(cmd, capture_output=True, text=True)
-    if p.returncode != 0:
-        ajx.fail(f"`{' '.join(cmd)}` exited with {p.returncode}: {(p.stderr or p.stdout).strip()}")
-    return p
-
-
 def equilibria(exe, config, masses, lengths, omegas, work, extra):
     """[(m, l, row of astrojax orbits' CSV as floats)] of the orbits this study tabulates."""
     out = []
     for m in masses:
         for l in lengths:
             path = os.path.join(work, f"orbits_m{m:g}_l{l:g}.csv")
-            run([exe, "orbits", config, *(a for w in omegas for a in ("--omega", repr(w))), "--csv", path,
-                 "--set", f"model.bead_mass={m!r}", "--set", f"model.ball_mass={m!r}",
-                 "--set", f"model.string_length={l!r}", *extra])
+            ajx.run_checked([exe, "orbits", config, *(a for w in omegas for a in ("--omega", repr(w))), "--csv", path,
+                             "--set", f"model.bead_mass={m!r}", "--set", f"model.ball_mass={m!r}",
+                             "--set", f"model.string_length={l!r}", *extra])
             with open(path, newline="") as f:
                 rows = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
             for w in omegas:
@@ -160,9 +152,7 @@ def main():
         ajx.fail(f"-o {args.output}: the report is Markdown and must end in .md")
     if not os.path.isfile(args.input):
         ajx.fail(f"{args.input}: no such file")
-    exe = ajx.find_astrojax(args.astrojax)
-    if exe is None:
-        ajx.fail("cannot find the astrojax executable: build it (cmake --build build) or pass --astrojax PATH")
+    exe = ajx.require_astrojax(args.astrojax)
     work = args.work or os.path.splitext(args.output)[0] + "_runs"
     os.makedirs(work, exist_ok=True)
     extra = [a for kv in args.sets for a in ("--set", kv)]
@@ -170,7 +160,7 @@ def main():
     for stale in (hold_h5, hold_h5 + ".part", hold_h5 + ".journal"):
         if os.path.exists(stale):
             os.remove(stale)
-    run([exe, "sweep", args.input, "-o", hold_h5, "-q", *extra])
+    ajx.run_checked([exe, "sweep", args.input, "-o", hold_h5, "-q", *extra])
     held = holds(hold_h5)
     sweep = ajx.Sweep(hold_h5)
     masses = sorted({float(v) for v in sweep.grid[:, 0]})
@@ -179,11 +169,8 @@ def main():
     gravity = sweep.parameter(0, "gravity")
     eq = equilibria(exe, args.input, masses, lengths, omegas, work, extra)
     text = report(eq, held, args.input, gravity)
-    os.makedirs(os.path.dirname(os.path.abspath(args.output)), exist_ok=True)
-    with open(args.output, "w") as f:
-        f.write(text)
+    ajx.write_report(args.output, text, sys.stderr)
     print(text)
-    print(f"wrote {args.output}", file=sys.stderr)
 
 
 if __name__ == "__main__":

@@ -16,7 +16,6 @@ usage: /usr/bin/python3 analysis/table1_scan.py -o out/table1_scan.md [--radii 0
 """
 import math
 import os
-import subprocess
 import tempfile
 
 import h5py
@@ -31,13 +30,6 @@ PAPER = {"omega_fall": 3.24, "omega_1": 4.80}  # [π rad/s]
 FOUR_PI = 4.0 * math.pi
 
 
-def call(args):
-    p = subprocess.run(args, capture_output=True, text=True)
-    if p.returncode != 0:
-        ajx.fail(f"{' '.join(args)} exited with {p.returncode}:\n{p.stdout}{p.stderr}")
-    return p.stdout
-
-
 def held_state(astrojax, work, sets):
     """The circular_high seed held at 4π: (state row, class of its window) or None."""
     out = os.path.join(work, "hold.h5")
@@ -46,7 +38,7 @@ def held_state(astrojax, work, sets):
             "--set", "hold.perturbations=0"]
     for s in sets:
         args += ["--set", s]
-    call(args)
+    ajx.run_checked(args)
     with h5py.File(out, "r") as f:
         cls = int(f["windows/class"][0, -1])
         state = f["tasks/final_state"][0]
@@ -81,7 +73,7 @@ def fall_omega(path):
     """ω_m [π] where the stuck bead first slides down, and where it lands (mode 1)."""
     with h5py.File(path, "r") as f:
         g = f["trajectory"]
-        t, mode, w = g["t"][:], g["mode"][:], g["omega_m"][:]
+        mode, w = g["mode"][:], g["omega_m"][:]
     slide = np.nonzero(mode != 2)[0]
     land = np.nonzero(mode == 1)[0]
     return (w[slide[0]] / np.pi if len(slide) else None, w[land[0]] / np.pi if len(land) else None)
@@ -104,9 +96,7 @@ def main(argv=None):
     for kv in args.set:
         if "=" not in kv or not kv.startswith(("model.", "layers.")):
             ajx.fail(f"--set {kv}: expected model.key=value or layers.key=value")
-    astrojax = ajx.find_astrojax(args.astrojax)
-    if astrojax is None:
-        ajx.fail("no astrojax binary: build it (./setup.sh build) or pass --astrojax")
+    astrojax = ajx.require_astrojax(args.astrojax)
 
     lines = ["| R [mm] | d [cm] | at 4π | ω_fall: slides at | lands at | ω1: lock lost at | after ω1 at 16π |",
              "|---|---|---|---|---|---|---|"]
@@ -129,7 +119,7 @@ def main(argv=None):
                     run_args = [astrojax, "run", scene, "-q", "-o", out]
                     for s in sets:
                         run_args += ["--set", s]
-                    call(run_args)
+                    ajx.run_checked(run_args)
                     res[name] = out
                 if len(res) < 2:
                     lines.append(f"{label} stored mode cannot start a run | — | — | — | — |")
@@ -145,10 +135,7 @@ def main(argv=None):
     text = ("# ω_fall and ω1 from Table 1's orbit over (R, d)\n\n"
             f"Overrides: {' '.join(args.set) if args.set else 'none'}. The paper: ω_fall = 3.24π, ω1 = 4.80π.\n\n"
             + "\n".join(lines) + "\n")
-    os.makedirs(os.path.dirname(os.path.abspath(args.output)), exist_ok=True)
-    with open(args.output, "w") as f:
-        f.write(text)
-    print(f"wrote {args.output}")
+    ajx.write_report(args.output, text)
 
 
 if __name__ == "__main__":

@@ -16,8 +16,6 @@ The paper: ω1 = 4.80π, and between ω1 and ω2 = 15π the balls lag at a nearl
 usage: /usr/bin/python3 analysis/tie_scan.py -o out/tie_scan.md [--static 7e-4,8e-4,9e-4] [--ratio 0.875,1]
 """
 import os
-import subprocess
-import sys
 import tempfile
 
 import h5py
@@ -41,12 +39,7 @@ def numbers(text, name):
 
 
 def run(astrojax, scene, out, overrides):
-    args = [astrojax, "run", scene, "-o", out, "-q"]
-    for o in overrides:
-        args += ["--set", o]
-    p = subprocess.run(args, capture_output=True, text=True)
-    if p.returncode != 0:
-        ajx.fail(f"{' '.join(args)} exited with {p.returncode}:\n{p.stdout}{p.stderr}")
+    ajx.run_checked([astrojax, "run", scene, "-o", out, "-q", *(a for o in overrides for a in ("--set", o))])
 
 
 def string_params(path):
@@ -108,14 +101,12 @@ def main(argv=None):
         ajx.fail(f"--ratio: '{args.ratio}': τ_k / τ_s must lie in [0, 1]")
     if not os.path.isfile(args.scene):
         ajx.fail(f"--scene: {args.scene}: no such file")
-    astrojax = ajx.find_astrojax(args.astrojax)
-    if astrojax is None:
-        ajx.fail("no astrojax binary: build it (./setup.sh build) or pass --astrojax")
+    astrojax = ajx.require_astrojax(args.astrojax)
 
     cases = [("rigid", None, None, [])]
     for ts in statics:
         for r in ratios:
-            cases.append((f"clutch", ts, r * ts, ["layers.tie=clutch", f"model.tie_static_torque={ts!r}",
+            cases.append(("clutch", ts, r * ts, ["layers.tie=clutch", f"model.tie_static_torque={ts!r}",
                                                    f"model.tie_kinetic_torque={r * ts!r}"]))
     lines = ["| tie | τ_s [N m] | τ_k [N m] | lock lost at ω_m | tie slips at ω_m | ω_ball plateau (bead up) "
              "| over ω_m | end: ω_ball | L1 [m] | ρ1 [m] | dE/dt / P_drag |",
@@ -137,10 +128,7 @@ def main(argv=None):
     text = (f"# Tie-clutch scan on {os.path.relpath(args.scene)}\n\n"
             f"The paper: ω1 = {PAPER_OMEGA_1:.2f}π; between ω1 and ω2 = 15π the balls lag at a nearly constant "
             f"ω_ball ≈ 4.8π.\n\n" + "\n".join(lines) + "\n")
-    os.makedirs(os.path.dirname(os.path.abspath(args.output)), exist_ok=True)
-    with open(args.output, "w") as f:
-        f.write(text)
-    print(f"wrote {args.output}")
+    ajx.write_report(args.output, text)
 
 
 if __name__ == "__main__":
