@@ -99,9 +99,9 @@ double guard_value(Guard g, const Model& m, const TopKinematics& top, const Cont
       const double sdot = u1.dot(Vec3(y.segment<3>(idx::v1)) - top.a_dot);
       return g == Guard::Rest ? c.sigma * sdot : sdot;
     }
-    case Guard::TieSlipAhead: return m.p.tie_static_torque - tie_torque_needed(m, top, c, y);
-    case Guard::TieSlipBehind: return m.p.tie_static_torque + tie_torque_needed(m, top, c, y);
     case Guard::TieLock: return c.tie.sigma * (top.motor_omega - top.omega);
+    case Guard::TieSlipAhead:
+    case Guard::TieSlipBehind:
     case Guard::SlipUp:
     case Guard::SlipDown:
     case Guard::Slacken:
@@ -111,7 +111,8 @@ double guard_value(Guard g, const Model& m, const TopKinematics& top, const Cont
 }
 
 bool needs_dynamics(Guard g) {
-  return g == Guard::SlipUp || g == Guard::SlipDown || g == Guard::Slacken || g == Guard::WatchTension;
+  return g == Guard::SlipUp || g == Guard::SlipDown || g == Guard::Slacken || g == Guard::WatchTension ||
+         g == Guard::TieSlipAhead || g == Guard::TieSlipBehind;
 }
 
 double guard_value(Guard g, const Model& m, const TopKinematics& top, const Contact& c,
@@ -121,6 +122,8 @@ double guard_value(Guard g, const Model& m, const TopKinematics& top, const Cont
     case Guard::SlipDown: return d.margins.down;
     case Guard::Slacken:
     case Guard::WatchTension: return std::min(d.T1, d.T2);
+    case Guard::TieSlipAhead: return m.p.tie_static_torque - tie_torque_needed(m, top, d);
+    case Guard::TieSlipBehind: return m.p.tie_static_torque + tie_torque_needed(m, top, d);
     default: return guard_value(g, m, top, c, y);
   }
 }

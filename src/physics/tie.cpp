@@ -53,10 +53,13 @@ TopKinematics top_kinematics(const Model& m, const MotorSchedule& schedule, cons
   return k;
 }
 
-double tie_torque_needed(const Model& m, const TopKinematics& held, const Contact& c, const numerics::Vec& y) {
-  const Dynamics d = evaluate(m, held, c, y);
+double tie_torque_needed(const Model& m, const TopKinematics& held, const Dynamics& d) {
   const Vec3 tangential(-std::sin(held.phi), std::cos(held.phi), 0.0);
   return m.p.tie_inertia * held.motor_omega_dot - m.p.drive_radius * tangential.dot(d.g.u1) * d.pull;
+}
+
+double tie_torque_needed(const Model& m, const TopKinematics& held, const Contact& c, const numerics::Vec& y) {
+  return tie_torque_needed(m, held, evaluate(m, held, c, y));
 }
 
 void hold_tie(const MotorSchedule& schedule, double t, double offset, numerics::Vec& y) {

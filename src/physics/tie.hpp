@@ -16,6 +16,7 @@
 // motor's power, (σ τ_k + c_a (ω_m − χ̇)) (ω_m − χ̇), before it reaches the tie.
 #pragma once
 #include "numerics/vector.hpp"
+#include "physics/astrojax_system.hpp"
 #include "physics/drive.hpp"
 #include "physics/model.hpp"
 #include "physics/state.hpp"
@@ -30,6 +31,8 @@ TopKinematics top_kinematics(const Model& m, const MotorSchedule& schedule, cons
 // The torque τ = I_a ω̇_m − R (ê_χ·u1) F1 the rod must apply to keep the tie held, for a top
 // `held` that moves with the motor [N m].
 double tie_torque_needed(const Model& m, const TopKinematics& held, const Contact& c, const numerics::Vec& y);
+// The same from the mode's dynamics already evaluated at that top (the guards share one).
+double tie_torque_needed(const Model& m, const TopKinematics& held, const Dynamics& d);
 
 // A held tie's state at time t: χ = φ + δ, χ̇ = ω_m written into y.
 void hold_tie(const MotorSchedule& schedule, double t, double offset, numerics::Vec& y);
