@@ -4,9 +4,7 @@
 # Usage: bench_cli_test.sh ASTROJAX_BINARY SOURCE_DIR
 set -u
 bin=$1; src=$2
-work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
-fail=0; pass=0
-check() { if eval "$2"; then pass=$((pass+1)); else echo "FAIL: $1"; fail=$((fail+1)); fi; }
+source "$(dirname "$0")/check.sh"
 scene="$src/sweeps/scenes/locked_circular.toml"
 
 "$bin" bench work-precision "$scene" -o "$work/a.csv" --methods rk5 >/dev/null 2>"$work/a.err"
@@ -43,5 +41,4 @@ check "constraints on a switching scene: exit 2 (got $rc)" "[ $rc -eq 2 ] && gre
 rc=$?
 check "threshold where the bead never falls: exit 2 (got $rc)" \
   "[ $rc -eq 2 ] && grep -q 'never lands' '$work/t.err' && [ ! -e '$work/t.csv' ] && [ ! -e '$work/t.csv.part' ]"
-echo "bench_cli_test: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+finish "bench_cli_test"

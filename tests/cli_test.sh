@@ -4,9 +4,7 @@
 # Usage: cli_test.sh ASTROJAX_BINARY SOURCE_DIR
 set -u
 bin=$1; src=$2
-work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
-fail=0; pass=0
-check() { if eval "$2"; then pass=$((pass+1)); else echo "FAIL: $1"; fail=$((fail+1)); fi; }
+source "$(dirname "$0")/check.sh"
 
 bad() {  # name, key expected in the message, range text, then --set overrides
   local name=$1 key=$2 range=$3; shift 3
@@ -59,5 +57,4 @@ check "explicit start off the string: exit 2 (got $rc)" "[ $rc -eq 2 ] && [ ! -e
 check "explicit start off the string: names initial.r1 and the tolerance" \
   "grep -q \"initial.r1\" '$work/explicit_bad.err' && grep -q 'length_tolerance' '$work/explicit_bad.err'"
 
-echo "cli: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+finish "cli"

@@ -4,9 +4,7 @@
 # Usage: orbits_cli_test.sh ASTROJAX_BINARY SOURCE_DIR
 set -u
 bin=$1; src=$2
-work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
-fail=0; pass=0
-check() { if eval "$2"; then pass=$((pass+1)); else echo "FAIL: $1"; fail=$((fail+1)); fi; }
+source "$(dirname "$0")/check.sh"
 cfg="$src/sweeps/orbits.toml"
 
 bad() {  # name, expected text 1, expected text 2, then arguments
@@ -39,5 +37,4 @@ if command -v h5dump >/dev/null; then
   check "good: units on /orbits/T1" "h5dump -a /orbits/T1/units '$work/o.h5' | grep -q '\"N\"'"
 fi
 
-echo "orbits cli: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+finish "orbits cli"

@@ -8,9 +8,7 @@
 # Usage: sweep_fault_test.sh ASTROJAX MPIEXEC SOURCE_DIR
 set -u
 bin=$1; mpiexec=$2; src=$3
-work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
-fail=0; pass=0
-check() { if eval "$2"; then pass=$((pass+1)); else echo "FAIL: $1"; fail=$((fail+1)); fi; }
+source "$(dirname "$0")/check.sh"
 cd "$work"
 sweep=("$src/sweeps/quick.toml" -q --set protocol.windows_per_task=1 --set "grid.drive_radius=[0.01,0.015,0.02]")
 same() { for g in /config /chains /windows /samples /tasks; do h5diff "$1" "$2" "$g" > /dev/null 2>&1 || return 1; done; }
@@ -116,5 +114,4 @@ check "output under a regular file: exit 2 naming output.path" "[ $? -eq 2 ] && 
 check "a sweep larger than the free space: exit 2 before work" \
   "[ $? -eq 2 ] && grep -q 'may write up to' big.out && [ ! -e big.h5.part ]"
 
-echo "sweep_fault: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+finish "sweep_fault"

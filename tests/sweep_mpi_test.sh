@@ -6,9 +6,7 @@
 # Usage: sweep_mpi_test.sh ASTROJAX MPIEXEC SOURCE_DIR
 set -u
 bin=$1; mpiexec=$2; src=$3
-work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
-fail=0; pass=0
-check() { if eval "$2"; then pass=$((pass+1)); else echo "FAIL: $1"; fail=$((fail+1)); fi; }
+source "$(dirname "$0")/check.sh"
 
 "$mpiexec" --oversubscribe -n 1 "$bin" sweep "$src/tests/data/tiny_sweep.toml" -o "$work/one.h5" -q > "$work/one.out" 2>&1
 rc1=$?
@@ -72,5 +70,4 @@ check "simulated at 6π: fallen from hanging, locked-circular from the bead high
   "h5dump -y -w 0 -A 0 -d /windows/class '$work/six.h5' | sed -n '/DATA {/,/}/p' | tr -d ' \\n' | grep -q 'DATA{0,0,1,1}'"
 check "every window classified" "! h5dump -A 0 -d /windows/class '$work/three.h5' | grep -q -- '-1'"
 check "ranks recorded" "h5dump -a /provenance/ranks '$work/three.h5' | grep -q '(0): 3'"
-echo "sweep_mpi: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+finish "sweep_mpi"

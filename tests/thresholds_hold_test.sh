@@ -13,9 +13,7 @@
 # Usage: thresholds_hold_test.sh ASTROJAX_BINARY SOURCE_DIR
 set -u
 bin=$1; src=$2
-work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
-fail=0; pass=0
-check() { if eval "$2"; then pass=$((pass+1)); else echo "FAIL: $1"; fail=$((fail+1)); fi; }
+source "$(dirname "$0")/check.sh"
 
 "$bin" sweep "$src/tests/data/tiny_rise.toml" -o "$work/rise.h5" -q > "$work/sweep.out" 2>&1
 check "sweep: exit 0" "[ $? -eq 0 ]"
@@ -75,5 +73,4 @@ for bad in -3 abc 0tau 1e9; do
   check "--hold $bad: exit 2 naming --hold" "[ $? -eq 2 ] && grep -q -- '--hold' '$work/bad.out'"
 done
 
-echo "thresholds_hold: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+finish "thresholds_hold"

@@ -5,9 +5,7 @@
 # Usage: thresholds_refine_test.sh ASTROJAX_BINARY SOURCE_DIR
 set -u
 bin=$1; src=$2
-work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
-fail=0; pass=0
-check() { if eval "$2"; then pass=$((pass+1)); else echo "FAIL: $1"; fail=$((fail+1)); fi; }
+source "$(dirname "$0")/check.sh"
 
 "$bin" sweep "$src/tests/data/tiny_rise.toml" -o "$work/rise.h5" -q > "$work/sweep.out" 2>&1
 check "sweep: exit 0" "[ $? -eq 0 ]"
@@ -29,5 +27,4 @@ check "refine 3: printed with its factor" "grep -q '3× slower' '$work/r3.out'"
 "$bin" thresholds "$work/rise.h5" --refine 0 > /dev/null 2>&1
 check "refine 0: exit 2" "[ $? -eq 2 ]"
 
-echo "thresholds_refine: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+finish "thresholds_refine"
