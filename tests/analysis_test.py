@@ -269,20 +269,27 @@ def cells(line):
 
 
 class report(unittest.TestCase):
-    def test_numbers_equal_astrojax_thresholds(self):
-        md, out_csv = data("report.md"), data("report.csv")
-        script("threshold_report.py", data("phase.h5"), "-o", md, "--csv", out_csv, *THRESHOLD_ARGS)
-        with open(data("thresholds.csv"), newline="") as f:
+    def assert_rows_verbatim(self, ours_csv, theirs_csv):
+        """Every row and field of astrojax's CSV stands in the report's CSV to the letter; returns
+        astrojax's rows and those with a reached threshold (there must be some, or the
+        comparison proves nothing)."""
+        with open(theirs_csv, newline="") as f:
             theirs = list(csv.DictReader(f))
-        with open(out_csv, newline="") as f:
+        with open(ours_csv, newline="") as f:
             ours = list(csv.DictReader(f))
-        # The CSV: astrojax's rows and fields, verbatim.
         self.assertEqual(len(ours), len(theirs))
         for a, b in zip(ours, theirs):
             for k in b:
                 self.assertEqual(a[k], b[k], f"chain {b['chain']} {b['threshold']} {k}")
         reached = [b for b in theirs if b["mid_rad_s"]]
         self.assertTrue(reached, "the test sweep must reach a threshold, or this comparison proves nothing")
+        return theirs, reached
+
+    def test_numbers_equal_astrojax_thresholds(self):
+        md, out_csv = data("report.md"), data("report.csv")
+        script("threshold_report.py", data("phase.h5"), "-o", md, "--csv", out_csv, *THRESHOLD_ARGS)
+        # The CSV: astrojax's rows and fields, verbatim.
+        theirs, reached = self.assert_rows_verbatim(out_csv, data("thresholds.csv"))
         # The Markdown: every row's numbers as astrojax prints them on stdout.
         printed = {}
         with open(data("thresholds.txt")) as f:
@@ -325,17 +332,8 @@ class report(unittest.TestCase):
         md, out_csv, theirs_csv = data("report_hold.md"), data("report_hold.csv"), data("hold_thresholds.csv")
         script("threshold_report.py", data("calib.h5"), "-o", md, "--csv", out_csv, "--hold", "10", *THRESHOLD_ARGS)
         run([ASTROJAX, "thresholds", data("calib.h5"), "--hold", "10", "--csv", theirs_csv])
-        with open(theirs_csv, newline="") as f:
-            theirs = list(csv.DictReader(f))
-        with open(out_csv, newline="") as f:
-            ours = list(csv.DictReader(f))
+        theirs, reached = self.assert_rows_verbatim(out_csv, theirs_csv)
         self.assertIn("verdict", theirs[0])
-        self.assertEqual(len(ours), len(theirs))
-        for a, b in zip(ours, theirs):
-            for k in b:
-                self.assertEqual(a[k], b[k], f"chain {b['chain']} {b['threshold']} {k}")
-        reached = [b for b in theirs if b["mid_rad_s"]]
-        self.assertTrue(reached, "the test sweep must reach a threshold, or this comparison proves nothing")
         for b in reached:
             self.assertIn(b["verdict"], ("bifurcation", "excursion", "time-limited transient", "undecided"))
             for side in ("pre", "post"):  # 10 s rounded up to whole windows, at least 4
