@@ -41,16 +41,19 @@ const Fixture& fixture() {
   return f;
 }
 
+// The right-hand side in the lab axes, or in the axes turning with the motor
+// (physics/rotating_axes.hpp, the product's default: no sin/cos, plus the frame terms −Ω×r', −Ω×v').
+using Rhs = void (*)(const physics::Model&, const physics::MotorSchedule&, const physics::Contact&, double,
+                     const Vec&, Vec&);
+
 // One evaluation through numerics::System, as every stepper calls it.
-void BM_rhs(benchmark::State& st, physics::Mode mode) {
+void BM_rhs_in(benchmark::State& st, physics::Mode mode, Rhs rhs) {
   const Fixture& fx = fixture();
   physics::Contact c = fx.s0.contact;
   c.mode = mode;
   c.sigma = 1;
   c.s_star = (physics::Vec3(fx.s0.y.segment<3>(physics::idx::r1)) - fx.schedule.top(fx.model.p.drive_radius, 0).a).norm();
-  const numerics::System f = [&](double t, const Vec& y, Vec& dydt) {
-    physics::rhs(fx.model, fx.schedule, c, t, y, dydt);
-  };
+  const numerics::System f = [&](double t, const Vec& y, Vec& dydt) { rhs(fx.model, fx.schedule, c, t, y, dydt); };
   Vec y = fx.s0.y, dydt(physics::idx::dim);
   double t = 0.0;
   for (auto _ : st) {
@@ -59,30 +62,12 @@ void BM_rhs(benchmark::State& st, physics::Mode mode) {
     t += 1e-9;  // a new time each call: no caching anywhere
   }
 }
+void BM_rhs(benchmark::State& st, physics::Mode mode) { BM_rhs_in(st, mode, &physics::rhs); }
+void BM_rhs_rotating(benchmark::State& st, physics::Mode mode) { BM_rhs_in(st, mode, &physics::rhs_in_rotating_axes); }
 BENCHMARK_CAPTURE(BM_rhs, sliding, physics::Mode::Sliding);
 BENCHMARK_CAPTURE(BM_rhs, stuck, physics::Mode::Stuck);
 BENCHMARK_CAPTURE(BM_rhs, bottom_stop, physics::Mode::BottomStop);
 BENCHMARK_CAPTURE(BM_rhs, slack, physics::Mode::Slack);
-
-// The same evaluation in the axes turning with the motor (physics/rotating_axes.hpp, the
-// product's default): no sin/cos, plus the frame terms −Ω×r', −Ω×v'.
-void BM_rhs_rotating(benchmark::State& st, physics::Mode mode) {
-  const Fixture& fx = fixture();
-  physics::Contact c = fx.s0.contact;
-  c.mode = mode;
-  c.sigma = 1;
-  c.s_star = (physics::Vec3(fx.s0.y.segment<3>(physics::idx::r1)) - fx.schedule.top(fx.model.p.drive_radius, 0).a).norm();
-  const numerics::System f = [&](double t, const Vec& y, Vec& dydt) {
-    physics::rhs_in_rotating_axes(fx.model, fx.schedule, c, t, y, dydt);
-  };
-  Vec y = fx.s0.y, dydt(physics::idx::dim);
-  double t = 0.0;
-  for (auto _ : st) {
-    f(t, y, dydt);
-    benchmark::DoNotOptimize(dydt.data());
-    t += 1e-9;
-  }
-}
 BENCHMARK_CAPTURE(BM_rhs_rotating, sliding, physics::Mode::Sliding);
 BENCHMARK_CAPTURE(BM_rhs_rotating, stuck, physics::Mode::Stuck);
 
