@@ -14,16 +14,7 @@ Vec3 rotate_z(const Vec3& v, double angle) {
 }  // namespace
 
 physics::TopKinematics corotating_top(double R, double omega) {
-  physics::TopKinematics k;
-  k.phi = 0.0;
-  k.omega = omega;
-  k.omega_dot = 0.0;
-  k.a = Vec3(R, 0, 0);
-  k.a_dot = Vec3(0, R * omega, 0);
-  k.a_ddot = Vec3(-R * omega * omega, 0, 0);
-  k.motor_omega = omega;
-  k.motor_omega_dot = 0.0;
-  return k;
+  return physics::point_on_circle(R, 0.0, omega, 0.0);
 }
 
 numerics::Vec lab_state(const Vec12& z, double omega) {

@@ -38,17 +38,25 @@ void MotorSchedule::phase(double t, double& phi, double& omega, double& omega_do
   }
 }
 
-TopKinematics MotorSchedule::top(double R, double t) const {
+TopKinematics point_on_circle(double R, double phi, double omega, double omega_dot) {
   TopKinematics k;
-  phase(t, k.phi, k.omega, k.omega_dot);
-  const double c = std::cos(k.phi), s = std::sin(k.phi);
+  k.phi = phi;
+  k.omega = omega;
+  k.omega_dot = omega_dot;
+  const double c = std::cos(phi), s = std::sin(phi);
   const Vec3 radial(c, s, 0.0), tangential(-s, c, 0.0);
   k.a = R * radial;
-  k.a_dot = R * k.omega * tangential;
-  k.a_ddot = R * k.omega_dot * tangential - R * k.omega * k.omega * radial;
-  k.motor_omega = k.omega;
-  k.motor_omega_dot = k.omega_dot;
+  k.a_dot = R * omega * tangential;
+  k.a_ddot = R * omega_dot * tangential - R * omega * omega * radial;
+  k.motor_omega = omega;
+  k.motor_omega_dot = omega_dot;
   return k;
+}
+
+TopKinematics MotorSchedule::top(double R, double t) const {
+  double phi, omega, omega_dot;
+  phase(t, phi, omega, omega_dot);
+  return point_on_circle(R, phi, omega, omega_dot);
 }
 
 }  // namespace ajx::physics

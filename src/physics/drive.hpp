@@ -32,6 +32,11 @@ struct TopKinematics {
   double motor_omega_dot;
 };
 
+// A point turning on the circle of radius R at phase φ with rate ω and acceleration ω̇:
+// a = R ê_r, ȧ = R ω ê_φ, ä = R ω̇ ê_φ − R ω² ê_r (ê_r = (cos φ, sin φ, 0), ê_φ = (−sin φ, cos φ, 0)).
+// motor_omega(_dot) are set to ω (ω̇): the motor's own, unless the caller says otherwise.
+TopKinematics point_on_circle(double R, double phi, double omega, double omega_dot);
+
 class MotorSchedule {
  public:
   MotorSchedule() = default;

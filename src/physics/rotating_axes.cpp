@@ -5,14 +5,9 @@
 namespace ajx::physics {
 
 TopKinematics top_in_rotating_axes(const MotorSchedule& schedule, double R, double t) {
-  TopKinematics k;
-  double phi;
-  schedule.phase(t, phi, k.omega, k.omega_dot);
-  k.phi = 0.0;
-  k.a = Vec3(R, 0.0, 0.0);
-  k.a_dot = Vec3(0.0, R * k.omega, 0.0);
-  k.a_ddot = Vec3(-R * k.omega * k.omega, R * k.omega_dot, 0.0);
-  return k;
+  double phi, omega, omega_dot;
+  schedule.phase(t, phi, omega, omega_dot);
+  return point_on_circle(R, 0.0, omega, omega_dot);  // the top at φ' = 0 of the turning axes
 }
 
 void rhs_in_rotating_axes(const Model& m, const MotorSchedule& schedule, const Contact& c, double t,

@@ -10,15 +10,9 @@ namespace {
 
 // The schedule's top turned by δ about the motor axis.
 TopKinematics held_top(const MotorSchedule& schedule, double R, double t, double offset) {
-  TopKinematics k = schedule.top(R, t);
-  if (offset == 0.0) return k;
-  k.phi += offset;
-  const double c = std::cos(k.phi), s = std::sin(k.phi);
-  const Vec3 radial(c, s, 0.0), tangential(-s, c, 0.0);
-  k.a = R * radial;
-  k.a_dot = R * k.omega * tangential;
-  k.a_ddot = R * k.omega_dot * tangential - R * k.omega * k.omega * radial;
-  return k;
+  double phi, omega, omega_dot;
+  schedule.phase(t, phi, omega, omega_dot);
+  return point_on_circle(R, phi + offset, omega, omega_dot);
 }
 
 }  // namespace
@@ -31,16 +25,10 @@ TopKinematics top_kinematics(const Model& m, const MotorSchedule& schedule, cons
   double phi_m, omega_m, omega_m_dot;
   schedule.phase(t, phi_m, omega_m, omega_m_dot);
   const double chi = y(idx::chi), chi_dot = y(idx::chi_dot);
-  const Vec3 radial(std::cos(chi), std::sin(chi), 0.0), tangential(-std::sin(chi), std::cos(chi), 0.0);
-  TopKinematics k;
-  k.phi = chi;
-  k.omega = chi_dot;
+  const Vec3 tangential(-std::sin(chi), std::cos(chi), 0.0);  // ê_χ
+  TopKinematics k = point_on_circle(R, chi, chi_dot, 0.0);  // χ̈ = 0 for now
   k.motor_omega = omega_m;
   k.motor_omega_dot = omega_m_dot;
-  k.a = R * radial;
-  k.a_dot = R * chi_dot * tangential;
-  k.a_ddot = -R * chi_dot * chi_dot * radial;  // χ̈ = 0
-  k.omega_dot = 0.0;
   const Dynamics d0 = evaluate(m, k, c, y);
   TopKinematics k1 = k;
   k1.a_ddot += R * tangential;  // χ̈ = 1 rad/s²
