@@ -267,17 +267,23 @@ def run_thresholds(h5_path, astrojax, extra=()):
         return read_thresholds_csv(out_csv), proc.stdout
 
 
-def read_thresholds_csv(path):
-    """The rows of `astrojax thresholds --csv` as dicts of strings (the text as written)."""
+def read_astrojax_csv(path, need, what):
+    """The rows of a CSV that astrojax wrote, as dicts of strings (the text as written); it must
+    have the columns `need`, else it is not `what`."""
     try:
         with open(path, newline="") as f:
             rows = list(csv.DictReader(f))
     except OSError as e:
         fail(f"{path}: cannot read: {e}")
-    need = {"chain", "threshold", "before_rad_s", "after_rad_s", "mid_rad_s", "paper_rad_s", "relative_difference"}
     if rows and not need <= set(rows[0]):
-        fail(f"{path}: not a CSV of `astrojax thresholds` (columns {sorted(need - set(rows[0]))} missing)")
+        fail(f"{path}: not a CSV of `{what}` (columns {sorted(need - set(rows[0]))} missing)")
     return rows
+
+
+def read_thresholds_csv(path):
+    """The rows of `astrojax thresholds --csv`."""
+    return read_astrojax_csv(path, {"chain", "threshold", "before_rad_s", "after_rad_s", "mid_rad_s", "paper_rad_s",
+                                    "relative_difference"}, "astrojax thresholds")
 
 
 def number(text):
@@ -322,16 +328,9 @@ def run_sequence(h5_path, astrojax):
 
 
 def read_sequence_csv(path):
-    """The rows of `astrojax thresholds --sequence-csv` as dicts of strings."""
-    try:
-        with open(path, newline="") as f:
-            rows = list(csv.DictReader(f))
-    except OSError as e:
-        fail(f"{path}: cannot read: {e}")
-    need = {"chain", "kind", "class", "omega_from_rad_s", "omega_to_rad_s", "step", "status"}
-    if rows and not need <= set(rows[0]):
-        fail(f"{path}: not a CSV of `astrojax thresholds --sequence-csv` (columns {sorted(need - set(rows[0]))} missing)")
-    return rows
+    """The rows of `astrojax thresholds --sequence-csv`."""
+    return read_astrojax_csv(path, {"chain", "kind", "class", "omega_from_rad_s", "omega_to_rad_s", "step", "status"},
+                             "astrojax thresholds --sequence-csv")
 
 
 def draw_thresholds(ax, rows, chains, paper=True):
