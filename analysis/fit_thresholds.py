@@ -263,6 +263,7 @@ def covariance(J, sigma, scale, chi2=None, max_rel_sigma=1.0):
     U, s, Vt = np.linalg.svd(A, full_matrices=True)
     s_all = np.zeros(n)
     s_all[:len(s)] = s
+    s_all[s_all <= 1e-12 * max(s_all.max(), np.finfo(float).tiny)] = 0.0  # zero to rounding
     inv = np.zeros(n)
     loose = []
     for i in range(n):
@@ -280,7 +281,8 @@ def covariance(J, sigma, scale, chi2=None, max_rel_sigma=1.0):
 
 def direction_text(v, keys, tol=0.2):
     """'+0.71 τ_s −0.70 τ_k': a direction's components above tol (in scaled parameters)."""
-    v = v if v[np.argmax(np.abs(v))] > 0 else -v
+    first = next((c for c in v if abs(c) >= tol), 1.0)
+    v = v if first > 0 else -v  # the sign of a direction is arbitrary: its first term positive
     return " ".join(f"{c:+.2f} {k}" for c, k in zip(v, keys) if abs(c) >= tol)
 
 

@@ -12,6 +12,7 @@ be the requested --size × --dpi exactly, and its decoded pixels must not be bla
 MediaBox must be the requested size in points.
 """
 import csv
+import math
 import os
 import re
 import struct
@@ -613,6 +614,179 @@ class cli(unittest.TestCase):
         out = data("run.png")
         script("plot_run.py", data("run.h5"), "-o", out, "--size", "8,6", "--dpi", "40")
         ImageChecks().assert_png(out, 320, 240)
+
+
+class fit(unittest.TestCase):
+    """analysis/fit_thresholds.py: the fitting core on synthetic thresholds with a known optimum
+    and covariance (no astrojax runs), the reading of astrojax's rows, and bad input."""
+
+    A = np.array([[2.0, 0.5], [-1.0, 1.5], [0.3, -2.0]])  # ∂r_k/∂p_j of a linear model
+    SIGMA = np.array([0.01, 0.02, 0.05])                  # σ_k of the relative residuals
+
+    def test_covariance_of_a_linear_model(self):
+        import fit_thresholds as ft
+        # Full rank, m > n, χ² below m − n: C = (AᵀWA)⁻¹ exactly (the scale S drops out).
+        W = np.diag(1 / self.SIGMA**2)
+        expected = np.linalg.inv(self.A.T @ W @ self.A)
+        C, loose, s, factor = ft.covariance(self.A, self.SIGMA, [0.5, 2.0], chi2=0.3)
+        np.testing.assert_allclose(C, expected, rtol=1e-12)
+        self.assertEqual((loose, factor), ([], 1.0))
+        # χ² = 4 over m − n = 1 degree of freedom scales it by 4.
+        C, _, _, factor = ft.covariance(self.A, self.SIGMA, [1.0, 1.0], chi2=4.0)
+        self.assertEqual(factor, 4.0)
+        np.testing.assert_allclose(C, 4 * expected, rtol=1e-12)
+        # m = n: no scaling, whatever χ².
+        self.assertEqual(ft.covariance(self.A[:2], self.SIGMA[:2], [1.0, 1.0], chi2=50.0)[3], 1.0)
+
+    def test_a_degenerate_direction_is_reported_not_inverted(self):
+        import fit_thresholds as ft
+        # Only p0 + p1 enters: the direction (1, −1)/√2 has singular value 0 and is returned;
+        # the pseudo-inverse then gives var(p0) = var(p1) = 1/(2 Σ a_k²/σ_k²) / 2 along (1, 1)/√2.
+        a = np.array([1.0, 2.0, 3.0])
+        J = np.column_stack([a, a])
+        C, loose, s, _ = ft.covariance(J, self.SIGMA, [1.0, 1.0])
+        self.assertEqual(len(loose), 1)
+        self.assertTrue(math.isinf(loose[0][0]), loose)  # s = 0 to rounding: no constraint at all
+        self.assertEqual(ft.direction_text(loose[0][1], ["p0", "p1"]), "+0.71 p0 -0.71 p1")
+        var_sum = 1 / np.sum(a**2 / self.SIGMA**2)  # var(p0 + p1) of the one constrained combination
+        np.testing.assert_allclose(C, np.full((2, 2), var_sum / 4), rtol=1e-12)
+        # A weak but non-zero direction counts as unconstrained once its σ exceeds 100 %.
+        J2 = np.column_stack([a, a * (1 + 1e-4)])
+        self.assertEqual(len(ft.covariance(J2, self.SIGMA, [1.0, 1.0])[1]), 1)
+
+    def quantised(self, x, x_star, q):
+        """Thresholds ω_k = paper_k (1 + r_k), r = A (x − x*) rounded to the resolution q (a
+        bracket grid on which the paper's values lie): piecewise constant, zero at x*."""
+        r = np.round(self.A @ (np.asarray(x) - x_star) / q) * q
+        return 1.0 + r
+
+    def test_nelder_mead_finds_the_cell_of_the_optimum(self):
+        import fit_thresholds as ft
+        x_star, q = np.array([0.3, 0.6]), 0.01
+        sigma = np.full(3, q / 2)  # the bracket half-width
+        f = lambda x: ft.chi2_of((self.quantised(x, x_star, q) - 1.0) / sigma)
+        x, fx, n = ft.nelder_mead(f, [0.5, 0.2], [0.15, 0.15], [0, 0], [1, 1], max_evals=300)
+        # χ² = 0 only where every |A (x − x*)|_k < q/2: inside the cell around x*.
+        self.assertEqual(fx, 0.0)
+        self.assertTrue(np.all(np.abs(self.A @ (x - x_star)) <= q / 2 + 1e-12), x)
+        self.assertLessEqual(n, 300)
+        # The box holds: with the optimum outside it, every point tried lies in the box.
+        tried = []
+        ft.nelder_mead(lambda x: tried.append(x) or f(x), [0.2, 0.2], [0.05, 0.05], [0, 0], [0.25, 1], max_evals=100)
+        self.assertTrue(all(0 <= x[0] <= 0.25 and 0 <= x[1] <= 1 for x in tried))
+        # The evaluation budget is a hard limit.
+        calls = []
+        ft.nelder_mead(lambda x: calls.append(1) or f(x), [0.5, 0.2], [0.15, 0.15], [0, 0], [1, 1], max_evals=7)
+        self.assertEqual(len(calls), 7)
+
+    def test_jacobian_steps_past_the_resolution(self):
+        import fit_thresholds as ft
+        # The quantised model through the script's own jacobian(): with steps h = 0.1 |p| the
+        # central difference of a rounded line errs by at most q / (2h) per entry (each end
+        # off by ≤ q/2), so the covariance matches (AᵀWA)⁻¹ to that relative order.
+        x_star, q = np.array([0.3, 0.6]), 1e-4
+        names = ["a", "b", "c"]
+        paper = {n: 1.0 for n in names}
+
+        class Fake:
+            def __init__(self):
+                self.names = names
+
+            def many(self, xs, phase):
+                out = []
+                for x in xs:
+                    w = self.omega(x)
+                    out.append({"x": np.asarray(x), "meas": {n: (w[k], q / 2, "") for k, n in enumerate(names)}})
+                return out
+
+            omega = staticmethod(lambda x: self.quantised(x, x_star, q))
+
+        params = [ft.Param("drive_radius", 0.3, 0.0, 1.0), ft.Param("contact_distance", 0.6, 0.0, 1.0)]
+        D, how, h, centre = ft.jacobian(Fake(), params, x_star, 0.1)
+        np.testing.assert_allclose(h, 0.1 * x_star)
+        self.assertTrue(all(hw == "central" for row in how for hw in row), how)
+        err = q / (2 * h)  # the bound of each entry's error
+        self.assertTrue(np.all(np.abs(D - self.A) <= err[None, :] + 1e-12), D - self.A)
+        sigma = np.full(3, 0.01)
+        C, _, _, _ = ft.covariance(D, sigma, np.abs(x_star))
+        W = np.diag(1 / sigma**2)
+        expected = np.linalg.inv(self.A.T @ W @ self.A)
+        np.testing.assert_allclose(C, expected, rtol=50 * np.max(err) / np.min(np.abs(self.A)))
+        # Where nothing moves (a flat threshold) the entry is flagged at the resolution and the
+        # step is doubled once.
+        Fake.omega = staticmethod(lambda x: np.array([1.0, 1.0, 1.0]) + 0 * x[0])
+        D, how, h, _ = ft.jacobian(Fake(), params, x_star, 0.1)
+        np.testing.assert_allclose(h, 0.2 * x_star)
+        self.assertTrue(np.all(D == 0) and all("within a bracket" in hw for row in how for hw in row))
+        d, how = ft.derivative(np.nan, 2.0, 1.0, 1.1, 0.9, 1.0)
+        self.assertEqual(how, "backward")
+        self.assertAlmostEqual(d, -10.0, places=12)
+        self.assertTrue(math.isnan(ft.derivative(np.nan, np.nan, 1.0, 1.1, 0.9, 1.0)[0]))
+
+    def test_omega_2_only_where_a_lag_ends(self):
+        import fit_thresholds as ft
+        # astrojax's ω2 where the lock is lost (its lower window in the locked run) is the ω1
+        # transition: not reached, with the reason; in a lagging run it counts.
+        pi = math.pi
+        row = lambda name, a, b: {"chain": "0", "threshold": name, "before_rad_s": repr(a), "after_rad_s": repr(b)}
+        run = lambda cls, a, b: {"kind": "run", "direction": "1", "class": cls, "omega_from_rad_s": repr(a),
+                                 "omega_to_rad_s": repr(b), "windows": "3", "omega_ball_mean_rad_s": repr(4.2 * pi)}
+        up_rows = [row("omega_1", 4.72 * pi, 4.88 * pi), row("omega_2", 4.72 * pi, 4.88 * pi)]
+        seq = [run("locked-circular", 4 * pi, 4.8 * pi), run("not-settled", 4.8 * pi, 4.96 * pi),
+               run("lagging-circular", 4.96 * pi, 18 * pi)]
+        res = {"rise": ([row("omega_rise", 12.25 * pi, 12.57 * pi)], []), "up": (up_rows, seq),
+               "down": ([row("omega_fall", 3.5 * pi, 3.0 * pi)], [])}
+        m = ft.measure(res, 0.02)
+        self.assertTrue(math.isnan(m["omega_2"][0]))
+        self.assertIn("the lag survives to the ramp's top, 18.00π", m["omega_2"][2])
+        self.assertAlmostEqual(m["omega_1"][0], 4.80 * pi)
+        self.assertAlmostEqual(m["omega_fall"][1], 0.25 * pi)  # half-width of a falling bracket
+        self.assertAlmostEqual(m["plateau"][0], 4.2 * pi)
+        w, rel, sig, flags = ft.residuals(m, ["omega_1", "omega_2"], "penalty", 100.0)
+        self.assertEqual((w[1], flags[0]), (100.0, ""))
+        self.assertIn("penalty 100 σ", flags[1])
+        w, rel, sig, flags = ft.residuals(m, ["omega_1", "omega_2"], "exclude", 100.0)
+        self.assertEqual((len(w), "excluded" in flags[1]), (1, True))
+        seq[-1] = run("lagging-circular", 4.96 * pi, 15.0 * pi)
+        seq.append(run("flower", 15.0 * pi, 18 * pi))
+        up_rows[1] = row("omega_2", 14.92 * pi, 15.08 * pi)
+        m = ft.measure(res, 0.02)
+        self.assertAlmostEqual(m["omega_2"][0], 15.0 * pi)
+
+    def test_protocol_copies(self):
+        import tempfile
+        import fit_thresholds as ft
+        with tempfile.TemporaryDirectory() as tmp:
+            files, _ = ft.protocol_files(os.path.join(SOURCE, "sweeps/paper.toml"), os.path.join(SOURCE, "sweeps/table1.toml"),
+                                         18 * math.pi, tmp)
+            docs = {k: ft.load_toml(v, k) for k, v in files.items()}
+        t1 = ft.load_toml(os.path.join(SOURCE, "sweeps/table1.toml"), "table1")
+        self.assertEqual([s["kind"] for s in docs["rise"]["protocol"]["segment"]], ["ramp"])
+        self.assertEqual(docs["up"]["protocol"]["segment"][1]["to"], 18 * math.pi)
+        down = docs["down"]["protocol"]["segment"][1]
+        self.assertEqual((down["from"], down["to"]), (4 * math.pi, t1["protocol"]["segment"][2]["to"]))
+        self.assertEqual(docs["up"]["model"], t1["model"])
+        self.assertEqual(docs["up"]["protocol"]["segment"][0], t1["protocol"]["segment"][0])
+
+    def test_bad_input_named(self):
+        cases = [
+            (["--param", "bogus=1:0:2"], "unknown model key 'bogus'; allowed: string_length"),
+            (["--param", "drive_radius=0.01:0.02:0.005"], "lo = 0.02 > hi = 0.005"),
+            (["--param", "drive_radius=0.03:0.005:0.02"], "start 0.03 outside its bounds [0.005, 0.02]"),
+            (["--param", "contact_distance=0.03:0:0.05"], "lo = 0 outside the allowed range of model.contact_distance: (0, inf)"),
+            (["--param", "top_stop=0.05"], "give bounds for top_stop"),
+            (["--params", "drive_radius,mass"], "--params: unknown 'mass'"),
+            (["--fixed", "tie_damping=-1"], "--fixed 'tie_damping=-1': -1 outside the allowed range"),
+            (["--params", "tie_damping", "--fixed", "tie_damping=1e-5"], "also fitted"),
+            (["--params", "tie_kinetic_torque", "--fixed", "tie_static_torque=1e-3"],
+             "tie_kinetic_torque 0.00135 > tie_static_torque 0.001"),
+            (["--max-evals", "-1"], "--max-evals -1: allowed 0..10000"),
+            (["--top", "3"], "--top 3: allowed (4, 40]"),
+        ]
+        for extra, message in cases:
+            rc, out = script("fit_thresholds.py", "-o", os.path.join(DATA, "fit.md"), *extra, check=False)
+            self.assertEqual(rc, 2, (extra, out))
+            self.assertIn(message, out, extra)
 
 
 if __name__ == "__main__":
