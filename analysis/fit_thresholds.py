@@ -235,10 +235,18 @@ def nelder_mead(f, x0, steps, lo, hi, max_evals, xtol=1e-3, ftol=1e-6):
     return simplex[k], values[k], evals
 
 
-def derivative(w_plus, w_minus, w0, x_plus, x_minus, x0):
-    """A finite difference of one threshold: central where both sides are reached, else one
-    side against the centre; (slope, how) with NaN where fewer than two points are reached."""
+def derivative(w_plus, w_minus, w0, x_plus, x_minus, x0, resolution=np.nan):
+    """A finite difference of one threshold: (slope, how).
+
+    Central where both sides are reached, unless the two one-sided differences disagree by
+    more than twice the resolution (a bracket width): the threshold jumps on one side, and
+    the one-sided slope of smaller magnitude (the side without the jump) is taken. One side
+    against the centre where only one side is reached; NaN where fewer than two points are."""
     if np.isfinite(w_plus) and np.isfinite(w_minus) and x_plus != x_minus:
+        if np.isfinite(w0) and np.isfinite(resolution) and x_plus != x0 and x_minus != x0 \
+                and abs((w_plus - w0) - (w0 - w_minus)) > 2.0 * resolution:
+            fwd, bwd = (w_plus - w0) / (x_plus - x0), (w0 - w_minus) / (x0 - x_minus)
+            return (fwd, "jump below: forward") if abs(fwd) <= abs(bwd) else (bwd, "jump above: backward")
         return (w_plus - w_minus) / (x_plus - x_minus), "central"
     if np.isfinite(w_plus) and np.isfinite(w0) and x_plus != x0:
         return (w_plus - w0) / (x_plus - x0), "forward"
@@ -542,47 +550,46 @@ def coarse_scan(ev, params, x0, n):
 
 
 def jacobian(ev, params, x, step):
-    """∂ω_k/∂p_j [rad/s per unit] by central differences at x, steps step·|p_j| (step·range
-    at p_j = 0) within the bounds, doubled once where no threshold moved by more than its
-    bracket. Returns (D (m × n), how (m × n), steps used (n), centre record)."""
+    """∂ω_k/∂p_j [rad/s per unit] by finite differences at x (see derivative()), steps
+    step·|p_j| (step·range at p_j = 0) within the bounds. Where no threshold moved by more than
+    its bracket width, the step is doubled once; an entry of the doubled step replaces the
+    first only where the first was at the resolution or not reached. Returns (D (m × n),
+    how (m × n), steps used (n), centre record)."""
     centre = ev.many([x], "optimum")[0]
     names = ev.names
-    h = np.array([step * (abs(xi) if xi != 0 else p.hi - p.lo) for xi, p in zip(x, params)])
+    h0 = np.array([step * (abs(xi) if xi != 0 else p.hi - p.lo) for xi, p in zip(x, params)])
+    h = h0.copy()
     D = np.full((len(names), len(params)), np.nan)
     how = [["" for _ in params] for _ in names]
+    redo = [True] * len(params)
     for attempt in range(2):
         pts = []
         for j, p in enumerate(params):
-            if attempt == 1 and not redo[j]:
-                continue
-            xp, xm = np.array(x, float), np.array(x, float)
-            xp[j], xm[j] = min(x[j] + h[j], p.hi), max(x[j] - h[j], p.lo)
-            pts += [(j, xp, xm)]
+            if redo[j]:
+                xp, xm = np.array(x, float), np.array(x, float)
+                xp[j], xm[j] = min(x[j] + h[j], p.hi), max(x[j] - h[j], p.lo)
+                pts.append((j, xp, xm))
         recs = ev.many([q for _, a, b in pts for q in (a, b)], "jacobian")
-        redo = [False] * len(params)
         for i, (j, xp, xm) in enumerate(pts):
             rp, rm = recs[2 * i], recs[2 * i + 1]
             moved = False
             for k, name in enumerate(names):
                 wp, wm, w0 = rp["meas"][name][0], rm["meas"][name][0], centre["meas"][name][0]
-                D[k, j], how[k][j] = derivative(wp, wm, w0, xp[j], xm[j], x[j])
                 widths = [rp["meas"][name][1], rm["meas"][name][1], centre["meas"][name][1]]
                 res = 2.0 * np.nanmax(widths) if np.any(np.isfinite(widths)) else np.nan
-                span = abs(D[k, j] * (xp[j] - xm[j])) if how[k][j] == "central" else abs(D[k, j] * h[j])
-                if np.isfinite(D[k, j]) and np.isfinite(res) and span <= res:
-                    how[k][j] += ", within a bracket"
-                elif np.isfinite(D[k, j]):
+                d, hw = derivative(wp, wm, w0, xp[j], xm[j], x[j], res)
+                span = abs(d * (xp[j] - xm[j])) if hw == "central" else abs(d * h[j])
+                if np.isfinite(d) and np.isfinite(res) and span <= res:
+                    hw += ", within a bracket"
+                elif np.isfinite(d):
                     moved = True
-            redo[j] = not moved and attempt == 0
-        if attempt == 0:
-            if not any(redo):
-                break
-            h = np.where(redo, 2 * h, h)
+                if attempt == 0 or not np.isfinite(D[k, j]) or ("within a bracket" in how[k][j] and np.isfinite(d)):
+                    D[k, j], how[k][j] = d, hw + (" (h doubled)" if attempt == 1 else "")
+            redo[j] = not moved
+        if attempt == 1 or not any(redo):
+            break
+        h = np.where(redo, 2 * h0, h0)
     return D, how, h, centre
-
-
-def fmt_value(v, unit=""):
-    return f"{v:.4g}{(' ' + unit) if unit else ''}"
 
 
 def report(args, params, ev, best, D, how, h, cov, loose, factor, sv, finals, describe, elapsed):
@@ -597,7 +604,7 @@ def report(args, params, ev, best, D, how, h, cov, loose, factor, sv, finals, de
     L += ["", "Sweeps of each evaluation (temporary copies; the shipped files are unchanged):", ""]
     L += [f"- {k}: {v}" for k, v in describe.items()]
     fixed = {k: v for k, v in best["values"].items() if k not in keys}
-    L += ["", f"Held fixed: layers.tie = {args.tie}, " + ", ".join(f"{k} = {v:g}" for k, v in fixed.items()) + ".", ""]
+    L += ["", f"Held fixed: layers.tie = {args.tie}" + "".join(f", {k} = {v:g}" for k, v in fixed.items()) + ".", ""]
     L += ["## Best parameters", "",
           "| parameter | start | bounds | best | σ | σ / best | constrained |", "|---|---|---|---|---|---|---|"]
     for j, p in enumerate(params):
@@ -643,10 +650,14 @@ def report(args, params, ev, best, D, how, h, cov, loose, factor, sv, finals, de
                 cells.append(f"— ({how[k][j]})")
                 continue
             pct = 100 * d * 0.1 * best["x"][j] / value if np.isfinite(value) and value else math.nan
-            note = " ⁽ʳ⁾" if "within a bracket" in how[k][j] else ""
+            note = (" ⁽ʳ⁾" if "within a bracket" in how[k][j] else "") + (" ⁽ʲ⁾" if "jump" in how[k][j] else "") \
+                + (" ⁽ᶠ⁾" if how[k][j].startswith(("forward", "backward")) else "")
             cells.append(f"{d / PI:.4g} ({pct:+.2f} %){note}")
         L.append(f"| {SYMBOL[name]} | " + " | ".join(cells) + " |")
-    L += ["", "⁽ʳ⁾ within a bracket (at the resolution).", "", "## What the thresholds do not constrain", ""]
+    L += ["", "⁽ʳ⁾ within a bracket (at the resolution). ⁽ʲ⁾ the threshold jumps on one side (the one-sided "
+          "differences disagree by more than two bracket widths): the slope of the other side. ⁽ᶠ⁾ one side not "
+          "reached (or not allowed): one-sided. The covariance uses these slopes.", "",
+          "## What the thresholds do not constrain", ""]
     L.append("Singular values of W^½ J S (parameters scaled by |p_j|): "
              + ", ".join(f"{s:.3g}" for s in sv) + ". A direction with 1/s > 1 (a change of the parameters by "
              "their own size moves χ² by less than 1) is not constrained:")

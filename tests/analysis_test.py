@@ -722,6 +722,12 @@ class fit(unittest.TestCase):
         self.assertEqual(how, "backward")
         self.assertAlmostEqual(d, -10.0, places=12)
         self.assertTrue(math.isnan(ft.derivative(np.nan, np.nan, 1.0, 1.1, 0.9, 1.0)[0]))
+        # A jump on one side (one-sided differences 2 and 0 against a resolution of 0.1): the
+        # slope of the side without it; within twice the resolution: the central difference.
+        self.assertEqual(ft.derivative(3.0, 1.0, 1.0, 1.1, 0.9, 1.0, 0.1), (0.0, "jump above: backward"))
+        d, how = ft.derivative(1.15, 1.0, 1.0, 1.1, 0.9, 1.0, 0.1)
+        self.assertEqual(how, "central")
+        self.assertAlmostEqual(d, 0.75, places=12)
 
     def test_omega_2_only_where_a_lag_ends(self):
         import fit_thresholds as ft
