@@ -592,7 +592,7 @@ def jacobian(ev, params, x, step):
     return D, how, h, centre
 
 
-def report(args, params, ev, best, D, how, h, cov, loose, factor, sv, finals, describe, elapsed):
+def report(args, params, ev, best, D, how, h, cov, loose, tight, factor, sv, finals, describe, elapsed):
     names = ev.names
     keys = [p.key for p in params]
     meas = best["meas"]
@@ -612,8 +612,10 @@ def report(args, params, ev, best, D, how, h, cov, loose, factor, sv, finals, de
         weight = max((abs(v[j]) for _, v in loose), default=0.0)
         constrained = "no (in an unconstrained direction)" if weight >= 0.3 else "yes"
         xj = best["x"][j]
+        if weight >= 0.3:
+            s = math.nan  # the pseudo-inverse's σ of a parameter in a free direction means nothing
         s_text = "—" if not np.isfinite(s) else f"{s:.2g}"
-        r_text = "—" if not (np.isfinite(s) and xj) else f"{100 * s / abs(xj):.0f} %"
+        r_text = "—" if not (np.isfinite(s) and xj) else f"{100 * s / abs(xj):.1f} %"
         L.append(f"| {p.key} [{p.unit}] | {p.start:.4g} | {p.lo:.4g}–{p.hi:.4g} | {xj:.4g} | {s_text} | {r_text} "
                  f"| {constrained} |")
     m_used = int(np.sum([not f for f in flags]))
@@ -668,6 +670,8 @@ def report(args, params, ev, best, D, how, h, cov, loose, factor, sv, finals, de
                      f"{'∞' if not math.isfinite(inv_s) else f'{100 * inv_s:.0f} %'} of the parameters)")
     else:
         L.append("- none: every direction is constrained to better than 100 %.")
+    L += ["", "Constrained combinations (σ along each, as a fraction of the parameters):", ""]
+    L += [f"- {direction_text(v, keys)}: {100 * inv_s:.2g} %" for inv_s, v in tight] or ["- none"]
     L += ["", "## Class sequence at the best parameters (the shipped files, unchanged protocols)", ""]
     for label, (cmd, text, steps) in finals.items():
         L += [f"`{cmd}`", "", "| step | status | at ω_m [π rad/s] | what |", "|---|---|---|---|"]
@@ -811,10 +815,13 @@ def main(argv=None):
             chi2 = float(np.sum(((np.array([centre["meas"][ev.names[k]][0] for k in reached]) /
                                   (np.array([PAPER[ev.names[k]] for k in reached]) * PI) - 1) / srel) ** 2))
             cov, loose, sv, factor = covariance(Jrel, srel, scale, chi2)
+            _, _, Vt = np.linalg.svd((Jrel / srel[:, None]) * scale[None, :], full_matrices=True)
+            tight = [(1.0 / sv[i], Vt[i]) for i in range(len(params)) if sv[i] > 0 and 1.0 / sv[i] <= 1.0]
         else:
             cov, loose, sv, factor = None, [(math.inf, row) for row in np.eye(len(params))], np.zeros(len(params)), 1.0
+            tight = []
         finals = final_check(args, best["values"], work)
-    text = report(args, params, ev, best, D, how, h, cov, loose, factor, sv, finals, describe, time.time() - t0)
+    text = report(args, params, ev, best, D, how, h, cov, loose, tight, factor, sv, finals, describe, time.time() - t0)
     ajx.write_report(args.output, text)
     if args.csv:
         write_csv(args.csv, ev)
