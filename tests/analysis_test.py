@@ -793,6 +793,9 @@ class fit(unittest.TestCase):
             rc, out = script("fit_thresholds.py", "-o", os.path.join(DATA, "fit.md"), *extra, check=False)
             self.assertEqual(rc, 2, (extra, out))
             self.assertIn(message, out, extra)
+        rc, out = script("fit_thresholds.py", "--help")
+        self.assertEqual(rc, 0)
+        self.assertIn("-o OUTPUT", out)
 
 
 if __name__ == "__main__":
