@@ -9,8 +9,8 @@ Residuals r_k = (ω_k − paper_k) / paper_k for
   ω_fall = 3.24π    from Table 1's orbit: the same hold, then table1.toml's down-ramp started at
                     4π (run separately: an ω2 that ends in a fall would otherwise leave no
                     circular orbit for ω_fall to be measured from);
-  ω_ball ≈ 4.8π     (--plateau) the mean ω_ball of the lagging orbit on the way up ("nearly
-                    constant", the paper); σ = --plateau-sigma.
+  ω_ball ≈ 4.8π     (--plateau) the mean ω_ball of the longest lagging-circular run on the
+                    way up ("nearly constant", the paper); σ = --plateau-sigma.
 The three sweeps are temporary copies of the shipped files with segments dropped or extended
 (the shipped files stay unchanged); each parameter vector is run through them with
 `astrojax sweep -q --set ...`, at most --jobs (2) at a time, and read with
