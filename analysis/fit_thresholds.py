@@ -393,11 +393,18 @@ def overrides(values, tie):
 
 
 def run_sweep(astrojax, scene, out, values, tie, refine):
-    ajx.run_checked([astrojax, "sweep", scene, "-q", "-o", out, *overrides(values, tie)])
+    """One sweep and its thresholds: (threshold rows, sequence rows, note). Exit code 3 (some
+    tasks failed, the file written with their windows classed "failed", which astrojax
+    thresholds skips) is kept, with astrojax's reason in the note; any other error stops."""
+    proc = ajx.run_checked([astrojax, "sweep", scene, "-q", "-o", out, *overrides(values, tie)], allowed=(0, 3))
+    note = ""
+    if proc.returncode == 3:
+        why = " ".join((proc.stderr or proc.stdout).split())
+        note = f"{os.path.splitext(os.path.basename(scene))[0]} sweep: some tasks failed ({why[:200]})"
     extra = ("--refine", str(refine)) if refine else ()
     rows, _ = ajx.run_thresholds(out, astrojax, extra)
     seq = ajx.run_sequence(out, astrojax)
-    return rows, seq
+    return rows, seq, note
 
 
 def bracket(rows, name):
@@ -417,9 +424,9 @@ def measure(results, plateau_sigma):
     """{name: (value [rad/s], σ [rad/s], note)} from the three sweeps' rows; value NaN where
     not reached, with the reason in the note."""
     out = {}
-    rise_rows, _ = results["rise"]
-    up_rows, up_seq = results["up"]
-    down_rows, _ = results["down"]
+    rise_rows = results["rise"][0]
+    up_rows, up_seq = results["up"][:2]
+    down_rows = results["down"][0]
     for name, rows in (("omega_rise", rise_rows), ("omega_1", up_rows), ("omega_fall", down_rows)):
         mid, hw, _ = bracket(rows, name)
         out[name] = (mid, hw, "" if np.isfinite(mid) else "not reached")
@@ -523,7 +530,7 @@ class Evaluator:
         w, rel, sig, flags = residuals(meas, self.names, self.args.missing, self.args.penalty)
         chi2 = chi2_of(w) if results is not None else self.args.penalty ** 2 * len(self.names)
         rec = dict(index=len(self.log), phase=phase, x=np.array(key), values=values, meas=meas, chi2=chi2,
-                   flags=[f for f in flags if f], issue=issue)
+                   flags=[f for f in flags if f] + [r[2] for r in (results or {}).values() if r[2]], issue=issue)
         self.log.append(rec)
         line = " ".join(f"{p.key}={xi:.4g}" for p, xi in zip(self.params, key))
         got = " ".join(f"{SYMBOL[k]}={meas[k][0] / PI:.2f}π" if np.isfinite(meas[k][0]) else f"{SYMBOL[k]}=—"
@@ -623,6 +630,11 @@ def report(args, params, ev, best, D, how, h, cov, loose, tight, factor, sv, fin
           + (f"covariance scaled by {factor:.3g} = max(1, χ²/(m − n))." if factor != 1.0 or m_used > len(params)
              else "no more residuals than parameters: the covariance is not scaled by χ²."),
           "σ: (JᵀWJ)⁺ over the constrained directions, W = diag(1/σ_k²) with σ_k the bracket half-widths.", ""]
+    failed = [r for r in ev.log if any("some tasks failed" in f for f in r["flags"])]
+    L += [f"Evaluations with failed tasks (astrojax sweep exit code 3; their windows are skipped by "
+          f"`astrojax thresholds`): {len(failed)} of {len(ev.log)}"
+          + (f", indices {', '.join(str(r['index']) for r in failed)} (reasons in the CSV's flags)" if failed else "")
+          + ("; the best point is one of them." if best in failed else "."), ""]
     L += ["## Thresholds at the best parameters", "",
           "| threshold | this model [π rad/s] | bracket half-width [π] | paper [π] | relative error | σ_k | note |",
           "|---|---|---|---|---|---|---|"]
