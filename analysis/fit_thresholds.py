@@ -194,6 +194,8 @@ def nelder_mead(f, x0, steps, lo, hi, max_evals, xtol=1e-3, ftol=1e-6):
         if evals >= max_evals:
             break
         values.append(call(x))
+    if not values:  # max_evals = 0: no search
+        return simplex[0], math.nan, 0
     if len(values) < n + 1:
         k = int(np.argmin(values))
         return simplex[k], values[k], evals

@@ -678,6 +678,7 @@ class fit(unittest.TestCase):
         calls = []
         ft.nelder_mead(lambda x: calls.append(1) or f(x), [0.5, 0.2], [0.15, 0.15], [0, 0], [1, 1], max_evals=7)
         self.assertEqual(len(calls), 7)
+        self.assertEqual(ft.nelder_mead(f, [0.5, 0.2], [0.15, 0.15], [0, 0], [1, 1], max_evals=0)[2], 0)
 
     def test_jacobian_steps_past_the_resolution(self):
         import fit_thresholds as ft
