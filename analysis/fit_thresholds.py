@@ -410,7 +410,8 @@ def run_sweep(astrojax, scene, out, values, tie, refine):
 
 
 def bracket(rows, name):
-    """(mid, half-width) [rad/s] of threshold `name` from astrojax's rows (chain 0), NaN if not reached."""
+    """(mid, half-width, lower window) [rad/s] of threshold `name` from astrojax's rows (chain 0), NaN if
+    not reached."""
     for r in rows:
         if r["threshold"] == name and int(r["chain"]) == 0:
             a, b = ajx.number(r["before_rad_s"]), ajx.number(r["after_rad_s"])
