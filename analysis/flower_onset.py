@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Where the lagging circular orbit turns into a flower: the Hopf point ω_H from a staircase.
 
-Reads a sweep of `steps` segments up and back down in ω_m (sweeps/lag_staircase.toml), and for
+Reads a sweep of `steps` segments up and back down in ω_m (sweeps/table1_staircase.toml), and for
 each chain and each level the relative radius oscillation of the bottom ball over the measured
 window, a = std(ρ2)/mean(ρ2): about 1e-8 on a circular orbit, several per cent on a flower.
 
@@ -14,7 +14,8 @@ Near a supercritical Hopf bifurcation the limit cycle's amplitude obeys a² = k 
     difference of a² over the window's two halves;
   - the model a² = μ (k + q μ), μ = max(ω_m − ω_H, 0) (the normal form to the next order: far
     above onset the line bends), weighted least squares over the levels up to --span π rad/s
-    above the first level whose up-leg window is a flower by the classifier; k and q are
+    above the first level of the flower that lasts to the top of the up leg (by the
+    classifier); k and q are
     linear and solved for every trial ω_H, ω_H by a scan and golden section;
   - σ(ω_H) where χ² has risen by one (scaled by the reduced χ² when it exceeds one);
   - the torque the tie passes there, τ_H = τ_k + c_a (ω_H − ω_ball), with ω_ball the lagging
@@ -24,7 +25,7 @@ up), whether the way down returns to a circle at the same level (no hysteresis: 
 supercritical, onset), and the largest |dE/dt| / P_drag over the flower windows (≈ 0: the motor
 sustains the flower, it is not a transient).
 
-usage: /usr/bin/python3 analysis/flower_onset.py out/lag_staircase.h5 -o out/flower_onset.md [--span 3]
+usage: /usr/bin/python3 analysis/flower_onset.py out/table1_staircase.h5 -o out/flower_onset.md [--span 3]
 """
 import numpy as np
 
@@ -116,7 +117,13 @@ def analyse(sweep, c, span):
     lagging = [k for k, v in sweep.class_names.items() if v == "lagging-circular"]
     row = {"chain": c, "label": sweep.grid_label(c) or f"chain {c}"}
     ups = [(om, v["up"]) for om, v in lev.items() if "up" in v]
-    first_flower = next((om for om, w in ups if sweep.cls[c, w] in flower), None)
+    # The flower that lasts to the top of the staircase: a flower window that gives way to a
+    # circle again further up (a transient at the lock's loss) is not the onset.
+    first_flower = None
+    for om, w in reversed(ups):
+        if sweep.cls[c, w] not in flower:
+            break
+        first_flower = om
     last_lag = None
     for om, w in ups:
         if first_flower is not None and om >= first_flower:
@@ -181,7 +188,7 @@ def report(path, rows, span):
 
 def main():
     ap = ajx.parser(__doc__)
-    ap.add_argument("input", help="sweep file with steps up and down (sweeps/lag_staircase.toml)")
+    ap.add_argument("input", help="sweep file with steps up and down (sweeps/table1_staircase.toml)")
     ap.add_argument("-o", "--output", required=True, help="markdown report to write")
     ap.add_argument("--span", type=float, default=3.0,
                     help="fit the levels up to this many π rad/s above the first flower window (default 3)")
@@ -190,7 +197,7 @@ def main():
         ajx.fail(f"--span {args.span}: allowed > 0 (π rad/s)")
     sweep = ajx.Sweep(args.input)
     if sweep.is_hold:
-        ajx.fail(f"{args.input}: a hold sweep has no staircase; run sweeps/lag_staircase.toml")
+        ajx.fail(f"{args.input}: a hold sweep has no staircase; run sweeps/table1_staircase.toml")
     rows = [analyse(sweep, c, args.span) for c in range(sweep.n_chains)]
     ajx.write_report(args.output, report(args.input, rows, args.span))
 
