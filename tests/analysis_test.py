@@ -640,6 +640,38 @@ class flower_onset(unittest.TestCase):
         self.assertLess(abs(wh - 14.3), 4 * swh)
         self.assertTrue(0.1 < red < 3.0, red)
 
+    def test_short_staircase_through_the_onset(self):
+        # The clutch with c_a = 2e-6 N m s (tests/data/flower_staircase.toml, about 5 s): the
+        # lagging orbit gives way to a flower that the motor sustains, softly.
+        import astrojax_analysis as ajx
+        import flower_onset
+        h5 = data("flower_staircase.h5")
+        run([ASTROJAX, "sweep", os.path.join(SOURCE, "tests/data/flower_staircase.toml"), "-o", h5, "-q"])
+        sweep = ajx.Sweep(h5)
+        lev = {o: v for o, v in flower_onset.levels(sweep, 0).items() if o >= 12.0}
+        cls = {o: {leg: sweep.class_names[sweep.cls[0, w]] for leg, w in v.items()} for o, v in lev.items()}
+        for o, legs in cls.items():
+            want = "flower" if o >= 16.0 else "lagging-circular"
+            for leg, got in legs.items():
+                self.assertEqual(got, want, f"{leg} at {o}π")  # the same class up and down: no hysteresis
+        # Sustained: a flower decaying at the drag rate would have dE/dt/P_drag ≈ −1; over a
+        # 20 s window an orbit the motor feeds stays within m/(2 c_D T) = 0.26 (README, hold
+        # verdicts).
+        bound = 0.018 / (2 * 1.7245e-3 * 20.0)
+        for o, v in lev.items():
+            for w in v.values():
+                if sweep.class_names[sweep.cls[0, w]] == "flower":
+                    r = sweep.stats["energy_rate"][0, w] / sweep.stats["drag_power"][0, w]
+                    self.assertLess(abs(r), bound, f"{o}π")
+        # The limit cycle grows with the distance from the onset (a² ∝ ω_m − ω_H).
+        amp = [flower_onset.amplitude(sweep, 0, lev[o]["up"]) for o in (16.0, 17.0, 18.0, 19.0)]
+        self.assertEqual(amp, sorted(amp))
+        # The fitted onset lies below the first flower and above the highest level where the
+        # up leg stayed on the circle (a below 1e-6 after 120 s: no growth there).
+        quiet = max(o for o, v in lev.items() if flower_onset.amplitude(sweep, 0, v["up"]) < 1e-6)
+        row = flower_onset.analyse(sweep, 0, 3.0)
+        self.assertTrue(quiet < row["omega_H"] < 16.0, (quiet, row["omega_H"]))
+
     def test_script_on_a_sweep_without_flowers_and_bad_input(self):
         md = data("flower_onset.md")
         script("flower_onset.py", data("phase.h5"), "-o", md)
