@@ -449,8 +449,8 @@ def measure(results, plateau_sigma):
                  and float(r["omega_from_rad_s"]) >= end - 1e-9]
         out["omega_2"] = (np.nan, np.nan, f"not reached: the lag survives to the ramp's top, {top / PI:.2f}π"
                           if end >= top - 1e-9 else
-                          f"not reached: the lag ends at {end / PI:.2f}π in {after[0] if after else '?'} "
-                          f"(not a circular → non-circular, non-fallen step)")
+                          f"not reached: the lag ends at {end / PI:.2f}π in {after[0] if after else '?'}, "
+                          f"not in a flower")
     if lag:
         longest = max(lag, key=lambda r: int(r["windows"]))
         out["plateau"] = (float(longest["omega_ball_mean_rad_s"]), plateau_sigma * PAPER["plateau"] * PI, "")

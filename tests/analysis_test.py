@@ -802,8 +802,8 @@ class fit(unittest.TestCase):
 
     def test_omega_2_only_where_a_lag_ends(self):
         import fit_thresholds as ft
-        # astrojax's ω2 where the lock is lost (its lower window in the locked run) is the ω1
-        # transition: not reached, with the reason; in a lagging run it counts.
+        # An ω2 bracket whose lower window lies in the locked run (no lag before the flower) is
+        # not the paper's lag → flower: not reached, with the reason; in a lagging run it counts.
         pi = math.pi
         row = lambda name, a, b: {"chain": "0", "threshold": name, "before_rad_s": repr(a), "after_rad_s": repr(b)}
         run = lambda cls, a, b: {"kind": "run", "direction": "1", "class": cls, "omega_from_rad_s": repr(a),
