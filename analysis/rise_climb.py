@@ -11,14 +11,15 @@ horizontal). For each climb (a stretch of samples off the bottom stop, mode ≠ 
 - the lock: the azimuth of the bead minus the motor's φ, and the spin rate of the pair (the
   rate of the azimuth of r2 − r1) against ω_m, over the second before the onset and over the
   climb: a pair that falls behind the motor is no longer fed by it;
-- the angular momentum about the motor axis, L_z = Σ m (r × v)_z, before and at the highest
-  point, with the motor's torque P_motor/ω_m: the torque a climb at that speed would need to
-  stay locked is ΔL_z/Δt.
+- the angular momentum about the motor axis, L_z = Σ m (r × v)_z, at the onset and at the
+  highest point, against ω_m Σ m ρ² there (the pair still locked to the motor): the torque
+  that lock would need over the climb, against the motor's P_motor/ω_m and the bound
+  R T1 |u1,horizontal| of what the upper string can pass.
 Then the energy ledger of run_ledger.py in --window windows from --before seconds before the
 first onset to --after seconds after it.
 
 usage: /usr/bin/python3 analysis/rise_climb.py out/rise_from_rest.h5 [-o out/rise.md]
-The masses m1, m2 come from the run's /config ([model] bead_mass, ball_mass, or the model's
+The masses m1, m2 and the drive radius R come from the run's /config ([model] bead_mass, ball_mass, or the model's
 default 0.018 kg, src/physics/model.hpp) and its recorded --set overrides.
 """
 import tomllib
@@ -106,10 +107,12 @@ def climb_row(run, a, b):
     t, L1, om, mode = run["t"], run["L1"], run["omega_m"], run["mode"]
     p = a - 1  # last sample on the ball
     s_b = L1[p]
-    top = a + int(np.argmin(L1[a:b + 1]))
+    low = np.min(L1[a:b + 1])
+    top = a + int(np.nonzero(L1[a:b + 1] <= low + 0.01 * (s_b - low))[0][0])  # first within 1 % of the highest
     sliding = np.nonzero(mode[a:b + 1] != 0)[0]  # the first slide ends at the first stick, stop or slack
     e = a + (sliding[0] if len(sliding) else b - a)
     t_slide = max(t[e] - t[p], 1e-12)
+    t_top = max(t[top] - t[p], 1e-12)
     pair = np.arctan2(run["r2"][:, 1] - run["r1"][:, 1], run["r2"][:, 0] - run["r1"][:, 0])
     bead_lag = wrap(np.arctan2(run["r1"][:, 1], run["r1"][:, 0]) - run["phi"])
     before = (t >= t[p] - 1.0) & (t <= t[p])
@@ -117,14 +120,14 @@ def climb_row(run, a, b):
     return dict(
         t=t[p], omega=om[p] / np.pi, mu_star=np.log(run["T2"][p] / run["T1"][p]) / run["psi"][p],
         psi=run["psi"][p], T1=run["T1"][p], T2=run["T2"][p],
-        climb=s_b - L1[top], slide=s_b - L1[e], t_slide=t_slide, off=t[b] - t[p],
+        climb=s_b - L1[top], t_top=t_top, slide=s_b - L1[e], t_slide=t_slide, off=t[b] - t[p],
         friction=run["friction_loss"][b] - run["friction_loss"][p],
         lag_before=bead_lag[p], lag_end=bead_lag[b],
         spin_before=rate(t[before], pair[before]) / np.pi, spin_during=rate(t[during], pair[during]) / np.pi,
         omega_during=om[during].mean() / np.pi,
-        Lz_before=lz(run, p), Lz_slide=lz(run, e), Lz_lock=om[e] * inertia(run, e),
-        torque_needed=(om[e] * inertia(run, e) - lz(run, p)) / t_slide,
-        torque_motor=(run["motor_work"][e] - run["motor_work"][p]) / t_slide / om[p],
+        Lz_before=lz(run, p), Lz_top=lz(run, top), Lz_lock=om[top] * inertia(run, top),
+        torque_needed=(om[top] * inertia(run, top) - lz(run, p)) / t_top,
+        torque_motor=(run["motor_work"][top] - run["motor_work"][p]) / t_top / om[p],
         torque_max=torque_bound(run, p))
 
 
@@ -136,7 +139,7 @@ def report(path, run, before, after, window):
         return "\n".join(lines)
     lines += ["Onset and climb: μ* = ln(T2/T1)/ψ on the last sample on the ball; the first slide ends at "
               "the first stick, stop or slack.", "",
-              "| # | t [s] | ω_m [π] | μ* | ψ [rad] | T1, T2 [N] | first slide [mm] in [s] | highest [mm] | "
+              "| # | t [s] | ω_m [π] | μ* | ψ [rad] | T1, T2 [N] | first slide [mm] in [s] | highest [mm] at [s] | "
               "off the ball [s] | friction loss [J] | bead − φ: before → back on the ball [rad] | "
               "pair spin: before, off the ball [π rad/s] | ω_m off the ball [π rad/s] |",
               "|---" * 13 + "|"]
@@ -144,18 +147,18 @@ def report(path, run, before, after, window):
     for k, r in enumerate(rows):
         lines.append(
             f"| {k} | {r['t']:.2f} | {r['omega']:.3f} | {r['mu_star']:.4f} | {r['psi']:.3f} | "
-            f"{r['T1']:.3f}, {r['T2']:.3f} | {1e3 * r['slide']:.2f} in {r['t_slide']:.3f} | {1e3 * r['climb']:.2f} | "
+            f"{r['T1']:.3f}, {r['T2']:.3f} | {1e3 * r['slide']:.2f} in {r['t_slide']:.3f} | {1e3 * r['climb']:.2f} at {r['t_top']:.3f} | "
             f"{r['off']:.2f} | {r['friction']:.2e} | {r['lag_before']:+.2f} → {r['lag_end']:+.2f} | "
             f"{r['spin_before']:.2f}, {r['spin_during']:.2f} | {r['omega_during']:.2f} |")
-    lines += ["", "Angular momentum about the motor axis over the first slide: L_z at the onset, at the "
-              "slide's end, and what a pair still locked to the motor would have there (ω_m Σ m ρ²); the "
+    lines += ["", "Angular momentum about the motor axis from the onset to the highest point: L_z at both, "
+              "and what a pair still locked to the motor would have at the highest point (ω_m Σ m ρ²); the "
               "torque that lock would need, (ω_m Σ m ρ² − L_z,onset)/Δt, against the motor's mean torque "
-              "over the slide (P_motor/ω_m) and the most the upper string can pass at the onset "
+              "over the same time (P_motor/ω_m) and the most the upper string can pass at the onset "
               "(R T1 |u1,horizontal|).", "",
-              "| # | L_z onset | L_z slide end | L_z locked there [kg m²/s] | torque to stay locked | "
+              "| # | L_z onset | L_z highest | L_z locked there [kg m²/s] | torque to stay locked | "
               "motor torque | string's bound [N m] |", "|---" * 7 + "|"]
     for k, r in enumerate(rows):
-        lines.append(f"| {k} | {r['Lz_before']:.3e} | {r['Lz_slide']:.3e} | {r['Lz_lock']:.3e} | "
+        lines.append(f"| {k} | {r['Lz_before']:.3e} | {r['Lz_top']:.3e} | {r['Lz_lock']:.3e} | "
                      f"{r['torque_needed']:.2e} | {r['torque_motor']:.2e} | {r['torque_max']:.2e} |")
     t0 = run["t"][eps[0][0] - 1]
     sel = (run["t"] >= t0 - before) & (run["t"] <= t0 + after)
