@@ -131,9 +131,32 @@ def climb_row(run, a, b):
         torque_max=torque_bound(run, p))
 
 
-def report(path, run, before, after, window):
+def branch_rows(run, levels, end):
+    """The bottom-stop orbit the ramp carries, over the second before ω_m first reaches each
+    level (π rad/s) and before sample `end`: mean ψ, T2/T1, ρ1, ρ2 and μ* = ln(T2/T1)/ψ."""
+    t, om = run["t"], run["omega_m"]
+    rows = []
+    for w in levels:
+        hit = np.nonzero(om[:end] >= w * np.pi)[0]
+        if not len(hit):
+            continue
+        sel = (t > t[hit[0]] - 1.0) & (t <= t[hit[0]])
+        rho = [np.hypot(run[r][sel, 0], run[r][sel, 1]).mean() for r in ("r1", "r2")]
+        ratio = (run["T2"][sel] / run["T1"][sel]).mean()
+        psi = run["psi"][sel].mean()
+        rows.append(f"| {w:g} | {psi:.3f} | {ratio:.3f} | {1e3 * rho[0]:.1f} | {1e3 * rho[1]:.1f} | "
+                    f"{np.log(ratio) / psi if psi > 0 else float('nan'):+.3f} |")
+    return rows
+
+
+def report(path, run, before, after, window, levels=()):
     eps = episodes(run["mode"])
     lines = [f"# Climbs off the bottom ball: {path}", ""]
+    if levels:
+        lines += ["The bottom-stop orbit before the first climb, over the second before ω_m reaches each "
+                  "level (μ* < 0: the ball's pull T2 is below T1 and the stop holds the bead):", "",
+                  "| ω_m [π] | ψ [rad] | T2/T1 | ρ1 [mm] | ρ2 [mm] | μ* |", "|---" * 6 + "|"]
+        lines += branch_rows(run, levels, eps[0][0] if eps else len(run["t"])) + [""]
     if not eps:
         lines += ["The bead never leaves the bottom ball.", ""]
         return "\n".join(lines)
@@ -178,10 +201,16 @@ def main(argv=None):
     ap.add_argument("--before", type=float, default=20.0, help="ledger start before the first onset [s]")
     ap.add_argument("--after", type=float, default=40.0, help="ledger end after the first onset [s]")
     ap.add_argument("--window", type=float, default=5.0, help="ledger window [s] (default 5)")
+    ap.add_argument("--levels", default="", help="ω_m levels [π rad/s], comma-separated, at which to tabulate "
+                    "the bottom-stop orbit before the first climb, e.g. 6,8,10,12")
     args = ap.parse_args(argv)
     if not (args.before >= 0 and args.after > 0 and args.window > 0):
         ajx.fail("--before must be >= 0, --after and --window > 0 seconds")
-    text = "\n".join(report(p, read(p), args.before, args.after, args.window) for p in args.inputs)
+    try:
+        levels = [float(x) for x in args.levels.split(",") if x.strip()]
+    except ValueError:
+        ajx.fail(f"--levels {args.levels}: expected comma-separated numbers (π rad/s)")
+    text = "\n".join(report(p, read(p), args.before, args.after, args.window, levels) for p in args.inputs)
     if args.output:
         ajx.write_report(args.output, text)
     else:

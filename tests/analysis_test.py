@@ -703,13 +703,16 @@ class rise_climb(unittest.TestCase):
 
     def test_script_plumbing_and_bad_input(self):
         md = data("rise_climb.md")
-        script("rise_climb.py", data("run.h5"), "-o", md, "--window", "2")
+        script("rise_climb.py", data("run.h5"), "-o", md, "--window", "2", "--levels", "2,4")
         with open(md) as f:
             text = f.read()
         self.assertIn("# Climbs off the bottom ball", text)
+        self.assertIn("| ω_m [π] | ψ [rad] | T2/T1 | ρ1 [mm] | ρ2 [mm] | μ* |\n|---|---|---|---|---|---|\n| 2 |", text)
         self.assertTrue("| # | t [s] | ω_m [π] | μ* |" in text or "never leaves the bottom ball" in text, text)
         rc, out = script("rise_climb.py", data("run.h5"), "--window", "0", check=False)
         self.assertEqual((rc, "--window" in out), (2, True), out)
+        rc, out = script("rise_climb.py", data("run.h5"), "--levels", "a,b", check=False)
+        self.assertEqual((rc, "--levels a,b" in out), (2, True), out)
         rc, out = script("rise_climb.py", data("phase.h5"), check=False)
         self.assertEqual((rc, "not a run file" in out), (2, True), out)
 
