@@ -19,8 +19,8 @@ Then the energy ledger of run_ledger.py in --window windows from --before second
 first onset to --after seconds after it.
 
 usage: /usr/bin/python3 analysis/rise_climb.py out/rise_from_rest.h5 [-o out/rise.md]
-The masses m1, m2 and the drive radius R come from the run's /config ([model] bead_mass, ball_mass, or the model's
-default 0.018 kg, src/physics/model.hpp) and its recorded --set overrides.
+The masses m1, m2 and the drive radius R come from the run's /config ([model] bead_mass,
+ball_mass, drive_radius, else the model's defaults) and its recorded --set overrides.
 """
 import tomllib
 
@@ -31,7 +31,8 @@ import astrojax_analysis as ajx
 import run_ledger
 
 BOTTOM = 1  # /trajectory/mode: on the bottom ball
-DEFAULT_MASS = 0.018  # [kg], physics::Model's default m1 = m2 (src/physics/model.hpp)
+# physics::Model's defaults (src/physics/model.hpp), for keys a run's config leaves out
+DEFAULTS = {"bead_mass": 0.018, "ball_mass": 0.018, "drive_radius": 0.01}  # [kg], [kg], [m]
 
 
 def model_values(path, defaults):
@@ -40,7 +41,7 @@ def model_values(path, defaults):
         cfg = tomllib.loads(ajx.as_text(f["config"][()]))
         overrides = ajx.text_attr(f["config"], "overrides")
     model = cfg.get("model", {})
-    out = {k: float(model.get(k, v)) if v is not None or k in model else None for k, v in defaults.items()}
+    out = {k: float(model.get(k, v)) for k, v in defaults.items()}
     for item in filter(None, overrides.splitlines()):
         key, _, value = item.strip().partition("=")
         name = key.strip().removeprefix("model.")
@@ -55,9 +56,7 @@ def read(path):
         tr = f["trajectory"]
         for name in ("v1", "v2", "T1", "T2", "psi"):
             run[name] = tr[name][:]
-    v = model_values(path, {"bead_mass": DEFAULT_MASS, "ball_mass": DEFAULT_MASS, "drive_radius": None})
-    if v["drive_radius"] is None:
-        ajx.fail(f"{path}: its config sets no model.drive_radius (R), which the torque bound needs")
+    v = model_values(path, DEFAULTS)
     run["m1"], run["m2"], run["R"] = v["bead_mass"], v["ball_mass"], v["drive_radius"]
     return run
 
