@@ -686,6 +686,70 @@ class flower_onset(unittest.TestCase):
         self.assertEqual((rc, "--span 0.0: allowed > 0" in out), (2, True), out)
 
 
+class rise_climb(unittest.TestCase):
+    """analysis/rise_climb.py: each climb's numbers on a constructed trajectory whose answers
+    are known in closed form, then the script's plumbing and errors on the fixture's run."""
+
+    def constructed(self):
+        """A pair spinning rigidly at ω about the axis, bead and ball on opposite sides at ρ,
+        the top at R on the bead's side; off the stop (mode 0) for 0.5 s from t = 1 s while
+        L1 falls by 4 mm linearly and rises back, then on the stop again."""
+        w, rho, R, m = 39.0, 0.016, 0.015, 0.018
+        t = np.arange(0.0, 3.0, 1e-3)
+        ang = w * t
+        r1 = np.stack([rho * np.cos(ang), rho * np.sin(ang), np.full_like(t, -0.79)], axis=1)
+        r2 = np.stack([-rho * np.cos(ang), -rho * np.sin(ang), np.full_like(t, -0.80)], axis=1)
+        v1 = np.stack([-w * rho * np.sin(ang), w * rho * np.cos(ang), np.zeros_like(t)], axis=1)
+        off = (t > 1.0) & (t < 1.5)
+        L1 = 0.791 - np.where(off, 4e-3 * (1.0 - np.abs(t - 1.25) / 0.25), 0.0)
+        run = dict(t=t, omega_m=np.full_like(t, w), phi=ang.copy(), L1=L1, mode=np.where(off, 0, 1),
+                   r1=r1, r2=r2, v1=v1, v2=-v1, T1=np.full_like(t, 0.35), T2=np.full_like(t, 0.48),
+                   psi=np.full_like(t, 1.2), m1=m, m2=m, R=R, motor_work=2e-3 * t, friction_loss=1e-4 * off.cumsum(),
+                   energy=np.zeros_like(t), drag_loss=2e-3 * t, impact_loss=np.zeros_like(t))
+        return run, dict(w=w, rho=rho, R=R, m=m)
+
+    def test_numbers_of_a_constructed_climb(self):
+        import rise_climb
+        run, k = self.constructed()
+        eps = rise_climb.episodes(run["mode"])
+        self.assertEqual(len(eps), 1)
+        r = rise_climb.climb_row(run, *eps[0])
+        # Exact inputs: every figure below is a closed form, so the tolerances are round-off
+        # (1e-12 relative), except the slope fits (polyfit of an exactly linear angle: 1e-9)
+        # and the sampled times (one 1 ms sample).
+        self.assertAlmostEqual(r["t"], 1.0, delta=1e-3)
+        self.assertAlmostEqual(r["mu_star"], np.log(0.48 / 0.35) / 1.2, delta=1e-12)
+        self.assertAlmostEqual(r["climb"], 4e-3, delta=4e-3 * 0.01 + 2e-5)  # within 1 % of the top, one sample
+        self.assertAlmostEqual(r["t_top"], 0.25, delta=0.25 * 0.01 + 1e-3)
+        lz = 2 * k["m"] * k["w"] * k["rho"] ** 2  # two balls on a circle of radius ρ: L_z = Σ m ω ρ²
+        self.assertAlmostEqual(r["Lz_before"] / lz, 1.0, delta=1e-12)
+        self.assertAlmostEqual(r["Lz_lock"] / lz, 1.0, delta=1e-12)  # rigid spin: locked by construction
+        self.assertAlmostEqual(r["torque_needed"], 0.0, delta=1e-12 * lz)
+        self.assertAlmostEqual(r["spin_before"] * np.pi / k["w"], 1.0, delta=1e-9)
+        self.assertAlmostEqual(r["spin_during"] * np.pi / k["w"], 1.0, delta=1e-9)
+        self.assertAlmostEqual(r["lag_before"], 0.0, delta=1e-9)  # the bead on the top's azimuth
+        self.assertAlmostEqual(r["torque_motor"], 2e-3 / k["w"], delta=1e-12)
+        # The top a = R(cos φ, sin φ, 0) and the bead at ρ on the same azimuth: the horizontal
+        # part of the upper segment is ρ − R, its length √((ρ − R)² + 0.79²).
+        h = k["rho"] - k["R"]
+        self.assertAlmostEqual(r["torque_max"], k["R"] * 0.35 * h / np.hypot(h, 0.79), delta=1e-15)
+
+    def test_script_plumbing_and_bad_input(self):
+        md = data("rise_climb.md")
+        script("rise_climb.py", data("run.h5"), "-o", md, "--window", "2", "--levels", "2,4")
+        with open(md) as f:
+            text = f.read()
+        self.assertIn("# Climbs off the bottom ball", text)
+        self.assertIn("| ω_m [π] | ψ [rad] | T2/T1 | ρ1 [mm] | ρ2 [mm] | μ* |\n|---|---|---|---|---|---|\n| 2 |", text)
+        self.assertTrue("| # | t [s] | ω_m [π] | μ* |" in text or "never leaves the bottom ball" in text, text)
+        rc, out = script("rise_climb.py", data("run.h5"), "--window", "0", check=False)
+        self.assertEqual((rc, "--window" in out), (2, True), out)
+        rc, out = script("rise_climb.py", data("run.h5"), "--levels", "a,b", check=False)
+        self.assertEqual((rc, "--levels a,b" in out), (2, True), out)
+        rc, out = script("rise_climb.py", data("phase.h5"), check=False)
+        self.assertEqual((rc, "not a run file" in out), (2, True), out)
+
+
 class fit(unittest.TestCase):
     """analysis/fit_thresholds.py: the fitting core on synthetic thresholds with a known optimum
     and covariance (no astrojax runs), the reading of astrojax's rows, and bad input."""
