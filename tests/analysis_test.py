@@ -894,6 +894,35 @@ class fit(unittest.TestCase):
         m = ft.measure(res, 0.02)
         self.assertAlmostEqual(m["omega_2"][0], 15.0 * pi)
 
+    def test_a_sweep_with_failed_tasks_is_kept_and_flagged(self):
+        import tempfile
+        import fit_thresholds as ft
+        # A stand-in for astrojax: `sweep` exits 3 (some tasks failed) with its reason on
+        # stderr, `thresholds` writes one ω1 row and an empty sequence. The sweep's rows are
+        # kept and the note carries the reason; any other exit code stops with code 2.
+        with tempfile.TemporaryDirectory() as tmp:
+            fake = os.path.join(tmp, "astrojax")
+            with open(fake, "w") as f:
+                f.write("""#!/bin/sh
+if [ "$1" = sweep ]; then echo "failed: task 6: event bound hit" >&2; exit ${FAKE_SWEEP_EXIT:-3}; fi
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --csv) printf 'chain,parameters,threshold,before_rad_s,after_rad_s,mid_rad_s,paper_rad_s,relative_difference\\n0,,omega_1,14.8,15.3,15.05,15.08,0\\n' > "$2";;
+    --sequence-csv) printf 'chain,parameters,kind,leg,direction,class,omega_from_rad_s,omega_to_rad_s,windows,blips,omega_ball_mean_rad_s,omega_ball_slope,step,status,step_description\\n' > "$2";;
+  esac; shift
+done
+""")
+            os.chmod(fake, 0o755)
+            rows, seq, note = ft.run_sweep(fake, os.path.join(tmp, "up.toml"), os.path.join(tmp, "o.h5"), {}, "clutch", 0)
+            self.assertEqual((rows[0]["threshold"], seq), ("omega_1", []))
+            self.assertIn("up sweep: some tasks failed (failed: task 6: event bound hit)", note)
+            code = ("import os, sys; sys.path.insert(0, %r); import fit_thresholds as ft; "
+                    "ft.run_sweep(%r, 'up.toml', 'o.h5', {}, 'clutch', 0)" % (ANALYSIS, fake))
+            p = subprocess.run([PYTHON, "-c", code], capture_output=True, text=True,
+                               env=dict(os.environ, FAKE_SWEEP_EXIT="1"))
+            self.assertEqual(p.returncode, 2, p.stderr)
+            self.assertIn("exited with 1", p.stderr)
+
     def test_protocol_copies(self):
         import tempfile
         import fit_thresholds as ft
