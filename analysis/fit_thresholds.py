@@ -11,7 +11,10 @@ Residuals r_k = (ω_k − paper_k) / paper_k for
                     circular orbit for ω_fall to be measured from);
   ω_ball ≈ 4.8π     (--plateau) the mean ω_ball of the longest lagging-circular run on the
                     way up ("nearly constant", the paper); σ = --plateau-sigma.
-The three sweeps are temporary copies of the shipped files with segments dropped or extended
+With --protocol holds, ω1, ω2 and ω_fall come instead from one sweep held level by level,
+sweeps/table1_staircase.toml (its grid dropped, one chain per evaluation, about 20 s of CPU):
+the quasi-static thresholds, which ramps pass late (README, "ω2 and the flower orbits").
+The sweeps are temporary copies of the shipped files with segments dropped or extended
 (the shipped files stay unchanged); each parameter vector is run through them with
 `astrojax sweep -q --set ...`, at most --jobs (2) at a time, and read with
 `astrojax thresholds --csv --sequence-csv`. ω2 (astrojax: a circular orbit giving way to a
@@ -35,12 +38,13 @@ and a small finite-difference step sees zero or jumping derivatives. So:
      directions whose σ exceeds 100 % of the parameters are reported as not constrained and
      left out of the pseudo-inverse; with more residuals than parameters the covariance is
      scaled by max(1, χ²/(m − n));
-  5. at the optimum, the shipped paper.toml and table1.toml (unchanged protocols) with
-     `astrojax thresholds --sequence`: is the paper's class sequence reproduced?
+  5. at the optimum, the shipped paper.toml and table1.toml (with --protocol holds,
+     table1_staircase.toml) with `astrojax thresholds --sequence`: is the paper's class
+     sequence reproduced?
 
 usage: /usr/bin/python3 analysis/fit_thresholds.py -o out/fit.md [--csv out/fit.csv]
        [--params drive_radius,tie_damping] [--param KEY=START[:LO:HI] ...] [--fixed KEY=VALUE ...]
-       [--plateau] [--scan N] [--max-evals N]
+       [--plateau] [--scan N] [--max-evals N] [--protocol ramps|holds]
 """
 import concurrent.futures
 import csv
@@ -385,6 +389,25 @@ def protocol_files(paper_path, table1_path, top, work):
     return files, how
 
 
+def staircase_file(paper_files, paper_how, staircase_path, work):
+    """--protocol holds: the 'rise' file of protocol_files and 'held', a copy of the staircase
+    without its grid (the fitted values set each evaluation's one chain)."""
+    doc = load_toml(staircase_path, "--staircase-sweep")
+    n = len(doc.get("protocol", {}).get("segment", []))
+    segs = segments(doc, staircase_path, "--staircase-sweep", ["steps"] * max(n, 2))
+    if not any(s["to"] > s["from"] for s in segs) or not any(s["to"] < s["from"] for s in segs):
+        ajx.fail(f"--staircase-sweep {staircase_path}: expected steps up and steps down")
+    doc.pop("grid", None)
+    files = {"rise": paper_files["rise"], "held": os.path.join(work, "held.toml")}
+    with open(files["held"], "w") as f:
+        f.write(toml_dump(doc) + "\n")
+    levels = sum(int(s["num"]) for s in segs[1:])
+    how = {"rise": paper_how["rise"],
+           "held": f"{os.path.relpath(staircase_path)}: from Table 1's orbit at {segs[0]['from'] / PI:g}π, "
+                   f"{levels} levels up and down, each held {segs[1]['settle']} s and measured {segs[1]['measure']} s"}
+    return files, how
+
+
 # ---- one evaluation: three sweeps, their thresholds ----------------------------------
 
 def overrides(values, tie):
@@ -430,8 +453,8 @@ def measure(results, plateau_sigma):
     not reached, with the reason in the note."""
     out = {}
     rise_rows = results["rise"][0]
-    up_rows, up_seq = results["up"][:2]
-    down_rows = results["down"][0]
+    up_rows, up_seq = results["up" if "up" in results else "held"][:2]
+    down_rows = results["down" if "down" in results else "held"][0]
     for name, rows in (("omega_rise", rise_rows), ("omega_1", up_rows), ("omega_fall", down_rows)):
         mid, hw, _ = bracket(rows, name)
         out[name] = (mid, hw, "" if np.isfinite(mid) else "not reached")
@@ -512,7 +535,7 @@ class Evaluator:
                 self.cache[key] = self.record(key, values, None, phase, issue)
                 continue
             self.count += 1
-            for name in ("rise", "up", "down"):
+            for name in self.files:
                 jobs.append((key, values, name, os.path.join(self.work, f"e{self.count}_{name}.h5")))
         results = {}
         with concurrent.futures.ThreadPoolExecutor(max_workers=self.args.jobs) as pool:
@@ -705,9 +728,12 @@ def final_check(args, values, work):
     """The shipped paper.toml and table1.toml at `values`: {label: (command, astrojax
     thresholds --sequence output, step rows)}."""
     out = {}
-    for label, path in (("paper", args.paper_sweep), ("table1", args.table1_sweep)):
+    second = ("table1_staircase", args.staircase_sweep) if args.protocol == "holds" else ("table1", args.table1_sweep)
+    for label, path in (("paper", args.paper_sweep), second):
         h5 = os.path.join(work, f"final_{label}.h5")
         sets = overrides(values, args.tie)
+        if label == "table1_staircase":  # its grid runs c_a: one chain at the fitted value
+            sets += ["--set", f"grid.tie_damping=[{values['tie_damping']!r}]"]
         ajx.run_checked([args.astrojax_exe, "sweep", path, "-q", "-o", h5, *sets])
         text = ajx.run_checked([args.astrojax_exe, "thresholds", h5, "--sequence"]).stdout
         steps = [r for r in ajx.run_sequence(h5, args.astrojax_exe) if r["kind"] == "step"]
@@ -767,6 +793,11 @@ def parse_args(argv):
                     help="refine every bracket F times slower (`astrojax thresholds --refine F`; default off)")
     ap.add_argument("--paper-sweep", default=os.path.join(SWEEPS, "paper.toml"), help="default sweeps/paper.toml")
     ap.add_argument("--table1-sweep", default=os.path.join(SWEEPS, "table1.toml"), help="default sweeps/table1.toml")
+    ap.add_argument("--protocol", choices=("ramps", "holds"), default="ramps",
+                    help="ω1, ω2, ω_fall from the ramps of table1.toml (default) or from the levels held in "
+                         "--staircase-sweep")
+    ap.add_argument("--staircase-sweep", default=os.path.join(SWEEPS, "table1_staircase.toml"),
+                    help="default sweeps/table1_staircase.toml")
     ap.add_argument("--astrojax", metavar="PATH", help="the astrojax executable (default: build/astrojax)")
     args = ap.parse_args(argv)
     args.argv = list(argv if argv is not None else sys.argv[1:])
@@ -803,7 +834,7 @@ def parse_args(argv):
     issue = relation_issue(start)
     if issue:
         ajx.fail(f"--param/--fixed: the start point is not allowed: {issue}")
-    for name in ("paper_sweep", "table1_sweep"):
+    for name in ("paper_sweep", "table1_sweep", "staircase_sweep"):
         if not os.path.isfile(getattr(args, name)):
             ajx.fail(f"--{name.replace('_', '-')} {getattr(args, name)}: no such file")
     return args, params, fixed
@@ -816,6 +847,8 @@ def main(argv=None):
     t0 = time.time()
     with tempfile.TemporaryDirectory() as work:
         files, describe = protocol_files(args.paper_sweep, args.table1_sweep, args.top * PI, work)
+        if args.protocol == "holds":
+            files, describe = staircase_file(files, describe, args.staircase_sweep, work)
         ev = Evaluator(args, params, fixed, files, work)
         x0 = np.array([p.start for p in params])
         first = ev.many([x0], "start")[0]

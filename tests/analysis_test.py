@@ -938,6 +938,28 @@ done
         self.assertEqual(docs["up"]["model"], t1["model"])
         self.assertEqual(docs["up"]["protocol"]["segment"][0], t1["protocol"]["segment"][0])
 
+    def test_staircase_copy(self):
+        # --protocol holds: the rise from paper.toml as before, and the staircase without its grid
+        # (each evaluation sets its one chain), its steps unchanged.
+        import tempfile
+        import fit_thresholds as ft
+        stair = os.path.join(SOURCE, "sweeps/table1_staircase.toml")
+        with tempfile.TemporaryDirectory() as tmp:
+            ramps, how = ft.protocol_files(os.path.join(SOURCE, "sweeps/paper.toml"),
+                                           os.path.join(SOURCE, "sweeps/table1.toml"), 18 * math.pi, tmp)
+            files, how = ft.staircase_file(ramps, how, stair, tmp)
+            self.assertEqual(sorted(files), ["held", "rise"])
+            held = ft.load_toml(files["held"], "held")
+        shipped = ft.load_toml(stair, "staircase")
+        self.assertNotIn("grid", held)
+        self.assertEqual(held["protocol"], shipped["protocol"])
+        self.assertEqual(held["model"], shipped["model"])
+        self.assertIn("levels up and down", how["held"])
+        rc, out = script("fit_thresholds.py", "-o", os.path.join(DATA, "fit.md"), "--protocol", "holds",
+                         "--staircase-sweep", os.path.join(SOURCE, "sweeps/table1.toml"), check=False)
+        self.assertEqual(rc, 2, out)
+        self.assertIn("expected ['steps', 'steps', 'steps'] first", out)
+
     def test_bad_input_named(self):
         cases = [
             (["--param", "bogus=1:0:2"], "unknown model key 'bogus'; allowed: string_length"),
