@@ -242,7 +242,20 @@ void parse_common(const toml::table& root, std::string_view file, CommonConfig& 
     c.run.integ.tol.rtol = r.number("rtol", 1e-10, 1e-15, 1.0, false, true);
     c.run.integ.tol.atol = r.number("atol", 1e-12, 0.0, 1.0, true);
     c.run.integ.h_fixed = r.number("step", 5e-4, 0.0, 0.1, true);
-    c.run.integ.h_max = r.number("max_step", 0.05, 0.0, 10.0, true);
+    // max_step: "auto" (the default) bounds each step by the guards' time scale, h <= 1/Ω
+    // (sim/step_bound.hpp, measured: README "A step bound from the guards' time scales"); a
+    // number is a fixed bound instead.
+    const toml::node* max_step = r.has("max_step") ? subtable(root, "integrator", file).get("max_step") : nullptr;
+    c.run.guard_step_bound = !max_step || max_step->is_string();
+    if (c.run.guard_step_bound) {
+      r.known("max_step");
+      if (max_step && max_step->value<std::string>() != "auto")
+        r.fail("max_step", fmt::format("'{}' is not allowed; allowed: \"auto\" or a number in (0, 10] s",
+                                       *max_step->value<std::string>()));
+      c.run.integ.h_max = 10.0;
+    } else {
+      c.run.integ.h_max = r.number("max_step", 0.05, 0.0, 10.0, true);
+    }
     // The integrator's axes (physics/rotating_axes.hpp): measured, README "Accuracy and speed".
     c.run.axes = r.word("axes", "rotating", {"rotating", "lab"}) == "lab" ? sim::Axes::Lab : sim::Axes::Rotating;
     c.run.projection_tol = r.number("projection_tol", 1e-12, 0.0, 1e-3, true);

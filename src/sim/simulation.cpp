@@ -3,6 +3,7 @@
 #include "physics/mode_transitions.hpp"
 #include "physics/rotating_axes.hpp"
 #include "physics/tie.hpp"
+#include "sim/step_bound.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -67,6 +68,8 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
                     : physics::top_kinematics(model_, schedule_, c, t, y);
   };
   const auto top_at = [&](double t, const Vec& y) { return top_for(contact, t, y); };
+  if (opt_.guard_step_bound)
+    integ.h_bound = [&](double t, const Vec& y) { return guard_step_bound(p, top_at(t, y), y); };
   // The angle from the integrator's axes to the lab's: φ(t), or 0 in the lab.
   const auto axes_angle = [&](double t) {
     if (!rotating) return 0.0;
