@@ -19,14 +19,19 @@ double cpu_seconds() {
 
 namespace {
 constexpr std::string_view kLabSuffix = "/lab";
+constexpr std::string_view kAutoSuffix = "/auto";
 }  // namespace
 
 std::string_view stepper_name(std::string_view method) {
-  return method.ends_with(kLabSuffix) ? method.substr(0, method.size() - kLabSuffix.size()) : method;
+  for (std::string_view suffix : {kLabSuffix, kAutoSuffix})
+    if (method.ends_with(suffix)) return method.substr(0, method.size() - suffix.size());
+  return method;
 }
 
 sim::Axes axes_of(std::string_view method) {
-  return method.ends_with(kLabSuffix) ? sim::Axes::Lab : sim::Axes::Rotating;
+  return method.ends_with(kLabSuffix)    ? sim::Axes::Lab
+         : method.ends_with(kAutoSuffix) ? sim::Axes::Auto
+                                         : sim::Axes::Rotating;
 }
 
 namespace {

@@ -30,7 +30,8 @@ struct Scene {
 };
 
 // A method as the benchmarks name it: a stepper name (numerics::make_stepper) integrated in
-// the product's default axes (rotating), or with the suffix "/lab" in the lab axes.
+// the product's default axes (rotating), or with the suffix "/lab" in the lab axes, "/auto" in
+// the axes the state picks (sim::Axes::Auto).
 std::string_view stepper_name(std::string_view method);
 sim::Axes axes_of(std::string_view method);
 

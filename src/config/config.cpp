@@ -257,7 +257,8 @@ void parse_common(const toml::table& root, std::string_view file, CommonConfig& 
       c.run.integ.h_max = r.number("max_step", 0.05, 0.0, 10.0, true);
     }
     // The integrator's axes (physics/rotating_axes.hpp): measured, README "Accuracy and speed".
-    c.run.axes = r.word("axes", "rotating", {"rotating", "lab"}) == "lab" ? sim::Axes::Lab : sim::Axes::Rotating;
+    const std::string axes = r.word("axes", "rotating", {"rotating", "lab", "auto"});
+    c.run.axes = axes == "lab" ? sim::Axes::Lab : axes == "auto" ? sim::Axes::Auto : sim::Axes::Rotating;
     c.run.projection_tol = r.number("projection_tol", 1e-12, 0.0, 1e-3, true);
     c.run.max_events = long(r.number("max_events", 1e6, 1.0, 1e12));
     c.run.omega_window = r.number("omega_window", 10.0, 0.0, 1e7, true);

@@ -60,7 +60,10 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
   // In rotating axes every physics function takes the top at φ = 0 and the rotated state y'
   // (they are invariant under rotations about z); s.y is rotated in here and back at the end.
   // A tie that may slip on the rod (physics/tie.hpp) is not at φ: with it the run stays in the lab.
-  const bool rotating = opt_.axes == Axes::Rotating && !layers.tie_clutch;
+  const bool rotating =
+      !layers.tie_clutch &&
+      (opt_.axes == Axes::Rotating ||
+       (opt_.axes == Axes::Auto && corotates(physics::top_kinematics(model_, schedule_, contact, s.t, s.y), s.y)));
   // The top of the string: the motor's a(t), or the tie's, for the bead's mode c (a slipping
   // tie's χ̈ depends on the string's pull in that mode).
   const auto top_for = [&](const Contact& c, double t, const Vec& y) {

@@ -19,7 +19,9 @@ using physics::State;
 // The axes the integrator sees (physics/rotating_axes.hpp). Rotating: the lab state expressed
 // in axes turning with the motor, where a locked orbit is a fixed point (measured faster at
 // equal accuracy: README, "Accuracy and speed"); the run's input, output and samples stay lab.
-enum class Axes { Lab, Rotating };
+// Auto: decided at the start of each run (each sweep window) from the state, see
+// corotates() (sim/step_bound.hpp).
+enum class Axes { Lab, Rotating, Auto };
 
 struct RunOptions {
   std::string method = "dop853";       // the measured recommendation (README, "Accuracy and speed")

@@ -29,4 +29,15 @@ double guard_step_bound(const physics::Parameters& p, const physics::TopKinemati
   return kRadiansPerStep / guard_rate(p, top, y);
 }
 
+bool corotates(const physics::TopKinematics& top, const numerics::Vec& y) {
+  using namespace physics::idx;
+  double lab = 0.0, turning = 0.0;
+  for (int b : {r1, r2}) {
+    const double x = y(b), yy = y(b + 1), vx = y(b + 6), vy = y(b + 7);
+    lab += std::hypot(vx, vy);
+    turning += std::hypot(vx + top.omega * yy, vy - top.omega * x);
+  }
+  return turning < lab;
+}
+
 }  // namespace ajx::sim

@@ -31,4 +31,10 @@ double guard_rate(const physics::Parameters& p, const physics::TopKinematics& to
 // h ≤ kRadiansPerStep / Ω [s].
 double guard_step_bound(const physics::Parameters& p, const physics::TopKinematics& top, const numerics::Vec& y);
 
+// The rule of axes = "auto": the balls co-rotate with the motor when their horizontal speeds are
+// smaller in the axes turning at ω (|v_h − ω ẑ×r|) than in the lab (|v_h|), summed over both
+// balls; the integrator then follows the slower state. A locked orbit is at rest in the turning
+// axes; a fallen sub-millimetre orbit at high ω_m is slower in the lab.
+bool corotates(const physics::TopKinematics& top, const numerics::Vec& y);
+
 }  // namespace ajx::sim
