@@ -137,4 +137,10 @@ struct Fall {
 };
 Fall first_fall(const Scene& scene, const Setting& setting, double sample_dt);
 
+// The loss of the lock on a ramp up (ω1, model.md): the balls fall half a turn behind the motor.
+// With the lag λ(t) = φ(t) − (θ1 + θ2)/2 (θ_i the balls' unwrapped lab azimuths, from samples
+// every sample_dt), the lock is lost where λ − λ(t0) first reaches π; t is interpolated linearly
+// between the samples that bracket it (error O(sample_dt² λ̈)), and ω1 = ω_m there.
+Fall lock_loss(const Scene& scene, const Setting& setting, double sample_dt);
+
 }  // namespace ajx::bench
