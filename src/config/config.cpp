@@ -285,6 +285,10 @@ void parse_common(const toml::table& root, std::string_view file, CommonConfig& 
                                                : physics::Mode::Slack;
       c.initial.length_tolerance =
           r.number("length_tolerance", c.initial.length_tolerance, 0.0, 0.1 * c.model.p.string_length, true);
+      if (r.has("tie_slip_rate")) {
+        if (!c.model.layers.tie_clutch) r.fail("tie_slip_rate", "needs layers.tie = \"clutch\"");
+        c.initial.tie_slip_rate = r.number("tie_slip_rate", 0.0, -1e4, 1e4);
+      }
     }
     r.reject_unknown();
   }

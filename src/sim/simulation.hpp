@@ -107,10 +107,12 @@ State hanging_at_rest(const physics::Model& model, const physics::MotorSchedule&
 
 // An explicit state, projected onto the mode's constraints. Throws std::invalid_argument when
 // it is too far from them (|L1 + L2 - l| > tol_length; for a slack start L1 + L2 > l) or
-// below the bottom stop.
+// below the bottom stop. With the tie clutch and a finite tie_slip_rate, the tie starts
+// slipping at χ = φ(t0), χ̇ = tie_slip_rate (else held at χ = φ).
 State explicit_state(const physics::Model& model, const physics::MotorSchedule& schedule,
                      const physics::Vec3& r1, const physics::Vec3& r2, const physics::Vec3& v1,
                      const physics::Vec3& v2, Mode mode, double t0 = 0.0,
-                     double tol_length = 1e-6);
+                     double tol_length = 1e-6,
+                     double tie_slip_rate = std::numeric_limits<double>::quiet_NaN());
 
 }  // namespace ajx::sim
