@@ -537,7 +537,7 @@ class parameter_study_script(unittest.TestCase):
 class cli(unittest.TestCase):
     SCRIPTS = ("plot_hysteresis.py", "plot_branches.py", "plot_phase.py", "plot_orbits.py", "threshold_report.py",
                "plot_run.py", "calibrate.py")
-    REPORTS = ("model_adequacy.py", "parameter_study.py")
+    REPORTS = ("model_adequacy.py", "parameter_study.py", "flower_onset.py")
 
     def test_help(self):
         for name in self.SCRIPTS + self.REPORTS:
@@ -613,6 +613,76 @@ class cli(unittest.TestCase):
         out = data("run.png")
         script("plot_run.py", data("run.h5"), "-o", out, "--size", "8,6", "--dpi", "40")
         ImageChecks().assert_png(out, 320, 240)
+
+
+class flower_onset(unittest.TestCase):
+    """analysis/flower_onset.py: the Hopf fit on constructed amplitudes, then the script's
+    plumbing and errors on the fixture's files."""
+
+    def test_fit_recovers_the_normal_form(self):
+        import flower_onset
+        omega = np.arange(12.0, 18.01, 0.5)
+        mu = np.maximum(omega - 14.3, 0.0)
+        a2 = mu * (4e-3 - 1e-4 * mu)
+        # Noise-free: the model is exact, so the fit must return its parameters to the
+        # resolution of the golden section (far below 1e-6 on this scale).
+        wh, swh, k, q, red = flower_onset.hopf_fit(omega, a2, np.full_like(a2, 1e-6))
+        self.assertAlmostEqual(wh, 14.3, delta=1e-6)
+        self.assertAlmostEqual(k, 4e-3, delta=1e-8)
+        self.assertAlmostEqual(q, -1e-4, delta=1e-8)
+        # Gaussian noise of a known σ (seeded): ω_H within 4 σ(ω_H) of the truth, and the
+        # reduced χ² of order one (it has 13 − 3 degrees of freedom: 0.1 to 3 holds with
+        # probability above 99.5 %).
+        rng = np.random.default_rng(7)
+        sigma = np.full_like(a2, 2e-4)
+        wh, swh, _, _, red = flower_onset.hopf_fit(omega, a2 + rng.normal(0.0, 2e-4, a2.size), sigma)
+        self.assertGreater(swh, 0.0)
+        self.assertLess(abs(wh - 14.3), 4 * swh)
+        self.assertTrue(0.1 < red < 3.0, red)
+
+    def test_short_staircase_through_the_onset(self):
+        # The clutch with c_a = 2e-6 N m s (tests/data/flower_staircase.toml, about 5 s): the
+        # lagging orbit gives way to a flower that the motor sustains, softly.
+        import astrojax_analysis as ajx
+        import flower_onset
+        h5 = data("flower_staircase.h5")
+        run([ASTROJAX, "sweep", os.path.join(SOURCE, "tests/data/flower_staircase.toml"), "-o", h5, "-q"])
+        sweep = ajx.Sweep(h5)
+        lev = {o: v for o, v in flower_onset.levels(sweep, 0).items() if o >= 12.0}
+        cls = {o: {leg: sweep.class_names[sweep.cls[0, w]] for leg, w in v.items()} for o, v in lev.items()}
+        for o, legs in cls.items():
+            want = "flower" if o >= 16.0 else "lagging-circular"
+            for leg, got in legs.items():
+                self.assertEqual(got, want, f"{leg} at {o}π")  # the same class up and down: no hysteresis
+        # Sustained: a flower decaying at the drag rate would have dE/dt/P_drag ≈ −1; over a
+        # 20 s window an orbit the motor feeds stays within m/(2 c_D T) = 0.26 (README, hold
+        # verdicts).
+        bound = 0.018 / (2 * 1.7245e-3 * 20.0)
+        for o, v in lev.items():
+            for w in v.values():
+                if sweep.class_names[sweep.cls[0, w]] == "flower":
+                    r = sweep.stats["energy_rate"][0, w] / sweep.stats["drag_power"][0, w]
+                    self.assertLess(abs(r), bound, f"{o}π")
+        # The limit cycle grows with the distance from the onset (a² ∝ ω_m − ω_H).
+        amp = [flower_onset.amplitude(sweep, 0, lev[o]["up"]) for o in (16.0, 17.0, 18.0, 19.0)]
+        self.assertEqual(amp, sorted(amp))
+        # The fitted onset lies below the first flower and above the highest level where the
+        # up leg stayed on the circle (a below 1e-6 after 120 s: no growth there).
+        quiet = max(o for o, v in lev.items() if flower_onset.amplitude(sweep, 0, v["up"]) < 1e-6)
+        row = flower_onset.analyse(sweep, 0, 3.0)
+        self.assertTrue(quiet < row["omega_H"] < 16.0, (quiet, row["omega_H"]))
+
+    def test_script_on_a_sweep_without_flowers_and_bad_input(self):
+        md = data("flower_onset.md")
+        script("flower_onset.py", data("phase.h5"), "-o", md)
+        with open(md) as f:
+            text = f.read()
+        self.assertIn("| ω_H ± σ [π] |", text)
+        self.assertIn("— ± —", text)  # no flower window: no fit, said so
+        rc, out = script("flower_onset.py", data("hold.h5"), "-o", md, check=False)
+        self.assertEqual((rc, "a hold sweep has no staircase" in out), (2, True), out)
+        rc, out = script("flower_onset.py", data("phase.h5"), "-o", md, "--span", "0", check=False)
+        self.assertEqual((rc, "--span 0.0: allowed > 0" in out), (2, True), out)
 
 
 if __name__ == "__main__":

@@ -59,6 +59,31 @@ TEST(SweepConfig, GridsAreCartesianProductsLastAxisFastest) {
     for (const auto& s : p.protocol) EXPECT_DOUBLE_EQ(s.ramp.rate, 0.25);
 }
 
+// The tie clutch's torques are grid axes too; each point is validated like [model], so a
+// kinetic torque above the static one is refused at the grid point that has it.
+TEST(SweepConfig, TieClutchParametersAreGridAxes) {
+  const SweepConfig c = parse_sweep_config(
+      quick(), "q.toml",
+      {"layers.tie=\"clutch\"", "model.tie_static_torque=1.5e-3", "model.tie_kinetic_torque=1.35e-3",
+       "grid.tie_damping=[1e-7,2e-6]", "grid.tie_kinetic_torque=[1.3e-3]"});
+  const auto points = expand_grid(c);
+  ASSERT_EQ(points.size(), 2u * 1u * 2u);  // drive_radius × tie_damping × tie_kinetic_torque
+  EXPECT_DOUBLE_EQ(points[0].model.p.tie_damping, 1e-7);
+  EXPECT_DOUBLE_EQ(points[1].model.p.tie_damping, 2e-6);
+  EXPECT_DOUBLE_EQ(points[1].model.p.tie_kinetic_torque, 1.3e-3);
+  EXPECT_DOUBLE_EQ(points[1].model.p.tie_static_torque, 1.5e-3);
+  try {
+    parse_sweep_config(quick(), "q.toml",
+                       {"layers.tie=\"clutch\"", "model.tie_static_torque=1.5e-3", "model.tie_kinetic_torque=1.35e-3",
+                        "grid.tie_kinetic_torque=[1.4e-3,1.6e-3]"});
+    ADD_FAILURE() << "a kinetic torque above the static one was accepted";
+  } catch (const ConfigError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("model.tie_kinetic_torque"), std::string::npos) << m;
+    EXPECT_NE(m.find("grid.tie_kinetic_torque[1]"), std::string::npos) << m;
+  }
+}
+
 TEST(SweepConfig, BadSweepFilesNameFileKeyAndRange) {
   const struct {
     std::vector<std::string> set;

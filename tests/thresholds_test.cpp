@@ -58,6 +58,21 @@ TEST(Thresholds, NotReachedAndFailedWindows) {
   EXPECT_FALSE(find_threshold(Threshold::Fall, down));
 }
 
+// ω2 is a circular orbit giving way to a flower, through unsettled windows if need be; a lock
+// lost to a lag through an unsettled window is not ω2.
+TEST(Thresholds, Omega2IsCircularToFlower) {
+  const auto lag_only = seq(4, +1, {C::LockedCircular, C::NotSettled, C::LaggingCircular, C::LaggingCircular});
+  EXPECT_FALSE(find_threshold(Threshold::Omega2, lag_only));
+  const auto w = seq(4, +1, {C::LockedCircular, C::NotSettled, C::LaggingCircular, C::NotSettled, C::NotSettled,
+                             C::Flower, C::Fallen});
+  const auto w2 = find_threshold(Threshold::Omega2, w);  // lagging at 6.5, flower at 9.5
+  ASSERT_TRUE(w2);
+  EXPECT_DOUBLE_EQ(w2->before, 6.5);
+  EXPECT_DOUBLE_EQ(w2->after, 9.5);
+  // A flower only after the bead has fallen is not a loss of a circular orbit.
+  EXPECT_FALSE(find_threshold(Threshold::Omega2, seq(4, +1, {C::LaggingCircular, C::Fallen, C::Flower})));
+}
+
 TEST(Thresholds, PaperValues) {
   EXPECT_NEAR(paper_value(Threshold::Rise) / 3.141592653589793, 12.63, 1e-12);
   EXPECT_NEAR(paper_value(Threshold::Omega2) / 3.141592653589793, 15.0, 1e-12);

@@ -16,6 +16,7 @@
 
 #include "app/commands.hpp"
 #include "app/provenance.hpp"
+#include "app/sweep_file.hpp"
 #include "config/config.hpp"
 #include "io/hdf5_file.hpp"
 #include "orbits/continuation.hpp"
@@ -178,7 +179,7 @@ void print_family(const std::vector<Row>& stuck) {
   }
 }
 
-// The brackets of a sweep's chains whose model equals m (chains/model, all ten columns), as
+// The brackets of a sweep's chains whose model equals m (every column of chains/model), as
 // `astrojax thresholds` finds them. Throws on a file that is not a sweep's.
 struct SweepBrackets {
   std::vector<std::size_t> chains;  // the matching chains
@@ -189,13 +190,12 @@ SweepBrackets sweep_brackets(const std::string& path, const physics::Model& m) {
   const auto cls = f.read_int32s("windows/class"), dir = f.read_int32s("windows/direction");
   const auto wb = f.read_doubles("windows/omega_m_begin"), we = f.read_doubles("windows/omega_m_end");
   const auto model = f.read_doubles("chains/model");
-  const physics::Parameters& p = m.p;
-  const double mine[10] = {p.string_length, p.bead_mass, p.ball_mass, p.drag, p.mu_static,
-                           p.mu_kinetic, p.gravity, p.drive_radius, p.contact_distance, p.top_stop};
+  const auto mine = model_row(m.p);
   SweepBrackets out;
   for (std::size_t c = 0; c < cls.rows(); ++c) {
-    bool same = model.cols() == 10;
-    for (std::size_t j = 0; same && j < 10; ++j) same = std::abs(model(c, j) - mine[j]) <= 1e-12 * std::abs(mine[j]);
+    bool same = model.cols() == mine.size();
+    for (std::size_t j = 0; same && j < mine.size(); ++j)
+      same = std::abs(model(c, j) - mine[j]) <= 1e-12 * std::abs(mine[j]);
     if (!same) continue;
     std::vector<sweep::ClassedWindow> w;
     for (std::size_t k = 0; k < cls.cols(); ++k)

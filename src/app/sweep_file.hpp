@@ -1,6 +1,7 @@
 // The HDF5 file of a sweep (layout in README, "Sweep output"): made at the start with every
 // result "not computed", filled task by task, reopened to resume or to reclassify.
 #pragma once
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -20,6 +21,15 @@
 namespace ajx::app {
 
 inline constexpr double kNotComputed = std::numeric_limits<double>::quiet_NaN();
+
+// One row of /chains/model: the parameters a sweep's chain ran with, in the order of the
+// dataset's "columns" attribute (the tie clutch's four last).
+inline constexpr std::size_t kModelColumns = 14;
+inline std::array<double, kModelColumns> model_row(const physics::Parameters& p) {
+  return {p.string_length,  p.bead_mass,         p.ball_mass,          p.drag,         p.mu_static,
+          p.mu_kinetic,     p.gravity,           p.drive_radius,       p.contact_distance, p.top_stop,
+          p.tie_static_torque, p.tie_kinetic_torque, p.tie_inertia, p.tie_damping};
+}
 
 // The sweep's file on rank 0, written while the sweep runs: every result dataset is made at
 // the start, filled with "not computed" (NaN, class -1, status 0), and each finished task
@@ -189,14 +199,15 @@ class SweepFile {
     for (const auto& g : points) {
       values.insert(values.end(), g.values.begin(), g.values.end());
       const physics::Parameters& p = g.model.p;
-      for (double v : {p.string_length, p.bead_mass, p.ball_mass, p.drag, p.mu_static, p.mu_kinetic, p.gravity,
-                       p.drive_radius, p.contact_distance, p.top_stop})
-        model.push_back(v);
+      const auto row = model_row(p);
+      model.insert(model.end(), row.begin(), row.end());
     }
     if (!names.empty()) cg.write_dataset("grid_values", std::span<const double>(values), io::Dims{C_, names.size()});
-    cg.write_dataset("model", std::span<const double>(model), io::Dims{C_, 10})
+    cg.write_dataset("model", std::span<const double>(model), io::Dims{C_, kModelColumns})
         .set_attribute("columns", "string_length [m],bead_mass [kg],ball_mass [kg],drag [kg/s],mu_static,mu_kinetic,"
-                                  "gravity [m/s^2],drive_radius [m],contact_distance [m],top_stop [m]");
+                                  "gravity [m/s^2],drive_radius [m],contact_distance [m],top_stop [m],"
+                                  "tie_static_torque [N m],tie_kinetic_torque [N m],tie_inertia [kg m^2],"
+                                  "tie_damping [N m s]");
   }
 
   void write_window_layout(const std::vector<sweep::ChainSetup>& setups) {

@@ -474,7 +474,8 @@ SweepConfig parse_sweep_config(std::string_view text, std::string_view source_na
   }
   {
     static const std::vector<std::string> axes{"drive_radius", "contact_distance", "string_length", "mass",
-                                               "mu_static", "mu_kinetic", "drag", "ramp_rate"};
+                                               "mu_static", "mu_kinetic", "drag", "tie_static_torque",
+                                               "tie_kinetic_torque", "tie_damping", "ramp_rate"};
     for (const auto& [k, v] : subtable(root, "grid", file)) {
       const std::string key(k.str());
       if (std::find(axes.begin(), axes.end(), key) == axes.end())
@@ -518,6 +519,9 @@ std::vector<GridPoint> expand_grid(const SweepConfig& c) {
       else if (k == "mu_static") p.mu_static = v;
       else if (k == "mu_kinetic") p.mu_kinetic = v;
       else if (k == "drag") p.drag = v;
+      else if (k == "tie_static_torque") p.tie_static_torque = v;  // τ_s, τ_k, c_a: the tie clutch (physics/tie.hpp)
+      else if (k == "tie_kinetic_torque") p.tie_kinetic_torque = v;
+      else if (k == "tie_damping") p.tie_damping = v;
       else if (k == "ramp_rate") {
         if (!(v > 0.0))
           throw ConfigError(fmt::format("{}: key 'grid.ramp_rate[{}]': {} is out of range; allowed > 0 rad/s²",

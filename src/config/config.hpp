@@ -58,7 +58,8 @@ struct RunConfig : CommonConfig {
 // Every grid point runs the whole protocol from the initial state: one chain each.
 struct GridAxis {
   std::string key;             // "drive_radius", "contact_distance", "string_length", "mass",
-                               // "mu_static", "mu_kinetic", "drag" or "ramp_rate"
+                               // "mu_static", "mu_kinetic", "drag", "tie_static_torque",
+                               // "tie_kinetic_torque", "tie_damping" or "ramp_rate"
   std::vector<double> values;  // in SI units
 };
 

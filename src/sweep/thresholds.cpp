@@ -56,9 +56,14 @@ std::optional<Bracket> find_threshold(Threshold t, const std::vector<ClassedWind
             b.cls != OrbitClass::LockedCircular)
           found = bracket(a, b);
         break;
-      case Threshold::Omega2:  // the last loss of a steady circular orbit on the way up
-        if (a.direction > 0 && b.direction > 0 && circular(a.cls) && !circular(b.cls) && b.cls != OrbitClass::Fallen)
-          found = bracket(a, b);
+      case Threshold::Omega2:  // the last circular orbit on the way up that gives way to a flower
+        // (through unsettled windows): model.md's ω2. A lock lost to a lag, through an
+        // unsettled window, is ω1's business, not this.
+        if (a.direction > 0 && circular(a.cls)) {
+          std::size_t j = i + 1;
+          while (j < n && w[j].direction > 0 && w[j].cls == OrbitClass::NotSettled) ++j;
+          if (j < n && w[j].direction > 0 && w[j].cls == OrbitClass::Flower) found = bracket(a, w[j]);
+        }
         break;
     }
   }
