@@ -95,7 +95,7 @@ def main():
                 if m == "euler" and p["param_kind"] == "step" and abs(float(p["param"]) - 5e-4) < 1e-12:
                     ax.plot(x, y, "*", ms=14, color="k", mfc="gold", zorder=5)
         floor = float(rs[0].get("reference_floor_m", rs[0].get("omega_floor", "nan")))
-        if a.error in ("err_position_m", "omega_fall_error") and floor > 0:
+        if a.error in ("err_position_m", "omega_fall_error", "omega_1_error") and floor > 0:
             ax.axvline(floor, ls="--", color="0.5", lw=0.8)
         chaotic = rs[0].get("chaotic", "0") == "1"
         ax.set_xscale("log")
@@ -103,7 +103,8 @@ def main():
         ax.set_title(f"{scene}" + (" (chaotic: use statistics)" if chaotic else ""))
         ax.set_xlabel({"err_position_m": "achieved position error at the horizon [m]",
                        "omega_ball_error": "|Δω_ball| [rad/s]",
-                       "omega_fall_error": "|Δω_fall| [rad/s] (the bead's first landing)"}.get(a.error, a.error))
+                       "omega_fall_error": "|Δω_fall| [rad/s] (the bead's first landing)",
+                       "omega_1_error": "|Δω1| [rad/s] (the balls half a turn behind)"}.get(a.error, a.error))
         ax.set_ylabel("CPU time per run [s]")
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=7)

@@ -41,4 +41,18 @@ check "constraints on a switching scene: exit 2 (got $rc)" "[ $rc -eq 2 ] && gre
 rc=$?
 check "threshold where the bead never falls: exit 2 (got $rc)" \
   "[ $rc -eq 2 ] && grep -q 'never lands' '$work/t.err' && [ ! -e '$work/t.csv' ] && [ ! -e '$work/t.csv.part' ]"
+# A scene that ramps up measures ω1; scenes ramping both ways cannot share one table.
+up="$src/sweeps/scenes/lock_loss_ramp.toml"
+"$bin" bench threshold "$up" "$src/sweeps/scenes/fall_ramp.toml" -o "$work/m.csv" >/dev/null 2>"$work/m.err"
+rc=$?
+check "threshold over scenes ramping both ways: exit 2 (got $rc)" \
+  "[ $rc -eq 2 ] && grep -q 'fall_ramp' '$work/m.err' && grep -q 'the same way' '$work/m.err' && [ ! -e '$work/m.csv' ]"
+"$bin" bench threshold "$up" -o "$work/u.csv" --horizon 4 >/dev/null 2>"$work/u.err"
+rc=$?
+check "ω1 before the lock is lost: exit 2 (got $rc)" \
+  "[ $rc -eq 2 ] && grep -q 'half a turn behind' '$work/u.err' && [ ! -e '$work/u.csv' ]"
+"$bin" bench threshold "$up" -o "$work/w.csv" --horizon 8 --methods dop853 --rtols 1e-6 --repeats 1 >/dev/null 2>&1
+rc=$?
+check "ω1 run: exit 0 and the omega_1 columns (got $rc)" \
+  "[ $rc -eq 0 ] && grep -q '^scene,.*,omega_1,omega_1_error,' '$work/w.csv' && [ \$(grep -c '^lock_loss_ramp,dop853,' '$work/w.csv') -eq 1 ]"
 finish "bench_cli_test"

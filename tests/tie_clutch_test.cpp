@@ -194,3 +194,30 @@ TEST(TieClutch, ConfigurationErrorsNameTheKey) {
 }
 
 }  // namespace
+
+namespace {
+
+// [initial] tie_slip_rate starts the tie slipping: sweeps/scenes/lagging_clutch.toml is the end of
+// lock_to_lag.toml with the clutch (the lagging orbit at ω_m = 16π, ω_ball = 14.81396 rad/s over
+// its last 10 s, the tie slipping at the balls' rate), and stays on that orbit: no switch, and
+// ω_ball within 1e-3 rad/s of it (the scene's χ̇, a finite difference over the last 0.01 s,
+// differs from that mean by 4e-5 rad/s). A tie started held (key left out) is projected onto a
+// top moving at ω_m, R (ω_m − χ̇) = 0.35 m/s off, and the orbit wanders off to 4.25–4.35π
+// (measured), at least 1 rad/s away.
+TEST(TieClutch, ATieStartedSlippingStaysOnTheLaggingOrbit) {
+  const std::string path = std::string(ASTROJAX_SOURCE_DIR) + "/sweeps/scenes/lagging_clutch.toml";
+  const bench::Scene scene = bench::load_scene(path, {}, 10.0);
+  ASSERT_TRUE(scene.initial.contact.tie.slip);
+  EXPECT_EQ(scene.initial.contact.tie.sigma, +1);  // ω_m > χ̇: the rod drags the tie forward
+  physics::State s = scene.initial;
+  sim::RunOptions opt = scene.run;
+  opt.integ.tol = {1e-9, 1e-12};
+  opt.omega_window = 5.0;
+  const sim::RunSummary sum = sim::Simulation(scene.model, scene.schedule, opt).run(s, 10.0, 0.0);
+  ASSERT_TRUE(sum.ok()) << sum.failure;
+  EXPECT_EQ(sum.mode_switches, 0);
+  EXPECT_NEAR(sum.omega_ball, 14.81396, 1e-3);
+  EXPECT_THROW(bench::load_scene(path, {"layers.tie=rigid"}, 10.0), config::ConfigError);
+}
+
+}  // namespace

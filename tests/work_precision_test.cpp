@@ -149,4 +149,26 @@ TEST(WorkPrecision, FallExtrapolationErrorIsQuadraticInTheSampleStep) {
   EXPECT_LT(fine.omega, 6.0 * std::numbers::pi);
 }
 
+// The lock's loss is interpolated linearly in the lag λ between the two samples that bracket
+// λ − λ0 = π. The crossing lies inside that interval, so t is within one sample step τ of the
+// finest run's; the interpolation's error, ½ |λ̈| s (τ − s)/λ̇ for a crossing s after a sample, is
+// second order: 100x per decade of τ when s/τ is the same in both runs, but s/τ differs between
+// runs and moves one ratio by a few times either way, so at least 10x is asserted (23x measured).
+// The lock is lost on the ramp (between 4π and 6π), after the 2 s hold.
+TEST(WorkPrecision, LockLossInterpolationErrorIsQuadraticInTheSampleStep) {
+  const bench::Scene s =
+      bench::load_scene(std::string(ASTROJAX_SOURCE_DIR) + "/sweeps/scenes/lock_loss_ramp.toml", {}, 15.0);
+  const bench::Setting set{"dop853", 1e-10, 0.0};
+  const bench::Fall fine = bench::lock_loss(s, set, 1e-4);
+  const bench::Fall mid = bench::lock_loss(s, set, 1e-3);
+  const bench::Fall coarse = bench::lock_loss(s, set, 1e-2);
+  ASSERT_TRUE(fine.found && mid.found && coarse.found);
+  EXPECT_LT(std::abs(coarse.t - fine.t), 1e-2);
+  EXPECT_LT(std::abs(mid.t - fine.t), 1e-3);
+  EXPECT_GT(std::abs(coarse.omega - fine.omega) / std::abs(mid.omega - fine.omega), 10.0);
+  EXPECT_GT(fine.t, 2.0);
+  EXPECT_GT(fine.omega, 4.0 * std::numbers::pi);
+  EXPECT_LT(fine.omega, 6.0 * std::numbers::pi);
+}
+
 }  // namespace

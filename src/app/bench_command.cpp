@@ -328,13 +328,33 @@ int bench_threshold_command(const WorkPrecisionArgs& a, double sample_dt) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return kExitBadInput;
   }
-  // The references first: a scene where the bead never lands is bad input, found before any file.
+  // The threshold a scene measures follows its ramp: down, ω_fall (the first landing on the
+  // bottom ball); up, ω1 (the loss of the lock). All scenes of one table measure the same one.
+  const auto ramps_up = [](const bench::Scene& scene) {
+    double phi, w0, w1, wd;
+    scene.schedule.phase(scene.initial.t, phi, w0, wd);
+    scene.schedule.phase(scene.initial.t + scene.horizon, phi, w1, wd);
+    return w1 > w0;
+  };
+  const bool up = !scenes.empty() && ramps_up(scenes.front());
+  for (const bench::Scene& scene : scenes)
+    if (ramps_up(scene) != up) {
+      std::fprintf(stderr, "error: %s: ramps %s while %s ramps %s; allowed: scenes that all ramp the same way\n",
+                   scene.name.c_str(), up ? "down" : "up", scenes.front().name.c_str(), up ? "up" : "down");
+      return kExitBadInput;
+    }
+  const auto measure = [&](const bench::Scene& scene, const bench::Setting& set) {
+    return up ? bench::lock_loss(scene, set, sample_dt) : bench::first_fall(scene, set, sample_dt);
+  };
+  const char* name = up ? "omega_1" : "omega_fall";
+  const char* symbol = up ? "ω1" : "ω_fall";
+  // The references first: a scene where the event never comes is bad input, found before any file.
   std::vector<std::pair<bench::Fall, bench::Fall>> refs;
   for (const bench::Scene& scene : scenes) {
-    refs.emplace_back(bench::first_fall(scene, {"dop853/lab", 1e-13, 0.0}, sample_dt),
-                      bench::first_fall(scene, {"dopri5", 1e-12, 0.0}, sample_dt));
+    refs.emplace_back(measure(scene, {"dop853/lab", 1e-13, 0.0}), measure(scene, {"dopri5", 1e-12, 0.0}));
     if (!refs.back().first.found) {
-      std::fprintf(stderr, "error: %s: the bead never lands on the bottom ball within %g s\n", scene.name.c_str(),
+      std::fprintf(stderr, "error: %s: %s within %g s\n", scene.name.c_str(),
+                   up ? "the balls never fall half a turn behind the motor" : "the bead never lands on the bottom ball",
                    scene.horizon);
       return kExitBadInput;
     }
@@ -342,30 +362,34 @@ int bench_threshold_command(const WorkPrecisionArgs& a, double sample_dt) {
   std::optional<CsvOutput> table = open_csv(a.output);
   if (!table) return kExitBadInput;
   std::ofstream& csv = table->stream();
-  csv << "# astrojax bench threshold: omega_m at the bead's first landing on the bottom ball; reference dop853 at "
-         "rtol 1e-13, floor |reference - dopri5 at rtol 1e-12|\n";
-  csv << "scene,method,param_kind,param,status,repeats,cpu_median_s,rhs_evals,found,t_fall_s,omega_fall,"
-         "omega_fall_error,t_fall_error_s,omega_floor\n";
+  csv << fmt::format("# astrojax bench threshold: omega_m at {}; reference dop853 at rtol 1e-13, floor |reference - "
+                     "dopri5 at rtol 1e-12|\n",
+                     up ? "the loss of the lock (the balls half a turn behind the motor)"
+                        : "the bead's first landing on the bottom ball");
+  const std::string tcol = up ? "t_1_s" : "t_fall_s", terr = up ? "t_1_error_s" : "t_fall_error_s";
+  csv << fmt::format("scene,method,param_kind,param,status,repeats,cpu_median_s,rhs_evals,found,{},{},{}_error,{},"
+                     "omega_floor\n",
+                     tcol, name, name, terr);
   for (std::size_t k = 0; k < scenes.size(); ++k) {
     const bench::Scene& scene = scenes[k];
     const auto& [ref, chk] = refs[k];
     const double floor = chk.found ? std::abs(chk.omega - ref.omega) : NAN;
-    std::printf("%s: reference ω_fall = %.9f rad/s (%.6fπ) at t = %.6f s, floor %.1e rad/s\n", scene.name.c_str(),
-                ref.omega, ref.omega / std::numbers::pi, ref.t, floor);
+    std::printf("%s: reference %s = %.9f rad/s (%.6fπ) at t = %.6f s, floor %.1e rad/s\n", scene.name.c_str(),
+                symbol, ref.omega, ref.omega / std::numbers::pi, ref.t, floor);
     for (const auto& m : a.methods) {
       const bool adaptive = numerics::make_stepper(bench::stepper_name(m))->adaptive();
       for (double param : adaptive ? a.rtols : a.steps) {
         const bench::Setting set{m, adaptive ? param : 0.0, adaptive ? 0.0 : param};
         const bench::Outcome o = bench::run_point(scene, set, a.repeats, a.cpu_budget);
-        const bench::Fall f = bench::first_fall(scene, set, sample_dt);
+        const bench::Fall f = measure(scene, set);
         const double ew = f.found ? std::abs(f.omega - ref.omega) : INFINITY;
         const double et = f.found ? std::abs(f.t - ref.t) : INFINITY;
         csv << fmt::format("{},{},{},{:.6g},\"{}\",{},{:.6e},{},{},{:.9f},{:.12g},{:.6e},{:.6e},{:.6e}\n", scene.name, m,
                            adaptive ? "rtol" : "step", param, o.status, o.repeats, o.cpu_median, o.rhs_evals,
                            f.found ? 1 : 0, f.t, f.omega, ew, et, floor);
         csv.flush();
-        std::printf("  %-7s %9.2e  cpu %.3e s  ω_fall %.6fπ  |Δω_fall| %.2e rad/s  |Δt| %.2e s  %s\n", m.c_str(),
-                    param, o.cpu_median, f.omega / std::numbers::pi, ew, et, o.status.c_str());
+        std::printf("  %-7s %9.2e  cpu %.3e s  %s %.6fπ  |Δ%s| %.2e rad/s  |Δt| %.2e s  %s\n", m.c_str(), param,
+                    o.cpu_median, symbol, f.omega / std::numbers::pi, symbol, ew, et, o.status.c_str());
         std::fflush(stdout);
       }
     }

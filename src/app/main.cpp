@@ -155,8 +155,9 @@ int main(int argc, char** argv) {
   th.horizon = 40.0;
   double th_sample = 1e-3;
   CLI::App* th_cmd = bench_cmd->add_subcommand(
-      "threshold", "ω_fall (the bead's first landing on a ramp down) per method and tolerance, against a reference -> CSV");
-  th_cmd->add_option("scenes", th.scenes, "Run files with a ramp down (sweeps/scenes/fall_ramp.toml)")->required();
+      "threshold", "ω_fall (the bead's first landing on a ramp down) or ω1 (the lock lost on a ramp up) per method and "
+                   "tolerance, against a reference -> CSV");
+  th_cmd->add_option("scenes", th.scenes, "Run files with a ramp down (sweeps/scenes/fall_ramp.toml) or up (lock_loss_ramp.toml)")->required();
   th_cmd->add_option("-o,--output", th.output, "CSV output path")->capture_default_str();
   th_cmd->add_option("-s,--set", th.overrides, "Override a key in every scene (repeatable)");
   th_cmd->add_option("--horizon", th.horizon, "Run length [s]")->capture_default_str();

@@ -91,7 +91,7 @@ struct Trajectory {
 physics::State initial_state(const config::RunConfig& c, const physics::MotorSchedule& schedule) {
   if (c.initial.preset == "hanging") return sim::hanging_at_rest(c.model, schedule);
   return sim::explicit_state(c.model, schedule, c.initial.r1, c.initial.r2, c.initial.v1, c.initial.v2,
-                             c.initial.mode, 0.0, c.initial.length_tolerance);
+                             c.initial.mode, 0.0, c.initial.length_tolerance, c.initial.tie_slip_rate);
 }
 
 }  // namespace

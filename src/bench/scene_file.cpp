@@ -20,7 +20,8 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
     s.initial = c.initial.preset == "hanging"
                     ? sim::hanging_at_rest(c.model, s.schedule)
                     : sim::explicit_state(c.model, s.schedule, c.initial.r1, c.initial.r2, c.initial.v1,
-                                          c.initial.v2, c.initial.mode, 0.0, c.initial.length_tolerance);
+                                          c.initial.v2, c.initial.mode, 0.0, c.initial.length_tolerance,
+                                          c.initial.tie_slip_rate);
   } catch (const std::invalid_argument& e) {
     throw config::ConfigError(fmt::format("{}: key 'initial': {}", c.source_name, e.what()));
   }

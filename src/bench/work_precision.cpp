@@ -4,6 +4,7 @@
 #include <cmath>
 #include <ctime>
 #include <fmt/format.h>
+#include <numbers>
 
 #include "physics/contact_modes.hpp"
 #include "physics/energy.hpp"
@@ -19,14 +20,19 @@ double cpu_seconds() {
 
 namespace {
 constexpr std::string_view kLabSuffix = "/lab";
+constexpr std::string_view kAutoSuffix = "/auto";
 }  // namespace
 
 std::string_view stepper_name(std::string_view method) {
-  return method.ends_with(kLabSuffix) ? method.substr(0, method.size() - kLabSuffix.size()) : method;
+  for (std::string_view suffix : {kLabSuffix, kAutoSuffix})
+    if (method.ends_with(suffix)) return method.substr(0, method.size() - suffix.size());
+  return method;
 }
 
 sim::Axes axes_of(std::string_view method) {
-  return method.ends_with(kLabSuffix) ? sim::Axes::Lab : sim::Axes::Rotating;
+  return method.ends_with(kLabSuffix)    ? sim::Axes::Lab
+         : method.ends_with(kAutoSuffix) ? sim::Axes::Auto
+                                         : sim::Axes::Rotating;
 }
 
 namespace {
@@ -224,6 +230,38 @@ Fall first_fall(const Scene& scene, const Setting& setting, double sample_dt) {
     L2dot_prev = x.dyn.g.L2_dot;
   });
   return fall;
+}
+
+Fall lock_loss(const Scene& scene, const Setting& setting, double sample_dt) {
+  sim::Simulation simulation(scene.model, scene.schedule, options_for(scene, setting));
+  physics::State s = scene.initial;
+  Fall loss;
+  bool have_prev = false;
+  double t_prev = 0.0, lag_prev = 0.0, lag0 = 0.0, theta[2] = {0.0, 0.0};
+  Eigen::Vector2d last[2];
+  simulation.run(s, scene.initial.t + scene.horizon, sample_dt, [&](const sim::Sample& x) {
+    if (loss.found) return;
+    for (int b = 0; b < 2; ++b) {
+      const Eigen::Vector2d now = x.y.segment<2>(b == 0 ? physics::idx::r1 : physics::idx::r2);
+      if (have_prev) theta[b] += std::atan2(last[b].x() * now.y() - last[b].y() * now.x(), last[b].dot(now));
+      last[b] = now;
+    }
+    const double lag = x.top.phi - 0.5 * (theta[0] + theta[1]);
+    if (!have_prev) {
+      lag0 = lag;
+    } else if (lag - lag0 >= std::numbers::pi) {
+      loss.found = true;
+      const double f = (lag0 + std::numbers::pi - lag_prev) / (lag - lag_prev);
+      loss.t = t_prev + f * (x.t - t_prev);
+      double phi, w, wd;
+      scene.schedule.phase(loss.t, phi, w, wd);
+      loss.omega = w;
+    }
+    have_prev = true;
+    t_prev = x.t;
+    lag_prev = lag;
+  });
+  return loss;
 }
 
 }  // namespace ajx::bench

@@ -30,7 +30,8 @@ struct Scene {
 };
 
 // A method as the benchmarks name it: a stepper name (numerics::make_stepper) integrated in
-// the product's default axes (rotating), or with the suffix "/lab" in the lab axes.
+// the product's default axes (rotating), or with the suffix "/lab" in the lab axes, "/auto" in
+// the axes the state picks (sim::Axes::Auto).
 std::string_view stepper_name(std::string_view method);
 sim::Axes axes_of(std::string_view method);
 
@@ -135,5 +136,11 @@ struct Fall {
   double omega = 0.0;  // ω_m at the landing [rad/s]
 };
 Fall first_fall(const Scene& scene, const Setting& setting, double sample_dt);
+
+// The loss of the lock on a ramp up (ω1, model.md): the balls fall half a turn behind the motor.
+// With the lag λ(t) = φ(t) − (θ1 + θ2)/2 (θ_i the balls' unwrapped lab azimuths, from samples
+// every sample_dt), the lock is lost where λ − λ(t0) first reaches π; t is interpolated linearly
+// between the samples that bracket it (error O(sample_dt² λ̈)), and ω1 = ω_m there.
+Fall lock_loss(const Scene& scene, const Setting& setting, double sample_dt);
 
 }  // namespace ajx::bench

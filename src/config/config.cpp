@@ -242,9 +242,23 @@ void parse_common(const toml::table& root, std::string_view file, CommonConfig& 
     c.run.integ.tol.rtol = r.number("rtol", 1e-10, 1e-15, 1.0, false, true);
     c.run.integ.tol.atol = r.number("atol", 1e-12, 0.0, 1.0, true);
     c.run.integ.h_fixed = r.number("step", 5e-4, 0.0, 0.1, true);
-    c.run.integ.h_max = r.number("max_step", 0.05, 0.0, 10.0, true);
+    // max_step: "auto" (the default) bounds each step by the guards' time scale, h <= 1/Ω
+    // (sim/step_bound.hpp, measured: README "A step bound from the guards' time scales"); a
+    // number is a fixed bound instead.
+    const toml::node* max_step = r.has("max_step") ? subtable(root, "integrator", file).get("max_step") : nullptr;
+    c.run.guard_step_bound = !max_step || max_step->is_string();
+    if (c.run.guard_step_bound) {
+      r.known("max_step");
+      if (max_step && max_step->value<std::string>() != "auto")
+        r.fail("max_step", fmt::format("'{}' is not allowed; allowed: \"auto\" or a number in (0, 10] s",
+                                       *max_step->value<std::string>()));
+      c.run.integ.h_max = 10.0;
+    } else {
+      c.run.integ.h_max = r.number("max_step", 0.05, 0.0, 10.0, true);
+    }
     // The integrator's axes (physics/rotating_axes.hpp): measured, README "Accuracy and speed".
-    c.run.axes = r.word("axes", "rotating", {"rotating", "lab"}) == "lab" ? sim::Axes::Lab : sim::Axes::Rotating;
+    const std::string axes = r.word("axes", "rotating", {"rotating", "lab", "auto"});
+    c.run.axes = axes == "lab" ? sim::Axes::Lab : axes == "auto" ? sim::Axes::Auto : sim::Axes::Rotating;
     c.run.projection_tol = r.number("projection_tol", 1e-12, 0.0, 1e-3, true);
     c.run.max_events = long(r.number("max_events", 1e6, 1.0, 1e12));
     c.run.omega_window = r.number("omega_window", 10.0, 0.0, 1e7, true);
@@ -271,6 +285,10 @@ void parse_common(const toml::table& root, std::string_view file, CommonConfig& 
                                                : physics::Mode::Slack;
       c.initial.length_tolerance =
           r.number("length_tolerance", c.initial.length_tolerance, 0.0, 0.1 * c.model.p.string_length, true);
+      if (r.has("tie_slip_rate")) {
+        if (!c.model.layers.tie_clutch) r.fail("tie_slip_rate", "needs layers.tie = \"clutch\"");
+        c.initial.tie_slip_rate = r.number("tie_slip_rate", 0.0, -1e4, 1e4);
+      }
     }
     r.reject_unknown();
   }

@@ -2,6 +2,7 @@
 // checked (unknown keys, types, ranges) before any work starts; errors name the file, the
 // key and the allowed range.
 #pragma once
+#include <limits>
 #include <stdexcept>
 #include <optional>
 #include <string>
@@ -27,6 +28,9 @@ struct InitialSpec {
   physics::Vec3 v1 = physics::Vec3::Zero(), v2 = physics::Vec3::Zero();  // [m/s]
   physics::Mode mode = physics::Mode::Sliding;
   double length_tolerance = 1e-6;  // |L1 + L2 - l| accepted before projection [m]
+  // With the tie clutch: the tie starts slipping on the rod at χ = φ(0) with this χ̇ [rad/s]
+  // (NaN: held, the default).
+  double tie_slip_rate = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct OutputSpec {

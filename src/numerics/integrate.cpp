@@ -277,6 +277,7 @@ IntegrateResult integrate(const System& f, Stepper& stepper, double t0, Vec& y, 
   const double alpha = 1.0 / stepper.order() - 0.75 * kBeta;
   double h = opt.h_init > 0.0 ? opt.h_init : initial_step(f, stepper, t0, y, dir, opt);
   h = std::min(h, opt.h_max);
+  if (opt.h_bound) h = std::min(h, opt.h_bound(t0, y));
   double err_old = kErrOldMin;
   bool rejected_last = false;
   bool nonfinite_last = false;
@@ -322,6 +323,7 @@ IntegrateResult integrate(const System& f, Stepper& stepper, double t0, Vec& y, 
       double h_next = std::abs(hs) * fac;
       if (last && std::abs(hs) < h) h_next = std::max(h_next, h);  // cut short only by t_end
       h_next = std::min(h_next, opt.h_max);
+      if (opt.h_bound) h_next = std::min(h_next, opt.h_bound(t1, y_new));
       res.h_next = h_next;
       if (after_step(t1, hs)) return res;
       t = t1;

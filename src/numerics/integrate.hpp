@@ -54,6 +54,9 @@ struct IntegrateOptions {
   double h_min = 1e-12;      // below this an adaptive step is a failure [s]
   long max_steps = 200'000'000;
   double event_tol = 1e-13;  // event time located to this absolute precision [s]
+  // Adaptive methods: a further bound on the next step from the accepted state (t, y), e.g. the
+  // time scale of the events' guards (sim/step_bound.hpp); absent: h_max alone.
+  std::function<double(double t, const Vec& y)> h_bound;
 };
 
 enum class IntegrateStatus { Reached, Event, StepUnderflow, NonFinite, MaxSteps, Stopped };

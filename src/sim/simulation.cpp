@@ -3,6 +3,7 @@
 #include "physics/mode_transitions.hpp"
 #include "physics/rotating_axes.hpp"
 #include "physics/tie.hpp"
+#include "sim/step_bound.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -59,7 +60,10 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
   // In rotating axes every physics function takes the top at φ = 0 and the rotated state y'
   // (they are invariant under rotations about z); s.y is rotated in here and back at the end.
   // A tie that may slip on the rod (physics/tie.hpp) is not at φ: with it the run stays in the lab.
-  const bool rotating = opt_.axes == Axes::Rotating && !layers.tie_clutch;
+  const bool rotating =
+      !layers.tie_clutch &&
+      (opt_.axes == Axes::Rotating ||
+       (opt_.axes == Axes::Auto && corotates(physics::top_kinematics(model_, schedule_, contact, s.t, s.y), s.y)));
   // The top of the string: the motor's a(t), or the tie's, for the bead's mode c (a slipping
   // tie's χ̈ depends on the string's pull in that mode).
   const auto top_for = [&](const Contact& c, double t, const Vec& y) {
@@ -67,6 +71,8 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
                     : physics::top_kinematics(model_, schedule_, c, t, y);
   };
   const auto top_at = [&](double t, const Vec& y) { return top_for(contact, t, y); };
+  if (opt_.guard_step_bound)
+    integ.h_bound = [&](double t, const Vec& y) { return guard_step_bound(p, top_at(t, y), y); };
   // The angle from the integrator's axes to the lab's: φ(t), or 0 in the lab.
   const auto axes_angle = [&](double t) {
     if (!rotating) return 0.0;
@@ -582,7 +588,7 @@ State hanging_at_rest(const physics::Model& model, const physics::MotorSchedule&
 
 State explicit_state(const physics::Model& model, const physics::MotorSchedule& schedule,
                      const Vec3& r1, const Vec3& r2, const Vec3& v1, const Vec3& v2, Mode mode,
-                     double t0, double tol_length) {
+                     double t0, double tol_length, double tie_slip_rate) {
   const physics::Parameters& p = model.p;
   const physics::TopKinematics top = schedule.top(p.drive_radius, t0);
   State s;
@@ -590,6 +596,12 @@ State explicit_state(const physics::Model& model, const physics::MotorSchedule& 
   s.contact = {mode, 0, mode == Mode::Stuck ? (r1 - top.a).norm() : 0.0};
   s.y.setZero(physics::state_dim(model));
   if (s.y.size() > dim) physics::hold_tie(schedule, t0, 0.0, s.y);
+  if (s.y.size() > dim && std::isfinite(tie_slip_rate)) {
+    // Slipping: the clutch torque acts in the sense σ = sgn(ω_m − χ̇) (physics/tie.hpp).
+    s.y(physics::idx::chi_dot) = tie_slip_rate;
+    const double slip = top.omega - tie_slip_rate;
+    s.contact.tie = {true, slip > 0.0 ? +1 : (slip < 0.0 ? -1 : 0), 0.0};
+  }
   s.y.segment<3>(physics::idx::r1) = r1;
   s.y.segment<3>(physics::idx::r2) = r2;
   s.y.segment<3>(physics::idx::v1) = v1;
@@ -606,8 +618,10 @@ State explicit_state(const physics::Model& model, const physics::MotorSchedule& 
     throw std::invalid_argument(fmt::format(
         "initial positions put the bead below the bottom stop: L2 = {:.9g} m < d = {:.9g} m", L2,
         p.contact_distance));
-  physics::project_positions(model, s.contact, top, s.y);
-  physics::project_velocities(model, s.contact, top, s.y);
+  // A slipping tie moves at χ̇, not ω_m: the velocities are made consistent with its top.
+  const physics::TopKinematics start = physics::top_kinematics(model, schedule, s.contact, t0, s.y);
+  physics::project_positions(model, s.contact, start, s.y);
+  physics::project_velocities(model, s.contact, start, s.y);
   return s;
 }
 

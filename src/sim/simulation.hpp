@@ -19,12 +19,18 @@ using physics::State;
 // The axes the integrator sees (physics/rotating_axes.hpp). Rotating: the lab state expressed
 // in axes turning with the motor, where a locked orbit is a fixed point (measured faster at
 // equal accuracy: README, "Accuracy and speed"); the run's input, output and samples stay lab.
-enum class Axes { Lab, Rotating };
+// Auto: decided at the start of each run (each sweep window) from the state, see
+// corotates() (sim/step_bound.hpp).
+enum class Axes { Lab, Rotating, Auto };
 
 struct RunOptions {
   std::string method = "dop853";       // the measured recommendation (README, "Accuracy and speed")
   Axes axes = Axes::Rotating;          // the measured recommendation, as method
   numerics::IntegrateOptions integ;    // tolerances, fixed step, bounds
+  // [integrator] max_step = "auto": adaptive steps also bounded by h <= 1/Ω, Ω the fastest rate
+  // of the guards at the step's end state (sim/step_bound.hpp), so that a guard's excursion past
+  // zero is not hidden inside one step.
+  bool guard_step_bound = true;
   double projection_tol = 1e-12;       // project when |C| exceeds this [m] (or [m/s] for J v - b)
   long max_events = 1'000'000;         // bound on mode switches and impacts per run
   double rest_speed = 1e-3;            // re-taut impacts slower than this are plastic [m/s]
@@ -101,10 +107,12 @@ State hanging_at_rest(const physics::Model& model, const physics::MotorSchedule&
 
 // An explicit state, projected onto the mode's constraints. Throws std::invalid_argument when
 // it is too far from them (|L1 + L2 - l| > tol_length; for a slack start L1 + L2 > l) or
-// below the bottom stop.
+// below the bottom stop. With the tie clutch and a finite tie_slip_rate, the tie starts
+// slipping at χ = φ(t0), χ̇ = tie_slip_rate (else held at χ = φ).
 State explicit_state(const physics::Model& model, const physics::MotorSchedule& schedule,
                      const physics::Vec3& r1, const physics::Vec3& r2, const physics::Vec3& v1,
                      const physics::Vec3& v2, Mode mode, double t0 = 0.0,
-                     double tol_length = 1e-6);
+                     double tol_length = 1e-6,
+                     double tie_slip_rate = std::numeric_limits<double>::quiet_NaN());
 
 }  // namespace ajx::sim
