@@ -26,11 +26,16 @@ enum class Axes { Lab, Rotating, Auto };
 struct RunOptions {
   std::string method = "dop853";       // the measured recommendation (README, "Accuracy and speed")
   Axes axes = Axes::Rotating;          // the measured recommendation, as method
-  numerics::IntegrateOptions integ;    // tolerances, fixed step, bounds
   // [integrator] max_step = "auto": adaptive steps also bounded by h <= 1/Ω, Ω the fastest rate
   // of the guards at the step's end state (sim/step_bound.hpp), so that a guard's excursion past
-  // zero is not hidden inside one step.
+  // zero is not hidden inside one step. Then the fixed bound h_max is only a 10 s ceiling, as a
+  // config file's "auto" sets it; a fixed max_step turns the guard bound off.
   bool guard_step_bound = true;
+  numerics::IntegrateOptions integ = [] {  // tolerances, fixed step, bounds
+    numerics::IntegrateOptions o;
+    o.h_max = 10.0;
+    return o;
+  }();
   double projection_tol = 1e-12;       // project when |C| exceeds this [m] (or [m/s] for J v - b)
   long max_events = 1'000'000;         // bound on mode switches and impacts per run
   double rest_speed = 1e-3;            // re-taut impacts slower than this are plastic [m/s]
