@@ -54,7 +54,8 @@ LADDER = [
     # The layer beyond the paper's model (README, "The tie clutch"), at the torques of the README's
     # one parameter set, which was found at this script's point (R = 15 mm, d = 3.5 cm).
     ("full + tie clutch", dict(FULL, tie="clutch", **{"model.tie_static_torque": "1.5e-3",
-                                                     "model.tie_kinetic_torque": "1.35e-3"})),
+                                                     "model.tie_kinetic_torque": "1.35e-3",
+                                                     "model.tie_damping": "2e-6"})),
 ]
 # The full model with one layer omitted: (what is omitted, layers).
 OMITTED = [
