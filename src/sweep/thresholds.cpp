@@ -30,6 +30,13 @@ bool circular(OrbitClass c) { return c == OrbitClass::LockedCircular || c == Orb
 Bracket bracket(const ClassedWindow& a, const ClassedWindow& b) {
   return {a.omega_mean(), b.omega_mean(), a.index, b.index};
 }
+// The first window after i on the same leg (direction dir) that is not unsettled; w.size() if
+// the leg ends first. A change of class seen through unsettled windows is bracketed by it.
+std::size_t next_settled(const std::vector<ClassedWindow>& w, std::size_t i, int dir) {
+  std::size_t j = i + 1;
+  while (j < w.size() && w[j].direction == dir && w[j].cls == OrbitClass::NotSettled) ++j;
+  return j < w.size() && w[j].direction == dir ? j : w.size();
+}
 }  // namespace
 
 std::optional<Bracket> find_threshold(Threshold t, const std::vector<ClassedWindow>& w) {
@@ -45,10 +52,8 @@ std::optional<Bracket> find_threshold(Threshold t, const std::vector<ClassedWind
         break;
       case Threshold::Fall:  // the first fall onto the ball after a circular orbit, on the way down
         if (a.direction < 0 && circular(a.cls)) {
-          std::size_t j = i + 1;
-          while (j < n && w[j].direction < 0 && w[j].cls == OrbitClass::NotSettled) ++j;
-          if (j < n && w[j].direction < 0 && w[j].cls == OrbitClass::Fallen)
-            return bracket(a, w[j]);
+          const std::size_t j = next_settled(w, i, a.direction);
+          if (j < n && w[j].cls == OrbitClass::Fallen) return bracket(a, w[j]);
         }
         break;
       case Threshold::Omega1:  // the last loss of the locked orbit on the way up
@@ -60,9 +65,8 @@ std::optional<Bracket> find_threshold(Threshold t, const std::vector<ClassedWind
         // (through unsettled windows): model.md's ω2. A lock lost to a lag, through an
         // unsettled window, is ω1's business, not this.
         if (a.direction > 0 && circular(a.cls)) {
-          std::size_t j = i + 1;
-          while (j < n && w[j].direction > 0 && w[j].cls == OrbitClass::NotSettled) ++j;
-          if (j < n && w[j].direction > 0 && w[j].cls == OrbitClass::Flower) found = bracket(a, w[j]);
+          const std::size_t j = next_settled(w, i, a.direction);
+          if (j < n && w[j].cls == OrbitClass::Flower) found = bracket(a, w[j]);
         }
         break;
     }
