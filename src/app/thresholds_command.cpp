@@ -102,6 +102,15 @@ std::optional<HoldTime> parse_hold(const std::string& text) {
 
 std::string csv_quoted(const std::string& s) { return "\"" + s + "\""; }
 
+// Writes a CSV table to path; false (and the reason on stderr) if it cannot.
+bool write_csv(const std::string& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+  if (out) return true;
+  std::fprintf(stderr, "error: cannot write %s\n", path.c_str());
+  return false;
+}
+
 std::string parameters_of(const std::string& axes, const io::Array<double>& grid, std::size_t c) {
   std::string params;
   if (!axes.empty() && grid.data.size() > 0) {
@@ -370,14 +379,7 @@ int thresholds_command(const ThresholdsArgs& args) {
     }
     csv += "\n";
   }
-  if (!args.csv.empty()) {
-    std::ofstream out(args.csv);
-    out << csv;
-    if (!out) {
-      std::fprintf(stderr, "error: cannot write %s\n", args.csv.c_str());
-      return kExitBadInput;
-    }
-  }
+  if (!args.csv.empty() && !write_csv(args.csv, csv)) return kExitBadInput;
 
   if (want_sequence) {
     std::string seq = "chain,parameters,kind,leg,direction,class,omega_from_rad_s,omega_to_rad_s,windows,blips,"
@@ -426,14 +428,7 @@ int thresholds_command(const ThresholdsArgs& args) {
         }
       }
     }
-    if (!args.sequence_csv.empty()) {
-      std::ofstream out(args.sequence_csv);
-      out << seq;
-      if (!out) {
-        std::fprintf(stderr, "error: cannot write %s\n", args.sequence_csv.c_str());
-        return kExitBadInput;
-      }
-    }
+    if (!args.sequence_csv.empty() && !write_csv(args.sequence_csv, seq)) return kExitBadInput;
   }
   return 0;
 }
