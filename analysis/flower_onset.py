@@ -113,7 +113,7 @@ def hopf_fit(omega, a2, sigma):
 
 def analyse(sweep, c, span):
     lev = levels(sweep, c)
-    flower = sweep.class_names and [k for k, v in sweep.class_names.items() if v == "flower"]
+    flower = [k for k, v in sweep.class_names.items() if v == "flower"]
     lagging = [k for k, v in sweep.class_names.items() if v == "lagging-circular"]
     row = {"chain": c, "label": sweep.grid_label(c) or f"chain {c}"}
     ups = [(om, v["up"]) for om, v in lev.items() if "up" in v]
