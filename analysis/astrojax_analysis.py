@@ -223,14 +223,17 @@ def select_chains(sweep, text):
 
 def find_astrojax(explicit=None):
     """The astrojax executable: --astrojax, else $ASTROJAX, else build/astrojax of this
-    checkout, else astrojax on PATH; None if none exists."""
+    checkout, else astrojax on PATH; None if none exists. A path the user named (--astrojax or
+    $ASTROJAX) that is not an executable file is an error, never passed over for another."""
     here = os.path.dirname(os.path.abspath(__file__))
-    for candidate in (explicit, os.environ.get("ASTROJAX"), os.path.join(here, "..", "build", "astrojax"),
-                      shutil.which("astrojax")):
+    for name, named in (("--astrojax", explicit), ("$ASTROJAX", os.environ.get("ASTROJAX"))):
+        if named:
+            if os.path.isfile(named) and os.access(named, os.X_OK):
+                return named
+            fail(f"{name}: {named} is not an executable file")
+    for candidate in (os.path.join(here, "..", "build", "astrojax"), shutil.which("astrojax")):
         if candidate and os.path.isfile(candidate) and os.access(candidate, os.X_OK):
             return candidate
-    if explicit:
-        fail(f"--astrojax: {explicit} is not an executable file")
     return None
 
 

@@ -558,6 +558,17 @@ class cli(unittest.TestCase):
         rc, out = script("plot_branches.py", data("phase.h5"), "-o", data("x.jpg"), *THRESHOLD_ARGS, check=False)
         self.assertEqual((rc, "must be .png or .pdf" in out), (2, True), out)
 
+    def test_named_astrojax_not_replaced(self):
+        # An executable the user named (--astrojax, or $ASTROJAX) that does not exist is an error
+        # naming it, even though build/astrojax exists and would otherwise be found.
+        missing = data("no_such_astrojax")
+        rc, out = script("plot_hysteresis.py", data("hold.h5"), "-o", data("x.png"), "--astrojax", missing,
+                         check=False)
+        self.assertEqual((rc, "--astrojax" in out, missing in out), (2, True, True), out)
+        p = subprocess.run([PYTHON, os.path.join(ANALYSIS, "plot_hysteresis.py"), data("hold.h5"), "-o",
+                            data("x.png")], capture_output=True, text=True, env=dict(os.environ, ASTROJAX=missing))
+        self.assertEqual((p.returncode, "$ASTROJAX" in p.stderr, missing in p.stderr), (2, True, True), p.stderr)
+
     def test_run_ledger(self):
         # An exact run (DOP853, rtol 1e-10) closes its ledger: the injection column, what the
         # integrator adds, is ~1e-9 of the powers (the run's energy residual), far below 1e-6.
