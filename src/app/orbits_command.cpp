@@ -180,9 +180,13 @@ void print_family(const std::vector<Row>& stuck) {
 }
 
 // The brackets of a sweep's chains whose model equals m (every column of chains/model), as
-// `astrojax thresholds` finds them. Throws on a file that is not a sweep's.
+// `astrojax thresholds` finds them. Files written before the tie clutch's four columns have
+// the first kOlderModelColumns only, and are matched on those. Throws on a file that is not a
+// sweep's.
+inline constexpr std::size_t kOlderModelColumns = 10;
 struct SweepBrackets {
   std::vector<std::size_t> chains;  // the matching chains
+  std::size_t columns_matched = 0;  // of model_row's kModelColumns
   std::map<std::string, std::vector<std::optional<sweep::Bracket>>> by_symbol;
 };
 SweepBrackets sweep_brackets(const std::string& path, const physics::Model& m) {
@@ -191,10 +195,14 @@ SweepBrackets sweep_brackets(const std::string& path, const physics::Model& m) {
   const auto wb = f.read_doubles("windows/omega_m_begin"), we = f.read_doubles("windows/omega_m_end");
   const auto model = f.read_doubles("chains/model");
   const auto mine = model_row(m.p);
+  if (model.cols() != mine.size() && model.cols() != kOlderModelColumns)
+    throw std::runtime_error(fmt::format("chains/model has {} columns, expected {} (or {} in files before the tie "
+                                         "clutch's columns)", model.cols(), mine.size(), kOlderModelColumns));
   SweepBrackets out;
+  out.columns_matched = model.cols();
   for (std::size_t c = 0; c < cls.rows(); ++c) {
-    bool same = model.cols() == mine.size();
-    for (std::size_t j = 0; same && j < mine.size(); ++j)
+    bool same = true;
+    for (std::size_t j = 0; same && j < out.columns_matched; ++j)
       same = std::abs(model(c, j) - mine[j]) <= 1e-12 * std::abs(mine[j]);
     if (!same) continue;
     std::vector<sweep::ClassedWindow> w;
@@ -359,6 +367,9 @@ int orbits_command(const OrbitsArgs& args) {
         return kExitBadInput;
       }
       std::printf("\nagainst the sweep %s (%zu chains with this model):\n", args.compare.c_str(), sb.chains.size());
+      if (sb.columns_matched < kModelColumns)
+        std::printf("  (the file records %zu of the %zu model parameters, none of the tie clutch's; matched on those)\n",
+                    sb.columns_matched, kModelColumns);
       for (const auto& t : pred->thresholds)
         for (std::size_t i = 0; i < sb.chains.size(); ++i) {
           const auto& b = sb.by_symbol[t.symbol][i];
