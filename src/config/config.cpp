@@ -356,6 +356,31 @@ RunConfig load_run_config(const std::string& path, const std::vector<std::string
 
 namespace {
 
+// The [grid] axes that set a model parameter of each grid point; the other axis, ramp_rate,
+// sets the protocol's ramps. τ_s, τ_k, c_a are the tie clutch's (physics/tie.hpp).
+struct GridParameter {
+  std::string_view key;
+  void (*set)(physics::Parameters&, double);
+};
+constexpr std::string_view kRampRateAxis = "ramp_rate";
+constexpr GridParameter kGridParameters[] = {
+    {"drive_radius", [](physics::Parameters& p, double v) { p.drive_radius = v; }},
+    {"contact_distance", [](physics::Parameters& p, double v) { p.contact_distance = v; }},
+    {"string_length", [](physics::Parameters& p, double v) { p.string_length = v; }},
+    {"mass", [](physics::Parameters& p, double v) { p.bead_mass = p.ball_mass = v; }},
+    {"mu_static", [](physics::Parameters& p, double v) { p.mu_static = v; }},
+    {"mu_kinetic", [](physics::Parameters& p, double v) { p.mu_kinetic = v; }},
+    {"drag", [](physics::Parameters& p, double v) { p.drag = v; }},
+    {"tie_static_torque", [](physics::Parameters& p, double v) { p.tie_static_torque = v; }},
+    {"tie_kinetic_torque", [](physics::Parameters& p, double v) { p.tie_kinetic_torque = v; }},
+    {"tie_damping", [](physics::Parameters& p, double v) { p.tie_damping = v; }},
+};
+const GridParameter* grid_parameter(std::string_view key) {
+  for (const auto& axis : kGridParameters)
+    if (axis.key == key) return &axis;
+  return nullptr;
+}
+
 // A value list: an array of numbers, or {start, stop, num} (num >= 1, both ends included).
 std::vector<double> value_list(const toml::node& n, const std::string& key, std::string_view file) {
   std::vector<double> out;
@@ -472,16 +497,15 @@ SweepConfig parse_sweep_config(std::string_view text, std::string_view source_na
   } else {
     c.protocol = parse_protocol(root, file, c);
   }
-  {
-    static const std::vector<std::string> axes{"drive_radius", "contact_distance", "string_length", "mass",
-                                               "mu_static", "mu_kinetic", "drag", "tie_static_torque",
-                                               "tie_kinetic_torque", "tie_damping", "ramp_rate"};
-    for (const auto& [k, v] : subtable(root, "grid", file)) {
-      const std::string key(k.str());
-      if (std::find(axes.begin(), axes.end(), key) == axes.end())
-        throw ConfigError(fmt::format("{}: key 'grid.{}': unknown key; allowed: {}", file, key, fmt::join(axes, ", ")));
-      c.grid.push_back({key, value_list(v, "grid." + key, file)});
+  for (const auto& [k, v] : subtable(root, "grid", file)) {
+    const std::string key(k.str());
+    if (key != kRampRateAxis && !grid_parameter(key)) {
+      std::vector<std::string_view> allowed;
+      for (const auto& axis : kGridParameters) allowed.push_back(axis.key);
+      allowed.push_back(kRampRateAxis);
+      throw ConfigError(fmt::format("{}: key 'grid.{}': unknown key; allowed: {}", file, key, fmt::join(allowed, ", ")));
     }
+    c.grid.push_back({key, value_list(v, "grid." + key, file)});
   }
   {
     Reader r(subtable(root, "output", file), "output", file);
@@ -510,19 +534,10 @@ std::vector<GridPoint> expand_grid(const SweepConfig& c) {
     for (std::size_t a = 0; a < c.grid.size(); ++a) {
       const double v = c.grid[a].values[at[a]];
       g.values.push_back(v);
-      physics::Parameters& p = g.model.p;
       const std::string& k = c.grid[a].key;
-      if (k == "drive_radius") p.drive_radius = v;
-      else if (k == "contact_distance") p.contact_distance = v;
-      else if (k == "string_length") p.string_length = v;
-      else if (k == "mass") p.bead_mass = p.ball_mass = v;
-      else if (k == "mu_static") p.mu_static = v;
-      else if (k == "mu_kinetic") p.mu_kinetic = v;
-      else if (k == "drag") p.drag = v;
-      else if (k == "tie_static_torque") p.tie_static_torque = v;  // τ_s, τ_k, c_a: the tie clutch (physics/tie.hpp)
-      else if (k == "tie_kinetic_torque") p.tie_kinetic_torque = v;
-      else if (k == "tie_damping") p.tie_damping = v;
-      else if (k == "ramp_rate") {
+      if (const GridParameter* axis = grid_parameter(k)) {
+        axis->set(g.model.p, v);
+      } else {  // ramp_rate
         if (!(v > 0.0))
           throw ConfigError(fmt::format("{}: key 'grid.ramp_rate[{}]': {} is out of range; allowed > 0 rad/s²",
                                         c.source_name, at[a], v));
