@@ -354,15 +354,29 @@ def segments(doc, path, option, kinds):
     return segs
 
 
-def protocol_files(paper_path, table1_path, top, work):
-    """Three sweep files in `work`: 'rise' (paper.toml's first ramp, up from rest), 'up'
-    (table1.toml's hold at 4π and its up-ramp, to `top` rad/s) and 'down' (the same hold, then
-    table1.toml's down-ramp from the hold's ω_m). Returns {name: path} and a description."""
+def write_sweep(doc, name, work):
+    """Writes the sweep document `doc` as work/name.toml; returns its path."""
+    path = os.path.join(work, f"{name}.toml")
+    with open(path, "w") as f:
+        f.write(toml_dump(doc) + "\n")
+    return path
+
+
+def rise_file(paper_path, work):
+    """'rise': paper.toml's first ramp, up from rest. Returns ({name: path}, {name: description})."""
     paper = load_toml(paper_path, "--paper-sweep")
     seg = segments(paper, paper_path, "--paper-sweep", ["ramp"])[0]
     if not seg["to"] > seg["from"]:
         ajx.fail(f"--paper-sweep {paper_path}: the first segment must ramp up (to > from)")
     paper["protocol"]["segment"] = [seg]
+    return ({"rise": write_sweep(paper, "rise", work)},
+            {"rise": f"{os.path.relpath(paper_path)}, its first ramp only: {seg['from'] / PI:g}π → {seg['to'] / PI:g}π "
+                     f"at {seg['rate']} rad/s², {seg['window']} s windows"})
+
+
+def ramp_files(table1_path, top, work):
+    """--protocol ramps: 'up' (table1.toml's hold at 4π and its up-ramp, to `top` rad/s) and
+    'down' (the same hold, then table1.toml's down-ramp from the hold's ω_m)."""
     t1 = load_toml(table1_path, "--table1-sweep")
     hold, up, down = segments(t1, table1_path, "--table1-sweep", ["steps", "ramp", "ramp"])[:3]
     if not (up["to"] > up["from"] and down["to"] < down["from"]):
@@ -373,14 +387,8 @@ def protocol_files(paper_path, table1_path, top, work):
     up_doc["protocol"]["segment"] = [hold, dict(up, to=top)]
     down_doc = json.loads(json.dumps(t1))
     down_doc["protocol"]["segment"] = [hold, dict(down, **{"from": hold["to"]})]
-    files = {}
-    for name, doc in (("rise", paper), ("up", up_doc), ("down", down_doc)):
-        files[name] = os.path.join(work, f"{name}.toml")
-        with open(files[name], "w") as f:
-            f.write(toml_dump(doc) + "\n")
+    files = {"up": write_sweep(up_doc, "up", work), "down": write_sweep(down_doc, "down", work)}
     how = {
-        "rise": f"{os.path.relpath(paper_path)}, its first ramp only: {seg['from'] / PI:g}π → {seg['to'] / PI:g}π "
-                f"at {seg['rate']} rad/s², {seg['window']} s windows",
         "up": f"{os.path.relpath(table1_path)}, hold at {hold['from'] / PI:g}π ({hold['settle']} s), up to "
               f"{top / PI:g}π at {up['rate']} rad/s², {up['window']} s windows",
         "down": f"{os.path.relpath(table1_path)}, the same hold, then down {hold['to'] / PI:g}π → {down['to'] / PI:g}π "
@@ -389,23 +397,19 @@ def protocol_files(paper_path, table1_path, top, work):
     return files, how
 
 
-def staircase_file(paper_files, paper_how, staircase_path, work):
-    """--protocol holds: the 'rise' file of protocol_files and 'held', a copy of the staircase
-    without its grid (the fitted values set each evaluation's one chain)."""
+def staircase_file(staircase_path, work):
+    """--protocol holds: 'held', a copy of the staircase without its grid (the fitted values set
+    each evaluation's one chain)."""
     doc = load_toml(staircase_path, "--staircase-sweep")
     n = len(doc.get("protocol", {}).get("segment", []))
     segs = segments(doc, staircase_path, "--staircase-sweep", ["steps"] * max(n, 2))
     if not any(s["to"] > s["from"] for s in segs) or not any(s["to"] < s["from"] for s in segs):
         ajx.fail(f"--staircase-sweep {staircase_path}: expected steps up and steps down")
     doc.pop("grid", None)
-    files = {"rise": paper_files["rise"], "held": os.path.join(work, "held.toml")}
-    with open(files["held"], "w") as f:
-        f.write(toml_dump(doc) + "\n")
     levels = sum(int(s["num"]) for s in segs[1:])
-    how = {"rise": paper_how["rise"],
-           "held": f"{os.path.relpath(staircase_path)}: from Table 1's orbit at {segs[0]['from'] / PI:g}π, "
-                   f"{levels} levels up and down, each held {segs[1]['settle']} s and measured {segs[1]['measure']} s"}
-    return files, how
+    return ({"held": write_sweep(doc, "held", work)},
+            {"held": f"{os.path.relpath(staircase_path)}: from Table 1's orbit at {segs[0]['from'] / PI:g}π, "
+                     f"{levels} levels up and down, each held {segs[1]['settle']} s and measured {segs[1]['measure']} s"})
 
 
 # ---- one evaluation: three sweeps, their thresholds ----------------------------------
@@ -846,9 +850,11 @@ def main(argv=None):
     args.astrojax_exe = ajx.require_astrojax(args.astrojax)
     t0 = time.time()
     with tempfile.TemporaryDirectory() as work:
-        files, describe = protocol_files(args.paper_sweep, args.table1_sweep, args.top * PI, work)
-        if args.protocol == "holds":
-            files, describe = staircase_file(files, describe, args.staircase_sweep, work)
+        files, describe = rise_file(args.paper_sweep, work)
+        second = (staircase_file(args.staircase_sweep, work) if args.protocol == "holds"
+                  else ramp_files(args.table1_sweep, args.top * PI, work))
+        files.update(second[0])
+        describe.update(second[1])
         ev = Evaluator(args, params, fixed, files, work)
         x0 = np.array([p.start for p in params])
         first = ev.many([x0], "start")[0]

@@ -938,8 +938,8 @@ done
         import tempfile
         import fit_thresholds as ft
         with tempfile.TemporaryDirectory() as tmp:
-            files, _ = ft.protocol_files(os.path.join(SOURCE, "sweeps/paper.toml"), os.path.join(SOURCE, "sweeps/table1.toml"),
-                                         18 * math.pi, tmp)
+            files, _ = ft.rise_file(os.path.join(SOURCE, "sweeps/paper.toml"), tmp)
+            files.update(ft.ramp_files(os.path.join(SOURCE, "sweeps/table1.toml"), 18 * math.pi, tmp)[0])
             docs = {k: ft.load_toml(v, k) for k, v in files.items()}
         t1 = ft.load_toml(os.path.join(SOURCE, "sweeps/table1.toml"), "table1")
         self.assertEqual([s["kind"] for s in docs["rise"]["protocol"]["segment"]], ["ramp"])
@@ -950,16 +950,15 @@ done
         self.assertEqual(docs["up"]["protocol"]["segment"][0], t1["protocol"]["segment"][0])
 
     def test_staircase_copy(self):
-        # --protocol holds: the rise from paper.toml as before, and the staircase without its grid
-        # (each evaluation sets its one chain), its steps unchanged.
+        # --protocol holds: the staircase without its grid (each evaluation sets its one chain),
+        # its steps unchanged, and no ramp copies beside it.
         import tempfile
         import fit_thresholds as ft
         stair = os.path.join(SOURCE, "sweeps/table1_staircase.toml")
         with tempfile.TemporaryDirectory() as tmp:
-            ramps, how = ft.protocol_files(os.path.join(SOURCE, "sweeps/paper.toml"),
-                                           os.path.join(SOURCE, "sweeps/table1.toml"), 18 * math.pi, tmp)
-            files, how = ft.staircase_file(ramps, how, stair, tmp)
-            self.assertEqual(sorted(files), ["held", "rise"])
+            files, how = ft.staircase_file(stair, tmp)
+            self.assertEqual(sorted(files), ["held"])
+            self.assertEqual(sorted(os.listdir(tmp)), ["held.toml"])
             held = ft.load_toml(files["held"], "held")
         shipped = ft.load_toml(stair, "staircase")
         self.assertNotIn("grid", held)
