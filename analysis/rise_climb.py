@@ -18,6 +18,16 @@ horizontal). For each climb (a stretch of samples off the bottom stop, mode ≠ 
 Then the energy ledger of run_ledger.py in --window windows from --before seconds before the
 first onset to --after seconds after it.
 
+With the diagnostic layer pair_couple = "motor_clutch" (src/physics/pair_couple.hpp; README, "A
+couple on the pair") it also prints, per climb, the pair's phase against the motor (the azimuth
+of r2 − r1 minus φ: its largest excursion from the onset over the climb, and its change to the
+end of the climb) and the couple's work on the balls, recomputed from the samples as the layer
+computes it. For any run, a last table gives one row per file: the first onset, the highest
+point over all climbs, the time off the ball, and the final state over the last --tail seconds
+with a coarse label (not the sweep's classifier, which needs a sweep): "fallen" (on the ball in
+≥ 90 % of the samples), "circular" when L1, ρ1 and ρ2 vary by less than 5 % (locked: ω_ball
+within 2 % of ω_m; else lagging), else "not steady".
+
 usage: /usr/bin/python3 analysis/rise_climb.py out/rise_from_rest.h5 [-o out/rise.md]
 The masses m1, m2 and the drive radius R come from the run's /config ([model] bead_mass,
 ball_mass, drive_radius, else the model's defaults) and its recorded --set overrides.
@@ -33,6 +43,8 @@ import run_ledger
 BOTTOM = 1  # /trajectory/mode: on the bottom ball
 # physics::Model's defaults (src/physics/model.hpp), for keys a run's config leaves out
 DEFAULTS = {"bead_mass": 0.018, "ball_mass": 0.018, "drive_radius": 0.01}  # [kg], [kg], [m]
+COUPLE_DEFAULTS = {"couple_torque": 0.0, "couple_slip_rate": 1.0}  # τ_c [N m], Ω_ε [rad/s]
+COUPLE_TILT_FLOOR = 1e-3  # ε of physics::kCoupleTiltFloor (src/physics/pair_couple.hpp)
 
 
 def model_values(path, defaults):
@@ -50,6 +62,21 @@ def model_values(path, defaults):
     return out
 
 
+def couple_values(path):
+    """(τ_c [N m], Ω_ε [rad/s]) of the pair couple from the run's config and --set overrides,
+    τ_c = 0 when layers.pair_couple is not "motor_clutch" (physics::Model's defaults otherwise)."""
+    with h5py.File(path, "r") as f:
+        cfg = tomllib.loads(ajx.as_text(f["config"][()]))
+        overrides = ajx.text_attr(f["config"], "overrides")
+    layer = cfg.get("layers", {}).get("pair_couple", "none")
+    for item in filter(None, overrides.splitlines()):
+        key, _, value = item.strip().partition("=")
+        if key.strip() == "layers.pair_couple":
+            layer = value.strip().strip('"')
+    v = model_values(path, COUPLE_DEFAULTS)
+    return (v["couple_torque"] if layer == "motor_clutch" else 0.0), v["couple_slip_rate"]
+
+
 def read(path):
     run = run_ledger.read_ledger(path)
     with h5py.File(path, "r") as f:
@@ -58,7 +85,91 @@ def read(path):
             run[name] = tr[name][:]
     v = model_values(path, DEFAULTS)
     run["m1"], run["m2"], run["R"] = v["bead_mass"], v["ball_mass"], v["drive_radius"]
+    run["couple_torque"], run["couple_slip_rate"] = couple_values(path)
+    with h5py.File(path, "r") as f:
+        a = f["summary"].attrs
+        run["ledger"] = float(a["energy_residual_relative"]) if "energy_residual_relative" in a else np.nan
+        run["tie_slips"] = int(a["tie_slips"]) if "tie_slips" in a else 0
     return run
+
+
+def pair_couple(run):
+    """The pair couple at every sample, as src/physics/pair_couple.cpp computes it: the couple
+    τ [N m], its torque about z τ ρ²/L2² [N m] and its power F2·(v2 − v1) [W]."""
+    d2 = run["r2"] - run["r1"]
+    dd = run["v2"] - run["v1"]
+    rho2 = d2[:, 0] ** 2 + d2[:, 1] ** 2
+    L2sq = np.sum(d2 ** 2, axis=1)
+    w = run["omega_m"]
+    rel_x = -w * d2[:, 1] - dd[:, 0]  # ω_m ẑ × d2 − ḋ2
+    rel_y = w * d2[:, 0] - dd[:, 1]
+    slip = (d2[:, 0] * rel_y - d2[:, 1] * rel_x) / (rho2 + COUPLE_TILT_FLOOR ** 2 * L2sq)
+    tau = run.get("couple_torque", 0.0) * np.tanh(slip / run.get("couple_slip_rate", 1.0))
+    power = tau / L2sq * (-d2[:, 1] * dd[:, 0] + d2[:, 0] * dd[:, 1])
+    return tau, tau * rho2 / L2sq, power
+
+
+def pair_phase(run, sl):
+    """The azimuth of r2 − r1 minus the motor's φ over the slice sl, unwrapped [rad]."""
+    d2 = run["r2"][sl] - run["r1"][sl]
+    return np.unwrap(wrap(np.arctan2(d2[:, 1], d2[:, 0]) - run["phi"][sl]))
+
+
+def couple_row(run, a, b):
+    """The pair against the motor over a climb (samples a..b, onset at a − 1): the largest
+    excursion of the pair's phase from the onset, its change to the end and over the first
+    second, the couple's work and its mean torque about z."""
+    p = a - 1
+    ph = pair_phase(run, slice(p, b + 1))
+    _, tz, power = pair_couple(run)
+    t = run["t"][p:b + 1]
+    work = float(np.sum(0.5 * (power[p + 1:b + 1] + power[p:b]) * np.diff(t))) if b > p else 0.0
+    first = run["t"][p:b + 1] <= run["t"][p] + 1.0
+    return dict(phase_max=float(np.max(np.abs(ph - ph[0]))), phase_end=float(ph[-1] - ph[0]),
+                phase_1s=float(ph[first][-1] - ph[0]), couple_work=work, couple_tz=float(np.mean(tz[p:b + 1])))
+
+
+def final_state(run, tail):
+    """The last `tail` seconds: a coarse label and its numbers (module docstring)."""
+    t = run["t"]
+    sel = t >= t[-1] - tail
+    r = run_ledger.window_row(run, sel)
+    on_ball = np.mean(run["mode"][sel] == BOTTOM)
+    rho = [np.hypot(run[k][sel, 0], run[k][sel, 1]) for k in ("r1", "r2")]
+    spread = max(np.ptp(x) / max(np.mean(x), 1e-12) for x in rho + [run["L1"][sel]])
+    w_ball = 0.5 * (r["omega_bead"] + r["omega_bottom"])
+    if on_ball >= 0.9:
+        label = "fallen"
+    elif spread < 0.05:
+        label = "locked circular" if abs(w_ball - r["omega_m"]) < 0.02 * r["omega_m"] else "lagging circular"
+    else:
+        label = "not steady"
+    return dict(label=label, on_ball=on_ball, L1=r["L1"], rho1=r["rho1"], rho2=r["rho2"], omega_m=r["omega_m"],
+                omega_ball=w_ball, P_motor=r["P_motor"], P_drag=r["P_drag"])
+
+
+def summary_row(path, run, tail):
+    eps = episodes(run["mode"])
+    f = final_state(run, tail)
+    head = f"| {path} | {run.get('couple_torque', 0.0):.1e} | {run.get('couple_slip_rate', 1.0):g} |"
+    tail_cols = (f" {f['label']} | {f['L1']:.3f} | {1e3 * f['rho1']:.1f}, {1e3 * f['rho2']:.1f} | "
+                 f"{f['omega_ball']:.2f} / {f['omega_m']:.2f} | {f['P_motor']:+.2e} | "
+                 f"{run.get('tie_slips', 0)} | {run.get('ledger', np.nan):+.1e} |")
+    if not eps:
+        return head + " none | — | — | — | — |" + tail_cols
+    p = eps[0][0] - 1
+    s_b = run["L1"][p]
+    highest = max(s_b - np.min(run["L1"][a:b + 1]) for a, b in eps)
+    off = sum(run["t"][b] - run["t"][a - 1] for a, b in eps)
+    c = couple_row(run, *eps[0])
+    return (head + f" {run['t'][p]:.1f} s, {run['omega_m'][p] / np.pi:.3f}π | {1e3 * highest:.1f} | {off:.1f} | "
+            f"{c['phase_1s']:+.2f}, {c['phase_end']:+.1f} |" + tail_cols)
+
+
+SUMMARY_HEADER = ["| run | τ_c [N m] | Ω_ε [rad/s] | first onset | highest [mm] | off the ball [s] | "
+                  "pair phase, climb 0: change over its first second, to its end [rad] | final (last --tail s) | L1 [m] | "
+                  "ρ1, ρ2 [mm] | ω_ball / ω_m [π] | P_motor [W] | tie slips | ledger residual (relative) |",
+                  "|---" * 14 + "|"]
 
 
 def episodes(mode):
@@ -107,7 +218,7 @@ def climb_row(run, a, b):
     p = a - 1  # last sample on the ball
     s_b = L1[p]
     low = np.min(L1[a:b + 1])
-    top = a + int(np.nonzero(L1[a:b + 1] <= low + 0.01 * (s_b - low))[0][0])  # first within 1 % of the highest
+    top = a + int(np.nonzero(L1[a:b + 1] <= low + 0.01 * abs(s_b - low))[0][0])  # first within 1 % of the highest
     sliding = np.nonzero(mode[a:b + 1] != 0)[0]  # the first slide ends at the first stick, stop or slack
     e = a + (sliding[0] if len(sliding) else b - a)
     t_slide = max(t[e] - t[p], 1e-12)
@@ -182,6 +293,18 @@ def report(path, run, before, after, window, levels=()):
     for k, r in enumerate(rows):
         lines.append(f"| {k} | {r['Lz_before']:.3e} | {r['Lz_top']:.3e} | {r['Lz_lock']:.3e} | "
                      f"{r['torque_needed']:.2e} | {r['torque_motor']:.2e} | {r['torque_max']:.2e} |")
+    if run.get("couple_torque", 0.0) > 0:
+        lines += ["", f"The pair against the motor and the pair couple (τ_c = {run['couple_torque']:g} N m, "
+                  f"Ω_ε = {run['couple_slip_rate']:g} rad/s): the pair's phase (azimuth of r2 − r1 minus φ) from "
+                  "the onset, the couple's work on the balls and its mean torque about z, over each climb.", "",
+                  "| # | phase: max excursion [rad] | phase: change over the first second [rad] | "
+                  "phase: change to the end [rad] | couple's work [J] | couple's torque about z [N m] |",
+                  "|---" * 6 + "|"]
+        for k, (a, b) in enumerate(eps):
+            c = couple_row(run, a, b)
+            lines.append(f"| {k} | {c['phase_max']:.3f} | {c['phase_1s']:+.3f} | {c['phase_end']:+.3f} | "
+                         f"{c['couple_work']:.3e} | "
+                         f"{c['couple_tz']:.2e} |")
     t0 = run["t"][eps[0][0] - 1]
     sel = (run["t"] >= t0 - before) & (run["t"] <= t0 + after)
     sub = {k: (v[sel] if isinstance(v, np.ndarray) and len(v) == len(run["t"]) else v) for k, v in run.items()}
@@ -202,6 +325,7 @@ def main(argv=None):
     ap.add_argument("--window", type=float, default=5.0, help="ledger window [s] (default 5)")
     ap.add_argument("--levels", default="", help="ω_m levels [π rad/s], comma-separated, at which to tabulate "
                     "the bottom-stop orbit before the first climb, e.g. 6,8,10,12")
+    ap.add_argument("--tail", type=float, default=10.0, help="the final state over the last TAIL seconds (default 10)")
     args = ap.parse_args(argv)
     if not (args.before >= 0 and args.after > 0 and args.window > 0):
         ajx.fail("--before must be >= 0, --after and --window > 0 seconds")
@@ -209,7 +333,12 @@ def main(argv=None):
         levels = [float(x) for x in args.levels.split(",") if x.strip()]
     except ValueError:
         ajx.fail(f"--levels {args.levels}: expected comma-separated numbers (π rad/s)")
-    text = "\n".join(report(p, read(p), args.before, args.after, args.window, levels) for p in args.inputs)
+    if not args.tail > 0:
+        ajx.fail("--tail must be > 0 seconds")
+    runs = [(p, read(p)) for p in args.inputs]
+    text = "\n".join(report(p, run, args.before, args.after, args.window, levels) for p, run in runs)
+    text += "\n".join(["", f"One row per run; the final state over the last {args.tail:g} s (module docstring).", ""]
+                      + SUMMARY_HEADER + [summary_row(p, run, args.tail) for p, run in runs] + [""])
     if args.output:
         ajx.write_report(args.output, text)
     else:

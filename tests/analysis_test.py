@@ -745,6 +745,30 @@ class rise_climb(unittest.TestCase):
         h = k["rho"] - k["R"]
         self.assertAlmostEqual(r["torque_max"], k["R"] * 0.35 * h / np.hypot(h, 0.79), delta=1e-15)
 
+    def test_pair_couple_of_a_constructed_pair(self):
+        """rise_climb.pair_couple recomputes src/physics/pair_couple.cpp: zero for the rigidly
+        spinning pair of constructed() (β̇ = ω_m), and for a lower segment at tilt θ spinning at
+        β̇ its torque about z is τ_c tanh(w/Ω_ε) sin²θ with w = (ω_m − β̇) sin²θ/(sin²θ + ε²), its
+        power that times β̇. Closed forms: round-off tolerances."""
+        import rise_climb
+        run, k = self.constructed()
+        run["couple_torque"], run["couple_slip_rate"] = 1e-3, 1.0
+        tau, tz, power = rise_climb.pair_couple(run)
+        self.assertLess(np.max(np.abs(tau)), 1e-12)
+        theta, spin, L2 = 1.1, 20.0, 0.035
+        t = run["t"]
+        d2 = L2 * np.stack([np.sin(theta) * np.cos(spin * t), np.sin(theta) * np.sin(spin * t),
+                            -np.cos(theta) * np.ones_like(t)], axis=1)
+        run["r2"] = run["r1"] + d2
+        run["v2"] = run["v1"] + spin * np.stack([-d2[:, 1], d2[:, 0], np.zeros_like(t)], axis=1)
+        tau, tz, power = rise_climb.pair_couple(run)
+        s2 = np.sin(theta) ** 2
+        w = (k["w"] - spin) * s2 / (s2 + rise_climb.COUPLE_TILT_FLOOR ** 2)
+        expect = 1e-3 * np.tanh(w)
+        np.testing.assert_allclose(tau, expect, rtol=1e-12)
+        np.testing.assert_allclose(tz, expect * s2, rtol=1e-12)
+        np.testing.assert_allclose(power, expect * s2 * spin, rtol=1e-12)
+
     def test_script_plumbing_and_bad_input(self):
         md = data("rise_climb.md")
         script("rise_climb.py", data("run.h5"), "-o", md, "--window", "2", "--levels", "2,4")

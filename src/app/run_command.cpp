@@ -81,7 +81,7 @@ struct Trajectory {
     col("omega_m", omega_m, "rad/s", "motor angular velocity");
     col("phi", phi, "rad", "motor phase");
     col("energy", energy, "J", "kinetic + potential energy of both balls");
-    col("motor_work", motor_work, "J", "cumulative work done by the motor");
+    col("motor_work", motor_work, "J", "cumulative work done by the motor (with layers.pair_couple: and by the couple on the pair)");
     col("drag_loss", drag_loss, "J", "cumulative drag dissipation");
     col("friction_loss", friction_loss, "J", "cumulative friction dissipation");
     col("impact_loss", impact_loss, "J", "cumulative dissipation in impacts");

@@ -186,6 +186,7 @@ std::vector<physics::DriveSegment> parse_schedule(const toml::table& root, std::
 // [model], [layers], [integrator] and [initial]: shared by every command.
 void parse_common(const toml::table& root, std::string_view file, CommonConfig& c) {
   bool tie_torques_given = false;
+  bool couple_torque_given = false;
   {  // [model]: ranges that depend on each other are checked by physics::validate below.
     Reader r(subtable(root, "model", file), "model", file);
     physics::Parameters& p = c.model.p;
@@ -205,6 +206,9 @@ void parse_common(const toml::table& root, std::string_view file, CommonConfig& 
     p.tie_kinetic_torque = r.number("tie_kinetic_torque", p.tie_kinetic_torque, 0.0, inf, false, true);
     p.tie_inertia = r.number("tie_inertia", p.tie_inertia, 0.0, inf, true, true);
     p.tie_damping = r.number("tie_damping", p.tie_damping, 0.0, inf, false, true);
+    couple_torque_given = r.has("couple_torque");
+    p.couple_torque = r.number("couple_torque", p.couple_torque, 0.0, inf, false, true);
+    p.couple_slip_rate = r.number("couple_slip_rate", p.couple_slip_rate, 0.0, inf, true, true);
     r.reject_unknown();
     for (const auto& issue : physics::validate(c.model))
       throw ConfigError(fmt::format("{}: key '{}': {} is out of range; allowed {}", file, issue.key,
@@ -228,6 +232,11 @@ void parse_common(const toml::table& root, std::string_view file, CommonConfig& 
     c.model.layers.tie_clutch = r.word("tie", "rigid", {"rigid", "clutch"}) == "clutch";
     if (c.model.layers.tie_clutch && !tie_torques_given)
       r.fail("tie", "\"clutch\" needs model.tie_static_torque and model.tie_kinetic_torque (τ_s >= τ_k >= 0 [N m])");
+    c.model.layers.pair_couple = r.word("pair_couple", "none", {"none", "motor_clutch"}) == "motor_clutch"
+                                     ? physics::PairCouple::MotorClutch
+                                     : physics::PairCouple::None;
+    if (c.model.layers.pair_couple == physics::PairCouple::MotorClutch && !couple_torque_given)
+      r.fail("pair_couple", "\"motor_clutch\" needs model.couple_torque (τ_c >= 0 [N m])");
     r.reject_unknown();
   }
   {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "physics/pair_couple.hpp"
 #include "physics/string_friction.hpp"
 #include "physics/tie.hpp"
 
@@ -19,7 +20,16 @@ Dynamics evaluate(const Model& m, const TopKinematics& top, const Contact& c, co
   // ψ enters the motion only through the sliding law.
   const bool need_cone = !motion_only || c.mode == Mode::Sliding;
   d.g = geometry(top, r1, r2, v1, v2, need_cone);
-  const AppliedForces f = applied_forces(p, v1, v2);
+  AppliedForces f = applied_forces(p, v1, v2);
+  // The diagnostic pair couple (zero unless its layer is on) joins f_i in every mode, so the
+  // tensions, the stops' pushes and the guards all see it.
+  d.couple_power = 0.0;
+  if (m.layers.pair_couple != PairCouple::None) {
+    const PairCoupleForces couple = pair_couple_forces(m, top.motor_omega, r1, r2, v1, v2);
+    f.f1 += couple.f1;
+    f.f2 += couple.f2;
+    d.couple_power = couple.power;
+  }
 
   // F1, F2: the net pulls of the two links on the bead (tension minus any contact push).
   double F1 = 0.0, F2 = 0.0;
@@ -95,7 +105,7 @@ void rhs(const Model& m, const MotorSchedule& schedule, const Contact& c, double
   dydt.segment<3>(idx::r2) = y.segment<3>(idx::v2);
   dydt.segment<3>(idx::v1) = d.acc1;
   dydt.segment<3>(idx::v2) = d.acc2;
-  dydt(idx::motor_work) = d.motor_power;
+  dydt(idx::motor_work) = d.motor_power + d.couple_power;  // the couple's power comes from the motor
   dydt(idx::drag_loss) = d.drag_power;
   dydt(idx::friction_loss) = d.friction_power;
   // The tie: χ̇ and χ̈ of the top (ω_m and ω̇_m while it is held, physics/tie.hpp).

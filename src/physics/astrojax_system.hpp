@@ -1,5 +1,6 @@
 // The equations of motion in one mode: r̈1 = (-T1 u1 + F2 u2 + f1)/m1, r̈2 = (-F2 u2 + f2)/m2,
-// with the tensions from the mode's acceleration-level constraints. A pure function of
+// with the tensions from the mode's acceleration-level constraints; f_i are drag, gravity and
+// the pair couple's forces when its layer is on. A pure function of
 // (model, schedule, mode, t, y): no I/O, no globals.
 #pragma once
 #include "numerics/vector.hpp"
@@ -21,6 +22,8 @@ struct Dynamics {
   double motor_power;     // P_motor = -F1 u1·ȧ, F1 the net pull of link 1 [W]
   double drag_power;      // c_D (|v1|² + |v2|²) [W]
   double friction_power;  // (T1 - T2) ṡ [W], >= 0 whenever the tensions are
+  double couple_power;    // F2·(v2 − v1) of the pair couple (physics/pair_couple.hpp), 0 without it [W];
+                          // the ledger's motor work integrates motor_power + couple_power
 };
 
 // motion_only: what the equations of motion need (accelerations and powers); in the two-link

@@ -31,6 +31,8 @@ std::vector<ParameterIssue> validate(const Model& model) {
        p.tie_kinetic_torque, fmt::format("0 <= τ_k <= τ_s = {} N m", p.tie_static_torque));
   need(p.tie_inertia > 0, "model.tie_inertia", p.tie_inertia, "I_a > 0 kg m²");
   need(p.tie_damping >= 0, "model.tie_damping", p.tie_damping, "c_a >= 0 N m s");
+  need(p.couple_torque >= 0, "model.couple_torque", p.couple_torque, "τ_c >= 0 N m");
+  need(p.couple_slip_rate > 0, "model.couple_slip_rate", p.couple_slip_rate, "Ω_ε > 0 rad/s");
   const Layers& L = model.layers;
   need(L.regularisation > 0, "layers.regularisation", L.regularisation, "ε > 0 m/s");
   need(L.restitution >= 0 && L.restitution <= 1, "layers.restitution", L.restitution, "0 <= e <= 1");
@@ -51,6 +53,14 @@ std::string_view to_string(FrictionLaw f) {
   switch (f) {
     case FrictionLaw::Capstan: return "capstan";
     case FrictionLaw::PointContact: return "point_contact";
+  }
+  return "?";
+}
+
+std::string_view to_string(PairCouple c) {
+  switch (c) {
+    case PairCouple::None: return "none";
+    case PairCouple::MotorClutch: return "motor_clutch";
   }
   return "?";
 }

@@ -23,6 +23,9 @@ struct Parameters {
   double tie_kinetic_torque = 1.0;   // τ_k [N m], the torque it passes on while slipping, τ_k <= τ_s
   double tie_inertia = 5e-8;         // I_a [kg m²], of the tie about the motor axis (0.5 g at 1 cm)
   double tie_damping = 1e-7;         // c_a [N m s], viscous part of the clutch: c_a (ω_m - χ̇) while slipping
+  // The pair couple, used by the diagnostic layer pair_couple = "motor_clutch" (physics/pair_couple.hpp):
+  double couple_torque = 0.0;        // τ_c [N m], the couple's magnitude between motor and lower segment
+  double couple_slip_rate = 1.0;     // Ω_ε [rad/s], slip rate of tanh((ω_m − β̇)/Ω_ε)
 };
 
 // Friction between bead and string:
@@ -35,6 +38,9 @@ struct Parameters {
 enum class Friction { None, Kinetic, StickSlip, Regularised };
 // How T1/T2 depends on the deflection ψ of the string at the bead (model.md, "Forces").
 enum class FrictionLaw { Capstan, PointContact };
+// A couple about ẑ on the pair (physics/pair_couple.hpp): none, or kinetic friction between the
+// motor's rotation and the lower segment's (a diagnostic, not a part of the Astrojax).
+enum class PairCouple { None, MotorClutch };
 
 struct Layers {
   Friction friction = Friction::StickSlip;
@@ -45,6 +51,7 @@ struct Layers {
   bool slack = true;                 // the string may go slack (else negative tensions are reported)
   double restitution = 0.0;          // e of the re-taut impact of a slack string, in [0, 1]
   bool tie_clutch = false;           // the tie slips on the rod past τ_s (else it is rigid: χ = φ)
+  PairCouple pair_couple = PairCouple::None;  // the diagnostic couple on the pair (off by default)
 };
 
 struct Model {
@@ -65,5 +72,6 @@ std::vector<ParameterIssue> validate(const Model& model);
 
 std::string_view to_string(Friction f);
 std::string_view to_string(FrictionLaw f);
+std::string_view to_string(PairCouple c);
 
 }  // namespace ajx::physics

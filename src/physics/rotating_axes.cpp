@@ -22,7 +22,7 @@ void rhs_in_rotating_axes(const Model& m, const MotorSchedule& schedule, const C
   dydt.segment<3>(idx::r2) = y.segment<3>(idx::v2) - omega_cross(y.segment<3>(idx::r2));
   dydt.segment<3>(idx::v1) = d.acc1 - omega_cross(y.segment<3>(idx::v1));
   dydt.segment<3>(idx::v2) = d.acc2 - omega_cross(y.segment<3>(idx::v2));
-  dydt(idx::motor_work) = d.motor_power;
+  dydt(idx::motor_work) = d.motor_power + d.couple_power;  // the couple's power comes from the motor
   dydt(idx::drag_loss) = d.drag_power;
   dydt(idx::friction_loss) = d.friction_power;
 }
