@@ -141,8 +141,11 @@ Contact at_rest(const Model& m, const TopKinematics& top, const numerics::Vec& y
   return {Mode::Sliding, sdd > 0.0 ? +1 : (sdd < 0.0 ? -1 : 0), 0.0};
 }
 
-Contact settle(const Model& m, const TopKinematics& top, const Contact& c, const numerics::Vec& y,
-               double band) {
+namespace {
+
+// settle() for the bead's mode only (the returned tie is the default one).
+Contact settle_bead(const Model& m, const TopKinematics& top, const Contact& c, const numerics::Vec& y,
+                    double band) {
   switch (c.mode) {
     case Mode::Stuck:
     case Mode::BottomStop:
@@ -168,6 +171,15 @@ Contact settle(const Model& m, const TopKinematics& top, const Contact& c, const
       return c;
   }
   return c;
+}
+
+}  // namespace
+
+Contact settle(const Model& m, const TopKinematics& top, const Contact& c, const numerics::Vec& y,
+               double band) {
+  Contact out = settle_bead(m, top, c, y, band);
+  out.tie = c.tie;  // the bead's mode settles; the tie's state (held at its offset, or slipping) stays
+  return out;
 }
 
 }  // namespace ajx::physics

@@ -68,7 +68,8 @@ Contact at_rest(const Model& m, const TopKinematics& top, const numerics::Vec& y
 
 // A taut mode entered with velocities already on its constraints: the held modes keep it
 // while their one-sided cones hold, else the bead slides in the direction of the violated
-// bound; a sliding bead gets σ = sgn ṡ, or the rest rule when ṡ = 0.
+// bound; a sliding bead gets σ = sgn ṡ, or the rest rule when ṡ = 0. The tie's state (c.tie)
+// is kept: only the bead's mode settles.
 Contact settle(const Model& m, const TopKinematics& top, const Contact& c, const numerics::Vec& y,
                double band = 0.0);
 
