@@ -22,8 +22,9 @@ the built astrojax on the files of sweeps/adequacy/ at one representative (R, d)
     point where there are flowers.
 A threshold is reproduced when a ramp bracket's midpoint, a staircase bracket's midpoint, the
 Hopf point (ω2) or a prediction of the equilibria lies within 5 % of the paper's value; an
-orbit type when some ramp window, held chain or staircase level is classified as it. The layer sets are a ladder (frictionless, kinetic, stick-slip, + slack,
-+ top stop = the full model); the smallest set of the ladder that reproduces an item is named.
+orbit type when some ramp window, held chain or staircase level is classified as it. The
+layer sets are a ladder (frictionless, kinetic, stick-slip, + slack, + top stop = the full
+model, + the tie clutch); the smallest set of the ladder that reproduces an item is named.
 Then each layer omitted from the full model alone, measured against the full model: threshold
 shifts, classes that change, and the violations the runs report; and, on the staircase, each
 layer omitted from the full model and from the full model with the tie clutch (the set that
@@ -177,7 +178,7 @@ def staircase(exe, path):
     sweep = ajx.Sweep(path)
     out["windows"] = classed_windows(sweep)
     out["runs"] = [(int(r["direction"]), r["class"], float(r["omega_from_rad_s"]), float(r["omega_to_rad_s"]),
-                    int(r["windows"]), ajx.number(r["omega_ball_mean_rad_s"]), ajx.number(r["omega_ball_slope"]))
+                    ajx.number(r["omega_ball_mean_rad_s"]), ajx.number(r["omega_ball_slope"]))
                    for r in ajx.run_sequence(path, exe) if r["kind"] == "run" and int(r["chain"]) == 0]
     hopf = flower_onset.analyse(sweep, 0, flower_onset.SPAN)
     out["hopf"] = (hopf["omega_H"], hopf["sigma_H"])
@@ -392,7 +393,7 @@ def hopf_text(m):
 def runs_text(m, directions):
     """The staircase's runs of one class on the given legs, with a lagging orbit's ω_ball plateau."""
     parts = []
-    for d, cls, lo, hi, _, wb, slope in m["stair"]["runs"]:
+    for d, cls, lo, hi, wb, slope in m["stair"]["runs"]:
         if d not in directions:
             continue
         text = f"{cls} {lo / PI:.1f}π" if lo == hi else f"{cls} {lo / PI:.1f}–{hi / PI:.1f}π"
@@ -422,8 +423,8 @@ def report(ladder, omitted, full, meta, stair_sets, stair_omitted):
              "bracket midpoint, `Hopf`: the staircase's Hopf point for ω2, or the co-rotating "
              "equilibria's prediction, `eq.`: for ω_rise the stability / cone readings); an orbit type seen in a "
              "ramp window, a held chain's measured window or a staircase level",
-             "- the bottom stop is in every set: the sweeps start from the bead resting on the bottom ball; the "
-             "staircase starts from Table 1's orbit at 4π", ""]
+             "- the bottom stop is in every set: the sweeps start from the bead resting on the bottom ball, the "
+             "staircase from its file's seed (sweeps/table1_staircase.toml: Table 1's orbit at 4π)", ""]
     names = [n for n, _ in ladder]
     lines += ["## Reproduced, per layer set", "",
               "| item | paper | " + " | ".join(names) + " | smallest set |",
@@ -444,9 +445,11 @@ def report(ladder, omitted, full, meta, stair_sets, stair_omitted):
                 f"held: {violation_text(m['violations']['run_hold'])}")
         lines.append(f"| {name} | {'; '.join(shifts) or 'none'} | {changes_text(full['ramp_windows'], m['ramp_windows'])} "
                      f"| {held_text} | {viol} |")
+    paper = {k: fmt_pi(v) for k, v in full["paper"].items()}
     lines += ["", "## The second half held level by level (the staircase from Table 1's orbit)", "",
-              "| layer set | ω1 (paper 4.80π) | ω2 (paper 15.00π): bracket; Hopf point | ω_fall (paper 3.24π) | "
-              "classes from 4π up | classes down | smallest T, L1 sampled |", "|---|---|---|---|---|---|---|"]
+              f"| layer set | ω1 (paper {paper['omega_1']}) | ω2 (paper {paper['omega_2']}): bracket; Hopf point | "
+              f"ω_fall (paper {paper['omega_fall']}) | classes from the start up | classes down | "
+              "smallest T, L1 sampled |", "|---|---|---|---|---|---|---|"]
     for name, m in stair_sets:
         lines.append(f"| {name} | {bracket_text(m, 'omega_1')} | {bracket_text(m, 'omega_2')}; {hopf_text(m)} | "
                      f"{bracket_text(m, 'omega_fall')} | {runs_text(m, (0, 1))} | {runs_text(m, (-1,))} | "

@@ -493,6 +493,9 @@ class adequacy(unittest.TestCase):
         self.assertEqual(ma.smallest(stair[2:], "lagging-circular"), ("f", "holds"))
         self.assertEqual(ma.shift_text(stair[1][1], stair[0][1], "omega_2", stair=True),
                          "ω2 Hopf: none (was 14.81π)")
+        self.assertEqual(ma.threshold_cell(stair[1][1], "omega_2"),
+                         "**yes**: ramp: not reached; held 16.00π (+6.7 %); Hopf 14.81π (-1.3 %)")
+        self.assertEqual(ma.hopf_text(stair[1][1]), "Hopf 14.81 ± 0.10π (-1.3 %)")
 
     def test_tiny_run(self):
         md, work = data("adequacy.md"), data("adequacy_runs")
