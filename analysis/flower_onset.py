@@ -33,6 +33,7 @@ import astrojax_analysis as ajx
 
 PI = ajx.PI
 PAPER_OMEGA_2 = 15.00  # [π rad/s]
+SPAN = 3.0  # default --span: the levels fitted reach this far above the first flower [π rad/s]
 
 
 def amplitude(sweep, c, w):
@@ -190,8 +191,8 @@ def main():
     ap = ajx.parser(__doc__)
     ap.add_argument("input", help="sweep file with steps up and down (sweeps/table1_staircase.toml)")
     ap.add_argument("-o", "--output", required=True, help="markdown report to write")
-    ap.add_argument("--span", type=float, default=3.0,
-                    help="fit the levels up to this many π rad/s above the first flower window (default 3)")
+    ap.add_argument("--span", type=float, default=SPAN,
+                    help=f"fit the levels up to this many π rad/s above the first flower window (default {SPAN:g})")
     args = ap.parse_args()
     if not (args.span > 0):
         ajx.fail(f"--span {args.span}: allowed > 0 (π rad/s)")

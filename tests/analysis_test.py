@@ -451,11 +451,13 @@ class adequacy(unittest.TestCase):
     """analysis/model_adequacy.py: the judging on constructed measurements, then a tiny run."""
 
     @staticmethod
-    def measured(ramp=None, predicted=None, windows=(), holds=()):
+    def measured(ramp=None, predicted=None, windows=(), holds=(), held=None, hopf=np.nan, stair_windows=()):
         paper = {"omega_rise": 12.63 * np.pi, "omega_fall": 3.24 * np.pi, "omega_1": 4.80 * np.pi,
                  "omega_2": 15.00 * np.pi}
+        stair = {"mid": held or {}, "bracket": {}, "windows": list(stair_windows), "runs": [], "hopf": (hopf, 0.1),
+                 "T_min": np.nan, "L1_min": np.nan}
         return {"paper": paper, "ramp": ramp or {}, "predicted": predicted or {}, "ramp_windows": list(windows),
-                "holds": list(holds), "layers": {}, "violations": {}}
+                "holds": list(holds), "stair": stair, "layers": {}, "violations": {}}
 
     def test_judging(self):
         import model_adequacy as ma
@@ -467,7 +469,7 @@ class adequacy(unittest.TestCase):
         ladder = [("a", self.measured(ramp={"omega_rise": 11.0 * pi})),  # 12.9 % low: no
                   ("b", self.measured(ramp={"omega_rise": 12.5 * pi}, predicted={"omega_fall": 3.3 * pi},
                                       holds=[(4.8 * pi, "circular_high", "locked-circular", 4.8 * pi)])),
-                  ("c", self.measured(ramp={"omega_rise": 12.7 * pi}, windows=[(2 * pi, "fallen")]))]
+                  ("c", self.measured(ramp={"omega_rise": 12.7 * pi}, windows=[(2 * pi, "fallen", 1)]))]
         self.assertEqual(ma.smallest(ladder, "omega_rise"), ("b", "ramp"))
         self.assertEqual(ma.smallest(ladder, "omega_fall"), ("b", "equilibria"))
         self.assertEqual(ma.smallest(ladder, "omega_1"), (None, None))
@@ -476,6 +478,24 @@ class adequacy(unittest.TestCase):
         # A prediction that only ran to the end of the continuation range is no threshold.
         text = ma.threshold_cell(ladder[0][1], "omega_rise")
         self.assertTrue(text.startswith("no: ramp 11.00π (-12.9 %)"), text)
+        # The staircase: a held bracket's midpoint counts before the equilibria; for ω2 so does the
+        # Hopf point (here the bracket's 16π is 6.7 % high, the Hopf point 14.81π 1.3 % low); a
+        # staircase level names an orbit type after the ramps and holds.
+        stair = [("d", self.measured(predicted={"omega1": 4.9 * pi}, held={"omega_1": 5.2 * pi, "omega_2": 16.0 * pi})),
+                 ("e", self.measured(predicted={"omega1": 4.9 * pi}, held={"omega_1": 4.9 * pi, "omega_2": 16.0 * pi},
+                                     hopf=14.81, stair_windows=[(5 * pi, "lagging-circular", 1)])),
+                 ("f", self.measured(holds=[(6 * pi, "locked_orbit", "lagging-circular", 4.3 * pi)],
+                                     stair_windows=[(5 * pi, "lagging-circular", -1)]))]
+        self.assertEqual(ma.smallest(stair, "omega_1"), ("d", "equilibria"))  # 5.2π held is 8.3 % high
+        self.assertEqual(ma.smallest(stair[1:], "omega_1"), ("e", "staircase"))
+        self.assertEqual(ma.smallest(stair, "omega_2"), ("e", "Hopf point"))
+        self.assertEqual(ma.smallest(stair, "lagging-circular"), ("e", "staircase"))
+        self.assertEqual(ma.smallest(stair[2:], "lagging-circular"), ("f", "holds"))
+        self.assertEqual(ma.shift_text(stair[1][1], stair[0][1], "omega_2", stair=True),
+                         "ω2 Hopf: none (was 14.81π)")
+        self.assertEqual(ma.threshold_cell(stair[1][1], "omega_2"),
+                         "**yes**: ramp: not reached; held 16.00π (+6.7 %); Hopf 14.81π (-1.3 %)")
+        self.assertEqual(ma.hopf_text(stair[1][1]), "Hopf 14.81 ± 0.10π (-1.3 %)")
 
     def test_tiny_run(self):
         md, work = data("adequacy.md"), data("adequacy_runs")
@@ -484,7 +504,8 @@ class adequacy(unittest.TestCase):
                "--hold", os.path.join(SOURCE, "tests/data/tiny_adequacy_hold.toml"),
                "--run-ramp", os.path.join(SOURCE, "tests/data/tiny_adequacy_run_ramp.toml"),
                "--run-hold", os.path.join(SOURCE, "tests/data/tiny_adequacy_run_hold.toml"),
-               "--threshold-s-points", "2", "--sets-only", "stick_slip + slack")
+               "--staircase", os.path.join(SOURCE, "tests/data/tiny_adequacy_staircase.toml"),
+               "--threshold-s-points", "2", "--sets-only", "stick_slip + slack,full + tie clutch")
         with open(md) as f:
             text = f.read()
         rows = {line.split("|")[1].strip(): [c.strip() for c in line.strip().strip("|").split("|")]
@@ -492,17 +513,33 @@ class adequacy(unittest.TestCase):
         for item in ("ω_rise", "ω_fall", "ω1", "ω2", "fallen", "locked-circular", "lagging-circular", "flower"):
             self.assertIn(item, rows)
         # The ramp's ω_rise is astrojax thresholds' midpoint on the full model's own file.
-        full = os.path.join(work, "bottom_stop-true_friction-stick_slip_slack-true_top_stop-true_ramp.h5")
+        import model_adequacy as ma
+        full = os.path.join(work, f"{ma.layer_tag(ma.FULL)}_ramp.h5")
         run([ASTROJAX, "thresholds", full, "--csv", data("adequacy_full.csv")])
         with open(data("adequacy_full.csv"), newline="") as f:
             rise = [r for r in csv.DictReader(f) if r["threshold"] == "omega_rise"][0]
         self.assertTrue(rise["mid_rad_s"], "the tiny ramp must cross ω_rise, or this comparison proves nothing")
         mid = float(rise["mid_rad_s"])
-        self.assertIn(f"ramp {mid / np.pi:.2f}π ({100 * float(rise['relative_difference']):+.1f} %)", rows["ω_rise"][-2])  # the full model's column
-        # No ramp of 14π reaches ω2, and no tiny hold gives a lagging orbit: said, not hidden.
+        self.assertIn(f"ramp {mid / np.pi:.2f}π ({100 * float(rise['relative_difference']):+.1f} %)", rows["ω_rise"][-3])  # the full model's column
+        # No ramp of 14π and no staircase to 5.4π reaches ω2: said, not hidden.
         self.assertEqual(rows["ω2"][-1], "**not reproduced**")
-        self.assertEqual(rows["lagging-circular"][-1], "**not reproduced**")
         self.assertIn("top stop (top_stop = false)", rows)
+        # The staircase's held ω1 and ω_fall are astrojax thresholds' on the clutch set's own file,
+        # and the lagging orbit, which no tiny hold gives, comes from the staircase alone.
+        clutch = os.path.join(work, f"{ma.layer_tag(ma.CLUTCH)}_staircase.h5")
+        run([ASTROJAX, "thresholds", clutch, "--csv", data("adequacy_clutch.csv")])
+        with open(data("adequacy_clutch.csv"), newline="") as f:
+            held = {r["threshold"]: r for r in csv.DictReader(f)}
+        for name, symbol in (("omega_1", "ω1"), ("omega_fall", "ω_fall")):
+            self.assertTrue(held[name]["mid_rad_s"], f"the tiny staircase must cross {name}, or this proves nothing")
+            mid, rel = float(held[name]["mid_rad_s"]), float(held[name]["relative_difference"])
+            self.assertIn(f"held {mid / np.pi:.2f}π ({100 * rel:+.1f} %)", rows[symbol][-2])  # the clutch's column
+        self.assertTrue(rows["lagging-circular"][-2].startswith("**yes**: staircase up"), rows["lagging-circular"])
+        self.assertEqual(rows["lagging-circular"][-1], "full + tie clutch (staircase)")
+        self.assertEqual(rows["ω2"][-2].split(": ", 1)[1], "ramp: not reached; held: not reached")
+        # Omitting the clutch on the staircase: the lag's levels change class.
+        self.assertIn("the tie clutch (tie = rigid)", rows)
+        self.assertIn("lagging-circular→", rows["the tie clutch (tie = rigid)"][3])
 
     def test_bad_input(self):
         rc, out = script("model_adequacy.py", "-o", data("x.md"), "--ramp", data("missing.toml"), check=False)
