@@ -73,7 +73,9 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
   };
   const auto top_at = [&](double t, const Vec& y) { return top_for(contact, t, y); };
   if (opt_.guard_step_bound)
-    integ.h_bound = [&](double t, const Vec& y) { return guard_step_bound(p, top_at(t, y), y); };
+    integ.h_bound = [&, k = integ.event_samples](double t, const Vec& y) {
+      return guard_step_bound(p, top_at(t, y), y, k);
+    };
   // The angle from the integrator's axes to the lab's: φ(t), or 0 in the lab.
   const auto axes_angle = [&](double t) {
     if (!rotating) return 0.0;
