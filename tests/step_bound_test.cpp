@@ -103,6 +103,11 @@ TEST(StepBound, TheDefaultIsAutoAndANumberOverridesIt) {
   const config::RunConfig fixed = config::parse_run_config(scene("0.2"), "fixed");
   EXPECT_FALSE(fixed.run.guard_step_bound);
   EXPECT_EQ(fixed.run.integ.h_max, 0.2);
+  // Guard samples inside the step: three with "auto" (h <= 4/Ω), none with a fixed bound unless
+  // asked for (each step would take them all).
+  EXPECT_EQ(config::parse_run_config(scene("\"auto\""), "auto").run.integ.event_samples, 3);
+  EXPECT_EQ(fixed.run.integ.event_samples, 0);
+  EXPECT_EQ(config::parse_run_config(scene("0.2", 2), "fixed2").run.integ.event_samples, 2);
   EXPECT_THROW(config::parse_run_config(scene("\"fast\""), "bad"), config::ConfigError);
 }
 

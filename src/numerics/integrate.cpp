@@ -297,6 +297,7 @@ IntegrateResult integrate(const System& f, Stepper& stepper, double t0, Vec& y, 
         return res;
       }
       const double hs = t1 - t;
+      if (opt.h_bound && samples_max > 0 && m > 0) hb_start = opt.h_bound(t, y);  // for the samples only
       stepper.attempt(f, t, y, hs, y_new, opt.tol);
       if (!y_new.allFinite()) {
         res.status = IntegrateStatus::NonFinite;  // y, res.t: the last good state

@@ -61,8 +61,9 @@ struct IntegrateOptions {
   // where the events' g are evaluated on the dense output, so that a crossing that goes and
   // comes back between the step's ends is still seen if a sample falls past it. With h_bound,
   // a step uses the fewest samples that keep them at most h_bound(t, y) / (event_samples + 1)
-  // apart (h_bound at the step's start state): a step the error control keeps that short pays
-  // for none. Without h_bound, every step uses all of them. 0: the step ends alone.
+  // apart (h_bound at the step's start state; also for fixed-step methods, whose steps it does
+  // not bound): a step that is already that short pays for none. Without h_bound, every step
+  // uses all of them. 0: the step ends alone.
   int event_samples = 0;
 };
 
