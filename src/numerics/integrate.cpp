@@ -162,7 +162,7 @@ IntegrateResult integrate(const System& f, Stepper& stepper, double t0, Vec& y, 
   // and its interior samples, IntegrateOptions::event_samples) cancel and are not seen.
   const std::size_t m = events.size();
   // g values: on the stack for up to kSmall events (the usual case), else on the heap, once.
-  // g0, g1: the step's ends; ga, gs: the last nonzero sample of each event and the current one.
+  // g0, g1: the step's ends; (ta_s, ga_s): each event's last sample with g != 0; gs: the current one.
   constexpr std::size_t kSmall = 16;
   std::array<double, 5 * kSmall> g_small;
   std::vector<double> g_heap(m > kSmall ? 5 * m : 0);
@@ -190,8 +190,8 @@ IntegrateResult integrate(const System& f, Stepper& stepper, double t0, Vec& y, 
       // Interior samples: |hs| (k + 1) / hb_start spacings of the bound's, less the step end.
       int n = samples_max;
       if (n > 0 && std::isfinite(hb_start) && hb_start > 0.0)
-        n = std::clamp(static_cast<int>(std::ceil(std::abs(hs) * (samples_max + 1) / hb_start)) - 1, 0,
-                       samples_max);
+        n = static_cast<int>(
+            std::clamp(std::ceil(std::abs(hs) * (samples_max + 1) / hb_start) - 1.0, 0.0, double(samples_max)));
       for (std::size_t i = 0; i < m; ++i) g1[i] = events[i].g(t1, y_new);
       // Each event's bracket starts at (ta_s, ga_s): the step start, or the probe past a zero
       // start (NaN: the event cannot fire in this step).
