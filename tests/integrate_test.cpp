@@ -423,6 +423,88 @@ TEST(IntegrateEvents, TimeEventIsExact) {
 
 // ---------------------------------------------------------------- post-step hook and reset
 
+// Guard samples inside a step (IntegrateOptions::event_samples). y = (t, t²) is integrated
+// exactly by every method and its dense output (polynomials of degree <= 2), so the error control
+// lets one step span [0, 1]. g = 0.01 − (y0 − 0.5)² is negative at both step ends and positive on
+// (0.4, 0.6): an excursion strictly inside the step, seen only if a sample falls in (0.4, 0.6).
+// k equally spaced interior samples sit at j / (k + 1): k = 2 puts them at 1/3 and 2/3 (both
+// outside), k = 5 puts one at 1/2.
+namespace excursion {
+const System f = [](double t, const Vec&, Vec& d) {
+  d[0] = 1.0;
+  d[1] = 2.0 * t;
+};
+double g(double, const Vec& v) { return 0.01 - (v[0] - 0.5) * (v[0] - 0.5); }
+IntegrateOptions one_step(int samples) {
+  IntegrateOptions o;
+  o.tol = {1e-6, 1e-6};
+  o.h_init = 1.0;
+  o.h_fixed = 1.0;
+  o.h_max = 1.0;
+  o.event_samples = samples;
+  return o;
+}
+}  // namespace excursion
+
+TEST(IntegrateEvents, InteriorSamplesSeeAnExcursionInsideOneStep) {
+  for (const char* m : {"rk4", "dopri5", "dop853"}) {
+    for (int dirn : {0, +1, -1}) {
+      const Event ev[] = {{excursion::g, dirn}};
+      for (int k : {0, 2}) {
+        auto s = make_stepper(m);
+        Vec y = Vec::Zero(2);
+        const auto r = run(excursion::f, *s, 0.0, y, 1.0, excursion::one_step(k), ev);
+        EXPECT_EQ(r.status, IntegrateStatus::Reached) << m << " k = " << k << ": no sample in (0.4, 0.6)";
+        EXPECT_EQ(r.steps, 1) << m;
+      }
+      auto s = make_stepper(m);
+      Vec y = Vec::Zero(2);
+      const auto r = run(excursion::f, *s, 0.0, y, 1.0, excursion::one_step(5), ev);
+      ASSERT_EQ(r.status, IntegrateStatus::Event) << m << " direction " << dirn;
+      // Rising at 0.4 (direction 0 or +1: the first crossing); falling at 0.6 (direction -1).
+      const double root = dirn < 0 ? 0.6 : 0.4;
+      EXPECT_NEAR(r.t, root, 2 * excursion::one_step(5).event_tol) << m;
+      // The far side of the crossing: g has changed sign (or is 0) at the returned state.
+      const double g_end = excursion::g(r.t, y);
+      EXPECT_TRUE(dirn < 0 ? g_end <= 0.0 : g_end >= 0.0) << m << " g = " << g_end;
+      EXPECT_NEAR(y[0], r.t, 1e-14) << m;  // the state is the dense output there
+      EXPECT_EQ(r.steps, 1) << m;
+    }
+  }
+}
+
+// With h_bound, a step uses the fewest samples that keep them h_bound / (k + 1) apart: a bound of
+// 6 s with k = 5 asks for samples 1 s apart, which the step of 1 s already satisfies (none
+// taken, the excursion stays hidden); a bound of 1 s asks for all five.
+TEST(IntegrateEvents, InteriorSamplesFollowTheStepBound) {
+  const Event ev[] = {{excursion::g, 0}};
+  for (double bound : {6.0, 1.0}) {
+    auto s = make_stepper("dop853");
+    Vec y = Vec::Zero(2);
+    IntegrateOptions o = excursion::one_step(5);
+    o.h_bound = [bound](double, const Vec&) { return bound; };
+    const auto r = run(excursion::f, *s, 0.0, y, 1.0, o, ev);
+    EXPECT_EQ(r.status, bound > 1.0 ? IntegrateStatus::Reached : IntegrateStatus::Event) << bound;
+    if (bound == 1.0) {
+      EXPECT_NEAR(r.t, 0.4, 2 * o.event_tol);
+    }
+  }
+}
+
+// Of two events, the one crossing in the earlier sub-interval ends the step, even if the other
+// would have crossed between the step's ends only (the old rule would have found just that one).
+TEST(IntegrateEvents, InteriorSamplesFindTheEarliestCrossing) {
+  const Event ev[] = {{[](double, const Vec& v) { return v[0] - 0.9; }, 0}, {excursion::g, 0}};
+  for (int k : {0, 5}) {
+    auto s = make_stepper("dop853");
+    Vec y = Vec::Zero(2);
+    const auto r = run(excursion::f, *s, 0.0, y, 1.0, excursion::one_step(k), ev);
+    ASSERT_EQ(r.status, IntegrateStatus::Event);
+    EXPECT_EQ(r.event_index, k == 0 ? 0 : 1) << k;
+    EXPECT_NEAR(r.t, k == 0 ? 0.9 : 0.4, 2e-13) << k;
+  }
+}
+
 // A unit vector rotating at angular speed w: y' = w (-y2, y1). The projection y <- y/|y|
 // after every step keeps |y| = 1 to round-off, every step starts from the projected state
 // (seen through the observer at the step start), and the phase stays accurate.
@@ -615,6 +697,7 @@ TEST(IntegratePerformance, NoHeapAllocationInIntegrate) {
     auto s = make_stepper(m);
     Vec y = kp.exact(0.0);
     IntegrateOptions o = tight(1e-10);
+    o.event_samples = 3;  // interior guard samples use the same stack storage
     g_heap_allocs = 0;
     g_count_allocs = true;
     const auto r = integrate(f, *s, 0.0, y, 10.0, ev, obs, post, o);

@@ -31,7 +31,7 @@ constexpr double kVz = 0.981;                        // upward speed [m/s]: back
 // for about half a turn, and falls back below 0 near t = 0.15 s; at t = 0.2 s the top and the
 // balls (v_z chosen so) are back where they started. Equal masses and velocities keep r2 − r1,
 // hence L2, constant.
-std::string scene(const std::string& max_step) {
+std::string scene(const std::string& max_step, int event_samples = -1) {
   const double l = 0.826;
   const double x1 = kR + kL1, x2 = x1 + (l - kR - kL1);
   return fmt::format(R"(
@@ -45,6 +45,7 @@ rtol = 1e-9
 atol = 1e-12
 axes = "lab"
 max_step = {max_step}
+{samples}
 [initial]
 preset = "explicit"
 r1 = [{x1:.17g}, 0.0, 0.0]
@@ -57,7 +58,8 @@ kind = "hold"
 omega = {w:.17g}
 duration = 1.0
 )",
-                     fmt::arg("l", l), fmt::arg("R", kR), fmt::arg("max_step", max_step), fmt::arg("x1", x1),
+                     fmt::arg("l", l), fmt::arg("R", kR), fmt::arg("max_step", max_step),
+                     fmt::arg("samples", event_samples < 0 ? std::string() : fmt::format("event_samples = {}", event_samples)), fmt::arg("x1", x1),
                      fmt::arg("x2", x2), fmt::arg("vz", kVz), fmt::arg("w", kOmega));
 }
 
@@ -82,7 +84,7 @@ double first_taut_exact(const config::RunConfig& c) {
 }
 
 // The first sample (every 1e-4 s over 0.2 s, a whole turn) with the string taut, if any.
-std::optional<double> first_taut_sample(const config::RunConfig& c) {
+std::optional<double> first_taut_sample(const config::RunConfig& c, long* steps = nullptr) {
   const physics::MotorSchedule schedule(c.schedule);
   physics::State s = sim::explicit_state(c.model, schedule, c.initial.r1, c.initial.r2, c.initial.v1, c.initial.v2,
                                          c.initial.mode);
@@ -92,6 +94,7 @@ std::optional<double> first_taut_sample(const config::RunConfig& c) {
     if (!first && x.contact.mode != physics::Mode::Slack) first = x.t;
   });
   EXPECT_TRUE(sum.ok()) << sum.failure;
+  if (steps) *steps = sum.steps;
   return first;
 }
 
@@ -100,6 +103,11 @@ TEST(StepBound, TheDefaultIsAutoAndANumberOverridesIt) {
   const config::RunConfig fixed = config::parse_run_config(scene("0.2"), "fixed");
   EXPECT_FALSE(fixed.run.guard_step_bound);
   EXPECT_EQ(fixed.run.integ.h_max, 0.2);
+  // Guard samples inside the step: three with "auto" (h <= 4/Ω), none with a fixed bound unless
+  // asked for (each step would take them all).
+  EXPECT_EQ(config::parse_run_config(scene("\"auto\""), "auto").run.integ.event_samples, 3);
+  EXPECT_EQ(fixed.run.integ.event_samples, 0);
+  EXPECT_EQ(config::parse_run_config(scene("0.2", 2), "fixed2").run.integ.event_samples, 2);
   EXPECT_THROW(config::parse_run_config(scene("\"fast\""), "bad"), config::ConfigError);
 }
 
@@ -137,6 +145,44 @@ TEST(StepBound, AutoSeesTheStringPullTautWhereALargeFixedBoundMissesIt) {
   const std::optional<double> missed = first_taut_sample(with_fixed);
   EXPECT_FALSE(missed.has_value() && *missed <= t_exact + 1e-4 + 1e-7)
       << "max_step = 0.2 s saw the pull at " << *missed << " s: the scene no longer tests a hidden crossing";
+}
+
+// Guard samples inside the step ([integrator] event_samples = k): the guarantee holds for the
+// samples 1/ω_m apart, so the bound is (k + 1)/ω_m. With k = 3 (h ≤ 0.127 s, longer than 1/ω_m =
+// 0.032 s) the pull is found within the same tolerances as with k = 0, in fewer steps; and with
+// the large fixed bound 0.2 s, which alone hides the pull, three samples per step (0.05 s apart)
+// see it too.
+TEST(StepBound, InteriorSamplesSeeThePullWithStepsLongerThanTheRate) {
+  const config::RunConfig c0 = config::parse_run_config(scene("\"auto\"", 0), "k0");
+  const config::RunConfig c3 = config::parse_run_config(scene("\"auto\"", 3), "k3");
+  EXPECT_EQ(c3.run.integ.event_samples, 3);
+  const physics::MotorSchedule schedule(c3.schedule);
+  const physics::State s = sim::explicit_state(c3.model, schedule, c3.initial.r1, c3.initial.r2, c3.initial.v1,
+                                               c3.initial.v2, c3.initial.mode);
+  EXPECT_DOUBLE_EQ(sim::guard_step_bound(c3.model.p, schedule.top(kR, 0.0), s.y, 3), 4.0 / kOmega);
+  const double t_exact = first_taut_exact(c3);
+  long steps0 = 0, steps3 = 0;
+  const std::optional<double> seen0 = first_taut_sample(c0, &steps0);
+  const std::optional<double> seen3 = first_taut_sample(c3, &steps3);
+  ASSERT_TRUE(seen0.has_value());
+  ASSERT_TRUE(seen3.has_value()) << "the string never pulled taut with event_samples = 3";
+  EXPECT_GE(*seen3, t_exact - 1e-7);
+  EXPECT_LE(*seen3, t_exact + 1e-4 + 1e-7);
+  EXPECT_LT(steps3, steps0) << "the longer bound saved no step";
+
+  const config::RunConfig fixed3 = config::parse_run_config(scene("0.2", 3), "fixed3");
+  const std::optional<double> seen_fixed = first_taut_sample(fixed3);
+  ASSERT_TRUE(seen_fixed.has_value()) << "max_step = 0.2 s with 3 interior samples missed the pull";
+  EXPECT_GE(*seen_fixed, t_exact - 1e-7);
+  EXPECT_LE(*seen_fixed, t_exact + 1e-4 + 1e-7);
+}
+
+TEST(StepBound, EventSamplesIsAWholeNumberInRange) {
+  EXPECT_THROW(config::parse_run_config(scene("\"auto\"", 17), "bad"), config::ConfigError);
+  std::string half = scene("\"auto\"", 1);
+  half.replace(half.find("event_samples = 1"), 17, "event_samples = 1.5");
+  EXPECT_THROW(config::parse_run_config(half, "bad"), config::ConfigError);
+  EXPECT_EQ(config::parse_run_config(scene("\"auto\"", 16), "ok").run.integ.event_samples, 16);
 }
 
 }  // namespace

@@ -265,6 +265,15 @@ void parse_common(const toml::table& root, std::string_view file, CommonConfig& 
     } else {
       c.run.integ.h_max = r.number("max_step", 0.05, 0.0, 10.0, true);
     }
+    // event_samples: guard samples inside each step on the dense output; with "auto" the bound
+    // becomes h <= (event_samples + 1)/Ω (sim/step_bound.hpp; measured: README "Guard samples
+    // inside the step"). With a fixed max_step none by default (each step would take them all).
+    {
+      const double k =
+          r.number("event_samples", c.run.guard_step_bound ? c.run.integ.event_samples : 0, 0.0, 16.0);
+      if (k != std::floor(k)) r.fail("event_samples", fmt::format("{} is not a whole number; allowed 0, 1, ..., 16", k));
+      c.run.integ.event_samples = int(k);
+    }
     // The integrator's axes (physics/rotating_axes.hpp): measured, README "Accuracy and speed".
     const std::string axes = r.word("axes", "rotating", {"rotating", "lab", "auto"});
     c.run.axes = axes == "lab" ? sim::Axes::Lab : axes == "auto" ? sim::Axes::Auto : sim::Axes::Rotating;

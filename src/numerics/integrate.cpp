@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -157,17 +158,26 @@ IntegrateResult integrate(const System& f, Stepper& stepper, double t0, Vec& y, 
   // dense output at ta = t + dir * delta (delta = max(event_tol, 1e-6 |h|), at most |h|/2);
   // only a sign change between ta and the step end counts. If g is still exactly 0 at ta the
   // event cannot fire in this step. A step end where g = 0 exactly after a nonzero start is
-  // a root (at the step end). Two crossings inside one step cancel and are not seen.
+  // a root (at the step end). Two crossings between consecutive guard samples (the step's ends
+  // and its interior samples, IntegrateOptions::event_samples) cancel and are not seen.
   const std::size_t m = events.size();
   // g values: on the stack for up to kSmall events (the usual case), else on the heap, once.
+  // g0, g1: the step's ends; (ta_s, ga_s): each event's last sample with g != 0; gs: the current one.
   constexpr std::size_t kSmall = 16;
-  std::array<double, 2 * kSmall> g_small;
-  std::vector<double> g_heap(m > kSmall ? 2 * m : 0);
+  std::array<double, 5 * kSmall> g_small;
+  std::vector<double> g_heap(m > kSmall ? 5 * m : 0);
   double* g0 = m > kSmall ? g_heap.data() : g_small.data();
   double* g1 = g0 + m;
+  double* ga_s = g1 + m;
+  double* ta_s = ga_s + m;
+  double* gs = ta_s + m;
   for (std::size_t i = 0; i < m; ++i) g0[i] = events[i].g(t0, y);
 
   double t = t0;
+  const int samples_max = std::max(0, opt.event_samples);
+  // h_bound at the start state of the current step (adaptive methods with a bound): the interior
+  // samples of a step are the fewest that keep them at most h_bound / (event_samples + 1) apart.
+  double hb_start = std::numeric_limits<double>::infinity();
 
   // Events, observer and post-step hook after an accepted step [t, t1] of size hs whose end
   // state is y_new. Returns true when the integration ends here (res filled).
@@ -177,34 +187,63 @@ IntegrateResult integrate(const System& f, Stepper& stepper, double t0, Vec& y, 
         stepper.dense(f, (tq - t) / hs, y_ev);
         return events[i].g(tq, y_ev);
       };
-      int best = -1;
-      double t_best = t1;
+      // Interior samples: |hs| (k + 1) / hb_start spacings of the bound's, less the step end.
+      int n = samples_max;
+      if (n > 0 && std::isfinite(hb_start) && hb_start > 0.0)
+        n = static_cast<int>(
+            std::clamp(std::ceil(std::abs(hs) * (samples_max + 1) / hb_start) - 1.0, 0.0, double(samples_max)));
       for (std::size_t i = 0; i < m; ++i) g1[i] = events[i].g(t1, y_new);
+      // Each event's bracket starts at (ta_s, ga_s): the step start, or the probe past a zero
+      // start (NaN: the event cannot fire in this step).
       for (std::size_t i = 0; i < m; ++i) {
-        double ta = t, ga = g0[i];
-        if (ga == 0.0) {
+        ta_s[i] = t;
+        ga_s[i] = g0[i];
+        if (g0[i] == 0.0) {
           const double delta =
               std::min(0.5 * std::abs(hs), std::max(opt.event_tol, 1e-6 * std::abs(hs)));
-          ta = t + dir * delta;
-          ga = g_at(i, ta);
-          if (ga == 0.0) continue;
+          ta_s[i] = t + dir * delta;
+          ga_s[i] = g_at(i, ta_s[i]);
+          if (ga_s[i] == 0.0) ga_s[i] = std::numeric_limits<double>::quiet_NaN();
         }
-        if (!crosses(ga, g1[i], events[i].direction)) continue;
-        double tb = t1, gb = g1[i];
-        if (best >= 0) {
-          // An earlier root is known: this event matters only if it crosses before t_best.
-          if (dir * (t_best - ta) <= 0.0) continue;
-          const double gbest = g_at(i, t_best);
-          if (!crosses(ga, gbest, events[i].direction)) continue;
-          tb = t_best;
-          gb = gbest;
+      }
+      int best = -1;
+      double t_best = t1;
+      // Sub-intervals between consecutive samples, in time order; the first one in which any
+      // event crosses holds the earliest root seen at this sampling.
+      for (int j = 1; j <= n + 1 && best < 0; ++j) {
+        const double ts = j == n + 1 ? t1 : t + hs * (static_cast<double>(j) / (n + 1));
+        if (j == n + 1) {
+          std::copy(g1, g1 + m, gs);
+        } else {
+          stepper.dense(f, (ts - t) / hs, y_ev);
+          for (std::size_t i = 0; i < m; ++i) gs[i] = events[i].g(ts, y_ev);
         }
-        const double root =
-            locate_root([&](double tq) { return g_at(i, tq); }, ta, ga, tb, gb, opt.event_tol);
-        if (best < 0 || dir * (root - t_best) < 0.0) {
-          best = static_cast<int>(i);
-          t_best = root;
+        for (std::size_t i = 0; i < m; ++i) {
+          const double ta = ta_s[i], ga = ga_s[i];
+          if (std::isnan(ga) || dir * (ts - ta) <= 0.0) continue;  // no sign, or before the probe
+          if (!crosses(ga, gs[i], events[i].direction)) continue;
+          double tb = ts, gb = gs[i];
+          if (best >= 0) {
+            // An earlier root is known: this event matters only if it crosses before t_best.
+            if (dir * (t_best - ta) <= 0.0) continue;
+            const double gbest = g_at(i, t_best);
+            if (!crosses(ga, gbest, events[i].direction)) continue;
+            tb = t_best;
+            gb = gbest;
+          }
+          const double root =
+              locate_root([&](double tq) { return g_at(i, tq); }, ta, ga, tb, gb, opt.event_tol);
+          if (best < 0 || dir * (root - t_best) < 0.0) {
+            best = static_cast<int>(i);
+            t_best = root;
+          }
         }
+        // The next bracket starts at this sample, unless g is exactly 0 there (its sign is kept).
+        for (std::size_t i = 0; i < m; ++i)
+          if (!std::isnan(ga_s[i]) && dir * (ts - ta_s[i]) > 0.0 && gs[i] != 0.0) {
+            ta_s[i] = ts;
+            ga_s[i] = gs[i];
+          }
       }
       if (best >= 0) {
         if (t_best == t1) {
@@ -258,6 +297,7 @@ IntegrateResult integrate(const System& f, Stepper& stepper, double t0, Vec& y, 
         return res;
       }
       const double hs = t1 - t;
+      if (opt.h_bound && samples_max > 0 && m > 0) hb_start = opt.h_bound(t, y);  // for the samples only
       stepper.attempt(f, t, y, hs, y_new, opt.tol);
       if (!y_new.allFinite()) {
         res.status = IntegrateStatus::NonFinite;  // y, res.t: the last good state
@@ -277,7 +317,10 @@ IntegrateResult integrate(const System& f, Stepper& stepper, double t0, Vec& y, 
   const double alpha = 1.0 / stepper.order() - 0.75 * kBeta;
   double h = opt.h_init > 0.0 ? opt.h_init : initial_step(f, stepper, t0, y, dir, opt);
   h = std::min(h, opt.h_max);
-  if (opt.h_bound) h = std::min(h, opt.h_bound(t0, y));
+  if (opt.h_bound) {
+    hb_start = opt.h_bound(t0, y);
+    h = std::min(h, hb_start);
+  }
   double err_old = kErrOldMin;
   bool rejected_last = false;
   bool nonfinite_last = false;
@@ -323,9 +366,11 @@ IntegrateResult integrate(const System& f, Stepper& stepper, double t0, Vec& y, 
       double h_next = std::abs(hs) * fac;
       if (last && std::abs(hs) < h) h_next = std::max(h_next, h);  // cut short only by t_end
       h_next = std::min(h_next, opt.h_max);
-      if (opt.h_bound) h_next = std::min(h_next, opt.h_bound(t1, y_new));
+      const double hb_end = opt.h_bound ? opt.h_bound(t1, y_new) : hb_start;
+      h_next = std::min(h_next, hb_end);
       res.h_next = h_next;
       if (after_step(t1, hs)) return res;
+      hb_start = hb_end;
       t = t1;
       h = h_next;
       if (last) {

@@ -57,6 +57,14 @@ struct IntegrateOptions {
   // Adaptive methods: a further bound on the next step from the accepted state (t, y), e.g. the
   // time scale of the events' guards (sim/step_bound.hpp); absent: h_max alone.
   std::function<double(double t, const Vec& y)> h_bound;
+  // Guard samples inside each accepted step: up to this many equally spaced interior points
+  // where the events' g are evaluated on the dense output, so that a crossing that goes and
+  // comes back between the step's ends is still seen if a sample falls past it. With h_bound,
+  // a step uses the fewest samples that keep them at most h_bound(t, y) / (event_samples + 1)
+  // apart (h_bound at the step's start state; also for fixed-step methods, whose steps it does
+  // not bound): a step that is already that short pays for none. Without h_bound, every step
+  // uses all of them. 0: the step ends alone.
+  int event_samples = 0;
 };
 
 enum class IntegrateStatus { Reached, Event, StepUnderflow, NonFinite, MaxSteps, Stopped };
@@ -80,7 +88,8 @@ using PostStep = std::function<bool(double t, Vec& y)>;
 // Integrate dy/dt = f(t, y) from (t0, y) towards t_end. On return y holds the state at
 // result.t. If an event fires inside a step, the step is cut at the located root (to
 // event_tol) and y is the interpolated state there; events are checked only after an
-// accepted step, against the sign of g at the step's start. Every call starts with
+// accepted step, against the sign of g at the step's start, at the step's end and at its
+// interior samples (event_samples), the first sign change in time order being located. Every call starts with
 // stepper.reset() (f may differ from the previous call's: no stage is carried over); pass
 // h_init = result.h_next to continue without a cold-start step-size search.
 IntegrateResult integrate(const System& f, Stepper& stepper, double t0, Vec& y, double t_end,

@@ -25,8 +25,9 @@ double guard_rate(const physics::Parameters& p, const physics::TopKinematics& to
   return std::max(rel, swing);
 }
 
-double guard_step_bound(const physics::Parameters& p, const physics::TopKinematics& top, const numerics::Vec& y) {
-  return kRadiansPerStep / guard_rate(p, top, y);
+double guard_step_bound(const physics::Parameters& p, const physics::TopKinematics& top, const numerics::Vec& y,
+                        int event_samples) {
+  return (event_samples + 1) * kRadiansPerStep / guard_rate(p, top, y);
 }
 
 bool corotates(const physics::TopKinematics& top, const numerics::Vec& y) {

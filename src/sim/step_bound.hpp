@@ -4,6 +4,8 @@
 // oscillating at rate Ω with amplitude A stays past a level A − δ for 2 arccos(1 − δ/A)/Ω; with
 // steps h ≤ c/Ω every excursion deeper than δ = A (1 − cos(c/2)) outlasts a step and contains
 // a step end. c = 1: any excursion deeper than 12 % of the guard's amplitude is seen.
+// With k guard samples inside each step (numerics::IntegrateOptions::event_samples, on the dense
+// output) the same holds for the samples 1/Ω apart, and the step may be (k + 1)/Ω.
 #pragma once
 #include "numerics/vector.hpp"
 #include "physics/drive.hpp"
@@ -30,8 +32,10 @@ inline constexpr double kRadiansPerStep = 1.0;
 // time scales": weighting would hide the string's pull in tests/step_bound_test.cpp).
 double guard_rate(const physics::Parameters& p, const physics::TopKinematics& top, const numerics::Vec& y);
 
-// h ≤ kRadiansPerStep / Ω [s].
-double guard_step_bound(const physics::Parameters& p, const physics::TopKinematics& top, const numerics::Vec& y);
+// h ≤ (event_samples + 1) kRadiansPerStep / Ω [s]: guard samples (the step's ends and its
+// event_samples interior points) at most kRadiansPerStep / Ω apart.
+double guard_step_bound(const physics::Parameters& p, const physics::TopKinematics& top, const numerics::Vec& y,
+                        int event_samples = 0);
 
 // The rule of axes = "auto": the balls co-rotate with the motor when their horizontal speeds are
 // smaller in the axes turning at ω (|v_h − ω ẑ×r|) than in the lab (|v_h|), summed over both
