@@ -538,7 +538,13 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
             const double margin = stick_margin(s.t, s.y);
             if (margin > 0.0) enter_violation(Guard::WatchStick, s.t, margin);
           }
-          enter(physics::at_rest(model_, top, s.y, band), 0.0);
+          {
+            // The cone is judged on the held bead's forces at the top the held bead would give:
+            // with a slipping tie, ä (through χ̈) depends on the bead's mode.
+            Contact held{Mode::Stuck, 0, (s.y.segment<3>(physics::idx::r1) - top.a).norm()};
+            held.tie = contact.tie;
+            enter(physics::at_rest(model_, top_for(held, s.t, s.y), s.y, band), 0.0);
+          }
           break;
         case Guard::SlipUp:
           enter({Mode::Sliding, -1, 0.0}, 0.0);
