@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Compare work-precision runs of the same methods under different settings.
 
 Each argument is LABEL=CSV (a CSV of `astrojax bench work-precision`). For every scene and
@@ -10,19 +10,10 @@ plot_work_precision.py).
       [--rtols 1e-3,1e-6,1e-9] [--errors 1e-3,1e-6,1e-9]
 """
 import argparse
-import csv
 import math
 
-
-def read(path):
-    with open(path, newline="") as f:
-        return list(csv.DictReader(l for l in f if not l.startswith("#")))
-
-
-def cheapest(rows, target):
-    ok = [float(r["cpu_median_s"]) for r in rows if r["status"] == "ok"
-          and r.get("same_final_mode", "1") == "1" and float(r["err_position_m"]) <= target]
-    return min(ok) if ok else math.nan
+# The CSV reader and the "cheapest run within an error" rule of the work-precision table.
+from plot_work_precision import cheapest, read
 
 
 def main():
@@ -36,7 +27,7 @@ def main():
         label, _, path = spec.partition("=")
         if not path:
             ap.error(f"'{spec}': expected LABEL=CSV")
-        runs.append((label, read(path)))
+        runs.append((label, read([path])))
     rtols = [float(x) for x in a.rtols.split(",")]
     errors = [float(x) for x in a.errors.split(",")]
     keys = list(dict.fromkeys((r["scene"], r["method"]) for _, rows in runs for r in rows))
@@ -50,7 +41,7 @@ def main():
             for t in rtols:
                 m = [r for r in rs if r["param_kind"] == "rtol" and math.isclose(float(r["param"]), t)]
                 work.append(f"{m[0]['steps']}/{m[0]['rhs_evals']}" if m else "—")
-            cpu = [cheapest(rs, e) for e in errors]
+            cpu = [cheapest(rs, method, e, "err_position_m") for e in errors]
             print(f"  {label:10s} steps/evals at rtol {'/'.join(f'{t:.0e}' for t in rtols)}: {' / '.join(work)};"
                   f"  CPU [ms] within {'/'.join(f'{e:.0e}' for e in errors)} m: "
                   + " / ".join("—" if math.isnan(c) else f"{c * 1e3:.2f}" for c in cpu))
