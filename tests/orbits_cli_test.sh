@@ -22,6 +22,19 @@ bad unknown_parameter "colour" "drive_radius" --continue colour
 bad unknown_key "orbits.colour" "unknown key" --set orbits.colour=1
 bad s_off_string "orbits.s[0]" "the stops" --set orbits.s=0.9
 bad bad_range "orbits.range" "lo < hi" --set "orbits.range=[2.0,1.0]"
+bad lag_rigid_tie "layers.tie" "clutch" --lag --s 0.4589
+bad lag_without_s "--lag" "--s" --lag --set layers.tie=clutch --set model.tie_static_torque=1e-3 \
+  --set model.tie_kinetic_torque=9e-4
+
+# --lag: the one set's lagging orbit at s = 0.4589 m, its Hopf point and the CSV.
+"$bin" orbits "$cfg" --lag --s 0.4589 --omega 10pi --set layers.tie=clutch --set model.drive_radius=0.015 \
+  --set model.contact_distance=0.035 --set model.tie_kinetic_torque=1.35e-3 --set model.tie_static_torque=1.5e-3 \
+  --set model.tie_damping=2e-6 --csv "$work/lag.csv" >"$work/lag.out" 2>&1
+rc=$?
+check "lag: exit 0 (got $rc)" "[ $rc -eq 0 ]"
+check "lag: the held, stable lag at 4.243π" "grep -q '^  +/-  *4.243[0-9]*π.*held stable' '$work/lag.out'"
+check "lag: its Hopf point" "grep -q 'loss (hopf) +/-  *4.308[0-9]*π' '$work/lag.out'"
+check "lag: CSV with header and the Hopf row" "head -1 '$work/lag.csv' | grep -q '^s,kind,side,omega_ball,torque' && grep -q ',loss (hopf),' '$work/lag.csv'"
 
 "$bin" orbits "$cfg" --omega 4.7pi --s-points 21 --continue omega --s 0.5443 --range 14 16 \
   --csv "$work/o.csv" --branches-csv "$work/b.csv" --events-csv "$work/e.csv" -o "$work/o.h5" >"$work/good.out" 2>&1

@@ -63,6 +63,7 @@ struct OrbitsArgs {
   bool thresholds = false;             // predict ω_rise, ω_fall, ω1 from the branches
   int threshold_s_points = 21;
   std::string compare;                 // a sweep's HDF5: its brackets next to the predictions
+  bool lag = false;                    // the lagging orbits of the slipping tie instead (orbits/lagging_orbit.hpp)
   std::string csv, branches_csv, events_csv, output;
   std::string command_line;
 };

@@ -91,6 +91,9 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(2, 1000));
   orbits_cmd->add_option("--compare", orbits.compare,
                          "Predict the thresholds and show the brackets of this sweep's chains that have the same model");
+  orbits_cmd->add_flag("--lag", orbits.lag,
+                       "The lagging orbits of the slipping tie (layers.tie = clutch) with the bead stuck at each --s: "
+                       "at each --omega, and their Hopf point and cone limits along the branch (over --range in ω_ball)");
   orbits_cmd->add_option("--csv", orbits.csv, "Write every orbit found as CSV");
   orbits_cmd->add_option("--branches-csv", orbits.branches_csv, "Write the continuation's points as CSV");
   orbits_cmd->add_option("--events-csv", orbits.events_csv, "Write the continuation's events as CSV");

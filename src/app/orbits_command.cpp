@@ -20,6 +20,7 @@
 #include "config/config.hpp"
 #include "io/hdf5_file.hpp"
 #include "orbits/continuation.hpp"
+#include "orbits/lagging_orbit.hpp"
 #include "orbits/orbit_families.hpp"
 #include "orbits/orbit_stability.hpp"
 #include "orbits/predicted_thresholds.hpp"
@@ -219,6 +220,105 @@ SweepBrackets sweep_brackets(const std::string& path, const physics::Model& m) {
   return out;
 }
 
+
+// --lag: the lagging orbits of the slipping tie (orbits/lagging_orbit.hpp) with the bead stuck
+// at each s: those at each ω_m, then each held one's branch continued in ω_ball with its events.
+std::string_view to_string(LagEventKind k) {
+  switch (k) {
+    case LagEventKind::StabilityLoss: return "loss";
+    case LagEventKind::StabilityGain: return "gain";
+    case LagEventKind::ConeExit: return "cone_exit";
+    case LagEventKind::ConeEntry: return "cone_entry";
+  }
+  return "?";
+}
+
+int lag_report(const config::OrbitsConfig& cfg, const std::vector<double>& omegas, const OrbitsArgs& args) {
+  const physics::Model& m = cfg.model;
+  const physics::Parameters& p = m.p;
+  const double lo = args.range.size() == 2 ? args.range[0] : 2.0 * kPi;
+  const double hi = args.range.size() == 2 ? args.range[1] : 7.0 * kPi;
+  std::printf("\nlagging orbits of the slipping tie: tau = tau_k + c_a (omega_m - omega_ball), tau_k %g N m, c_a %g N m s, "
+              "I_a %g kg m^2;\n  positions in the frame turning with the tie at omega_ball, tie at (R, 0, 0); "
+              "stable: all eigenvalues but the symmetry's Re l < 0\n",
+              p.tie_kinetic_torque, p.tie_damping, p.tie_inertia);
+  struct CsvRow {
+    double s;
+    std::string kind;
+    LagOrbit L;
+  };
+  std::vector<CsvRow> rows;
+  const auto line = [](const LagOrbit& L) {
+    const std::string wm = std::isfinite(L.omega_m) ? fmt::format("{:>10.3f}π", L.omega_m / kPi) : fmt::format("{:>11}", "-");
+    return fmt::format("{:<6}{:>10.5f}π{:>12.5e}{}{:>8.4f}{:>9.4f}{:>8.4f}{:>9.4f}{:>9.4f}{:>9.4f}{:>10.4f}{:>8.3f}  {}{}",
+                       L.orbit.branch, L.orbit.omega / kPi, L.torque, wm, L.orbit.rho1, L.orbit.z1,
+                       L.orbit.rho2, L.orbit.z2, L.orbit.margins.up, L.orbit.margins.down, L.st.growth, L.st.frequency,
+                       L.orbit.admissible ? "held" : "slides", L.st.stable ? " stable" : " unstable");
+  };
+  const char* header = "    side  omega_ball    tau [N m]   omega_m    rho1       z1    rho2       z2   up [N] down [N]  Re l[1/s] Im l";
+  for (double s : cfg.orbits.s) {
+    std::printf("\ns = %.4f m\n", s);
+    std::vector<LagOrbit> starts;
+    for (double w : omegas) {
+      std::printf("  at omega_m = %.5fπ:\n%s\n", w / kPi, header);
+      const std::vector<LagOrbit> lags = lag_orbits(m, s, w);
+      if (lags.empty()) std::printf("    none with omega_ball in (%.3fπ, %.3fπ)\n", 0.1 * w / kPi, w / kPi);
+      for (const LagOrbit& L : lags) {
+        std::printf("%s\n", ("  " + line(L)).c_str());
+        rows.push_back({s, "lag", L});
+        const bool new_side = std::none_of(starts.begin(), starts.end(),
+                                           [&](const LagOrbit& q) { return q.orbit.branch == L.orbit.branch; });
+        if (L.orbit.admissible && new_side) starts.push_back(L);
+      }
+    }
+    std::vector<LagBranch> done;
+    for (const LagOrbit& start : starts) {
+      // A start already on a branch continued (the sides meet at folds) adds nothing.
+      const bool on_done = std::any_of(done.begin(), done.end(), [&](const LagBranch& b) {
+        return std::any_of(b.points.begin(), b.points.end(), [&](const LagOrbit& q) {
+          return (q.orbit.p1 - start.orbit.p1).norm() + (q.orbit.p2 - start.orbit.p2).norm() < 0.02 * p.string_length;
+        });
+      });
+      if (on_done) continue;
+      const LagBranch& br = done.emplace_back(lag_branch(m, start.orbit, lo, hi));
+      std::printf("  branch of side %s continued over omega_ball in [%.3fπ, %.3fπ] (%zu points), events as tau grows:\n",
+                  start.orbit.branch.c_str(), lo / kPi, hi / kPi, br.points.size());
+      for (const LagEvent& e : br.events) {
+        const std::string kind = std::string(to_string(e.kind)) + (e.complex_pair ? " (hopf)" : "");
+        std::printf("    %-12s%s\n", kind.c_str(), line(e.at).c_str());
+        rows.push_back({s, kind, e.at});
+      }
+      // The runs of the branch where the lag is both held by friction and stable.
+      std::optional<std::size_t> first;
+      for (std::size_t i = 0; i <= br.points.size(); ++i) {
+        const bool ok = i < br.points.size() && br.points[i].orbit.admissible && br.points[i].st.stable;
+        if (ok && !first) first = i;
+        if (!ok && first) {
+          const LagOrbit &a = br.points[*first], &b = br.points[i - 1];
+          std::printf("    held and stable (branch points): omega_ball %.4fπ .. %.4fπ, tau %.4e .. %.4e N m\n",
+                      a.orbit.omega / kPi, b.orbit.omega / kPi, a.torque, b.torque);
+          first.reset();
+        }
+      }
+    }
+  }
+  if (!args.csv.empty()) {
+    std::ofstream out(args.csv);
+    if (!out) {
+      std::fprintf(stderr, "error: cannot write %s\n", args.csv.c_str());
+      return 1;
+    }
+    out << "s,kind,side,omega_ball,torque,omega_m,rho1,z1,rho2,z2,margin_up,margin_down,admissible,growth,frequency,stable\n";
+    for (const CsvRow& r : rows)
+      out << fmt::format("{:.12g},{},{},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{},{:.12g},"
+                         "{:.12g},{}\n",
+                         r.s, r.kind, r.L.orbit.branch, r.L.orbit.omega, r.L.torque, r.L.omega_m, r.L.orbit.rho1,
+                         r.L.orbit.z1, r.L.orbit.rho2, r.L.orbit.z2, r.L.orbit.margins.up, r.L.orbit.margins.down,
+                         int(r.L.orbit.admissible), r.L.st.growth, r.L.st.frequency, int(r.L.st.stable));
+  }
+  return 0;
+}
+
 }  // namespace
 
 int orbits_command(const OrbitsArgs& args) {
@@ -250,6 +350,13 @@ int orbits_command(const OrbitsArgs& args) {
                                               p.string_length - p.contact_distance));
       cfg.orbits.s.push_back(s);
     }
+    if (args.lag && !cfg.model.layers.tie_clutch)
+      throw config::ConfigError(fmt::format("{}: --lag needs the slipping tie: key 'layers.tie' must be \"clutch\"",
+                                            cfg.source_name));
+    if (args.lag && cfg.orbits.s.empty())
+      throw config::ConfigError("--lag: give the bead's position with --s (repeatable)");
+    if (args.lag && !(p.drive_radius > 0.0))
+      throw config::ConfigError(fmt::format("{}: --lag needs key 'model.drive_radius' > 0", cfg.source_name));
   } catch (const config::ConfigError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return kExitBadInput;
@@ -263,6 +370,8 @@ int orbits_command(const OrbitsArgs& args) {
               std::string(physics::to_string(m.layers.friction_law)).c_str());
   std::printf("# positions in the frame turning with the motor, top at (R, 0, 0); side: bead/ball at x > 0 (+) or "
               "x < 0 (-); dphi: azimuth of the ball minus the bead's\n");
+
+  if (args.lag) return lag_report(cfg, omegas, args);
 
   // 1. The orbits at each ω_m.
   std::vector<Row> table;

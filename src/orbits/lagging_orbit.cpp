@@ -1,0 +1,307 @@
+#include "orbits/lagging_orbit.hpp"
+
+#include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+
+#include "orbits/continuation.hpp"
+#include "orbits/orbit_families.hpp"
+#include "physics/astrojax_system.hpp"
+#include "physics/tie.hpp"
+
+namespace ajx::orbits {
+
+namespace {
+
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+using Vec10 = Eigen::Matrix<double, 10, 1>;
+using Mat10 = Eigen::Matrix<double, 10, 10>;
+using Vec14 = Eigen::Matrix<double, 14, 1>;  // (q1, q2, ϑ, q̇1, q̇2, ϑ̇), ϑ = R θ the tie's arc [m]
+
+// τ = −R (ŷ·u1) F1 of the unknowns X = (p1, p2, F1, F2, s), top at (R, 0, 0).
+double drive_torque(const physics::Model& m, const Vec9& X) {
+  const double R = m.p.drive_radius;
+  const Vec3 u1 = (X.segment<3>(0) - Vec3(R, 0, 0)).normalized();
+  return -R * u1.y() * X(6);
+}
+
+// Torques are measured against W R, the weight of the pair on the rod's lever.
+double torque_scale(const physics::Model& m) { return scales(m).force * m.p.drive_radius; }
+
+// dw/dt in the frame turning at ω_b with the tie slipping forward (θ = ϑ/R, θ̇ = ϑ̇/R):
+//   q̈ = r̈ − 2 Ω×q̇ + ω_b² P q,   θ̈ = χ̈ (physics::top_kinematics solves it with F1).
+Vec14 frame_rhs(const physics::Model& m, const physics::MotorSchedule& motor, double omega_b,
+                const physics::Contact& c, const Vec14& w) {
+  namespace idx = physics::idx;
+  const double R = m.p.drive_radius;
+  const Vec3 W(0, 0, omega_b);
+  numerics::Vec y = numerics::Vec::Zero(idx::dim_tie);
+  for (int b = 0; b < 2; ++b) {
+    const Vec3 q = w.segment<3>(3 * b), qd = w.segment<3>(7 + 3 * b);
+    y.segment<3>(idx::r1 + 3 * b) = q;
+    y.segment<3>(idx::v1 + 3 * b) = qd + W.cross(q);
+  }
+  y(idx::chi) = w(6) / R;
+  y(idx::chi_dot) = omega_b + w(13) / R;
+  const physics::TopKinematics top = physics::top_kinematics(m, motor, c, 0.0, y);
+  const physics::Dynamics d = physics::evaluate(m, top, c, y, true);
+  Vec14 dw;
+  dw.head<7>() = w.tail<7>();
+  const Vec3 acc[2] = {d.acc1, d.acc2};
+  for (int b = 0; b < 2; ++b) {
+    const Vec3 q = w.segment<3>(3 * b), qd = w.segment<3>(7 + 3 * b);
+    dw.segment<3>(7 + 3 * b) = acc[b] - 2.0 * W.cross(qd) + omega_b * omega_b * Vec3(q.x(), q.y(), 0.0);
+  }
+  dw(13) = R * top.omega_dot;
+  return dw;
+}
+
+// Newton on the ten equations (the nine of steady_orbit.hpp at ω = ω_b, and the tie's balance)
+// in (X, ω_b), from a guess; damped and backtracking like orbits::solve.
+struct LagRoot {
+  Vec9 X;
+  double omega = 0.0;
+  bool converged = false;
+};
+LagRoot solve_lag(const physics::Model& m, double s, double omega_m, Vec9 X, double w) {
+  const auto F = [&](const Vec9& x, double om) {
+    Vec10 r;
+    r.head<9>() = residual({m, om, Closure::Stuck, s}, x);
+    r(9) = (drive_torque(m, x) - clutch_torque(m, omega_m, om)) / torque_scale(m);
+    return r;
+  };
+  const Scales sc = scales(m);
+  Vec10 d;
+  d << Vec3::Constant(sc.length), Vec3::Constant(sc.length), sc.force, sc.force, sc.length, omega_m;
+  const double tol = default_tolerance({m, omega_m, Closure::Stuck, s});
+  const double h = std::cbrt(kEps);
+  Vec10 r = F(X, w);
+  double norm = r.lpNorm<Eigen::Infinity>();
+  for (int it = 0; it < 60 && norm > tol && std::isfinite(norm); ++it) {
+    Mat10 J;
+    for (int j = 0; j < 10; ++j) {
+      Vec9 xp = X, xm = X;
+      double wp = w, wm = w;
+      if (j < 9) xp(j) += h * d(j), xm(j) -= h * d(j);
+      else wp += h * d(j), wm -= h * d(j);
+      J.col(j) = (F(xp, wp) - F(xm, wm)) / (2.0 * h * d(j));
+    }
+    const Vec10 dx = -J.colPivHouseholderQr().solve(r);
+    if (!dx.allFinite()) break;
+    double t = 1.0, trial_norm = std::numeric_limits<double>::infinity();
+    Vec9 xt;
+    double wt = w;
+    for (int k = 0; k < 12; ++k, t *= 0.5) {
+      xt = X + t * dx.head<9>();
+      wt = w + t * dx(9);
+      const Vec10 rt = F(xt, wt);
+      trial_norm = rt.allFinite() ? rt.lpNorm<Eigen::Infinity>() : std::numeric_limits<double>::infinity();
+      if (trial_norm < norm) break;
+    }
+    if (!(trial_norm < norm)) break;
+    X = xt;
+    w = wt;
+    norm = trial_norm;
+    r = F(X, w);
+  }
+  return {X, w, norm <= tol};
+}
+
+// ω_m = ω_b + (τ − τ_k)/c_a; NaN where no motor speed gives τ with the tie slipping forward
+// (τ < τ_k, or c_a = 0).
+double omega_m_of(const physics::Model& m, double omega_b, double torque) {
+  const double w = m.p.tie_damping > 0.0 ? omega_b + (torque - m.p.tie_kinetic_torque) / m.p.tie_damping
+                                         : std::numeric_limits<double>::quiet_NaN();
+  return w > omega_b ? w : std::numeric_limits<double>::quiet_NaN();
+}
+
+LagOrbit make_lag(const physics::Model& m, const SteadyOrbit& o, double omega_m, bool with_stability) {
+  LagOrbit L;
+  L.orbit = o;
+  L.torque = tie_drive_torque(m, o);
+  L.omega_m = omega_m;
+  if (with_stability) L.st = lag_stability(m, o);
+  return L;
+}
+
+void require_clutch(const physics::Model& m) {
+  if (!m.layers.tie_clutch) throw std::invalid_argument("the lagging orbit needs [layers] tie = \"clutch\"");
+  if (!(m.p.drive_radius > 0.0)) throw std::invalid_argument("the lagging orbit needs model.drive_radius > 0");
+}
+
+// The points of the stuck branch through X0 at ω0, continued both ways in ω over [lo, hi],
+// in order along the branch.
+std::vector<BranchPoint> branch_path(const physics::Model& m, double s, double omega0, const Vec9& X0, double lo,
+                                     double hi) {
+  ContinuationOptions copt;
+  copt.lambda_min = lo;
+  copt.lambda_max = hi;
+  copt.stability = false;
+  std::vector<BranchPoint> path;
+  for (int dir : {-1, +1}) {
+    copt.direction = dir;
+    const Branch b = continue_branch({m, omega0, Closure::Stuck, s}, X0, "omega", copt);
+    if (dir < 0) path.assign(b.points.rbegin(), b.points.rend());
+    else path.insert(path.end(), b.points.begin() + (path.empty() || b.points.empty() ? 0 : 1), b.points.end());
+  }
+  return path;
+}
+
+}  // namespace
+
+double tie_drive_torque(const physics::Model& m, const SteadyOrbit& o) { return drive_torque(m, unknowns(o)); }
+
+double clutch_torque(const physics::Model& m, double omega_m, double omega_ball) {
+  return m.p.tie_kinetic_torque + m.p.tie_damping * (omega_m - omega_ball);
+}
+
+double lag_unstable_threshold(const physics::Model& m, double omega_ball) {
+  return 1e-7 * (omega_ball + std::sqrt(m.p.gravity / m.p.string_length));
+}
+
+LagStability lag_stability(const physics::Model& m0, const SteadyOrbit& o) {
+  require_clutch(m0);
+  const double R = m0.p.drive_radius, wb = o.omega, l = m0.p.string_length, s = o.s;
+  // The linearisation sees ω_m only through −c_a χ̇: hold the equilibrium's τ at ω_m = ω_b + 1 rad/s.
+  physics::Model m = m0;
+  const double tau = tie_drive_torque(m0, o), w_motor = wb + 1.0;
+  m.p.tie_kinetic_torque = tau - m.p.tie_damping * (w_motor - wb);
+  const physics::MotorSchedule motor({{w_motor, w_motor, 1e9}});
+  physics::Contact c(physics::Mode::Stuck, 0, s);
+  c.tie.slip = true;
+  c.tie.sigma = +1;
+  Vec14 w0 = Vec14::Zero();
+  w0.segment<3>(0) = o.p1;
+  w0.segment<3>(3) = o.p2;
+  // The constraint gradients in q = (q1, q2, ϑ) at ϑ = 0, a = (R, 0, 0), ∂a/∂ϑ = ŷ:
+  //   g1 = |q1 − a| − s:      (u1, 0, −u1·ŷ);   g2 = |q2 − q1| − (l − s):  (−u2, u2, 0).
+  const Vec3 a(R, 0, 0), u1 = (o.p1 - a).normalized(), u2 = (o.p2 - o.p1).normalized();
+  Eigen::Matrix<double, 2, 7> J = Eigen::Matrix<double, 2, 7>::Zero();
+  J.block<1, 3>(0, 0) = u1.transpose();
+  J(0, 6) = -u1.y();
+  J.block<1, 3>(1, 0) = -u2.transpose();
+  J.block<1, 3>(1, 3) = u2.transpose();
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(Eigen::MatrixXd(J), Eigen::ComputeFullV);
+  const Eigen::MatrixXd K = svd.matrixV().rightCols(5);
+  // The symmetry: all of (q1, q2, ϑ) turned about z, ξ = (ẑ×q1, ẑ×q2, R); first basis vector.
+  Eigen::Matrix<double, 7, 1> xi;
+  xi << Vec3::UnitZ().cross(o.p1), Vec3::UnitZ().cross(o.p2), R;
+  xi.normalize();
+  const Eigen::MatrixXd rest = K - xi * (xi.transpose() * K);
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd2(rest, Eigen::ComputeThinU);
+  Eigen::Matrix<double, 7, 5> N;
+  N.col(0) = xi;
+  N.rightCols<4>() = svd2.matrixU().leftCols(4);
+  Eigen::Matrix<double, 14, 10> P = Eigen::Matrix<double, 14, 10>::Zero();
+  P.block<7, 5>(0, 0) = N;
+  P.block<7, 5>(7, 5) = N;
+  // Central differences as in orbit_stability.cpp: steps ε^(1/3) of the shorter link L and of L ω_b.
+  const double L = std::min(s, l - s), h = std::cbrt(kEps);
+  const double vscale = L * std::max(wb, std::sqrt(m.p.gravity / L));
+  Eigen::Matrix<double, 10, 10> B;
+  for (int j = 0; j < 10; ++j) {
+    const double hj = h * (j < 5 ? L : vscale);
+    const Vec14 dw = hj * P.col(j);
+    B.col(j) = P.transpose() * ((frame_rhs(m, motor, wb, c, w0 + dw) - frame_rhs(m, motor, wb, c, w0 - dw)) / (2 * hj));
+  }
+  // B ξ = 0: the first column vanishes, and the other nine eigenvalues are those of the rest.
+  LagStability st;
+  st.symmetry_eigenvalue = B(0, 0);
+  Eigen::EigenSolver<Eigen::MatrixXd> es(B.bottomRightCorner<9, 9>());
+  const Eigen::VectorXcd ev = es.eigenvalues();
+  std::vector<int> order(ev.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int x, int y) {
+    if (ev(x).real() != ev(y).real()) return ev(x).real() > ev(y).real();
+    return ev(x).imag() > ev(y).imag();
+  });
+  st.eigenvalues.resize(ev.size());
+  for (int i = 0; i < int(ev.size()); ++i) st.eigenvalues(i) = ev(order[i]);
+  st.growth = st.eigenvalues(0).real();
+  st.frequency = std::abs(st.eigenvalues(0).imag());
+  st.stable = st.growth < lag_unstable_threshold(m, wb);
+  return st;
+}
+
+std::vector<LagOrbit> lag_orbits(const physics::Model& m, double s, double omega_m, const LagSearch& opt) {
+  require_clutch(m);
+  const double lo = opt.omega_hi > opt.omega_lo ? opt.omega_lo : 0.1 * omega_m;
+  const double hi = opt.omega_hi > opt.omega_lo ? opt.omega_hi : omega_m;
+  const auto f = [&](const BranchPoint& p) {
+    return tie_drive_torque(m, p.orbit) - clutch_torque(m, omega_m, p.lambda);
+  };
+  std::vector<LagOrbit> out;
+  constexpr int kStarts = 8;  // the stuck family's branches at s, picked up at 8 speeds across [lo, hi]
+  for (int k = 0; k < kStarts; ++k) {
+    const double w0 = lo + (hi - lo) * (k + 0.5) / kStarts;
+    for (const SteadyOrbit& o : orbits_at({m, w0, Closure::Stuck, s})) {
+      const std::vector<BranchPoint> path = branch_path(m, s, w0, unknowns(o), lo, hi);
+      for (std::size_t i = 0; i + 1 < path.size(); ++i) {
+        const double fa = f(path[i]), fb = f(path[i + 1]);
+        if (!(fa * fb <= 0.0) || fa == fb) continue;
+        // The secant's point as the guess for the ten-equation Newton.
+        const double t = fa / (fa - fb);
+        const Vec9 X = (1 - t) * unknowns(path[i].orbit) + t * unknowns(path[i + 1].orbit);
+        const double w = (1 - t) * path[i].lambda + t * path[i + 1].lambda;
+        const LagRoot r = solve_lag(m, s, omega_m, X, w);
+        if (!r.converged || !(r.omega > lo && r.omega < hi)) continue;
+        const SteadyOrbit orbit = describe({m, r.omega, Closure::Stuck, s}, r.X);
+        const bool seen = std::any_of(out.begin(), out.end(), [&](const LagOrbit& q) {
+          return std::abs(q.orbit.omega - r.omega) <= 1e-8 * omega_m &&
+                 (q.orbit.p1 - orbit.p1).norm() + (q.orbit.p2 - orbit.p2).norm() <= 1e-7 * m.p.string_length;
+        });
+        if (!seen) out.push_back(make_lag(m, orbit, omega_m, opt.stability));
+      }
+    }
+  }
+  std::sort(out.begin(), out.end(), [](const LagOrbit& x, const LagOrbit& y) { return x.orbit.omega < y.orbit.omega; });
+  return out;
+}
+
+LagBranch lag_branch(const physics::Model& m, const SteadyOrbit& start, double omega_lo, double omega_hi) {
+  require_clutch(m);
+  const double s = start.s;
+  LagBranch br;
+  for (const BranchPoint& p : branch_path(m, s, start.omega, unknowns(start), omega_lo, omega_hi)) {
+    const double tau = tie_drive_torque(m, p.orbit);
+    br.points.push_back(make_lag(m, p.orbit, omega_m_of(m, p.lambda, tau), true));
+  }
+  // Bisection in ω_b between two neighbours whose predicate differs; each trial orbit solved at
+  // fixed ω_b from the interpolated unknowns.
+  const auto locate = [&](const LagOrbit& a, const LagOrbit& b, auto pred) {
+    LagOrbit lo = a, hi = b;
+    const bool at_lo = pred(a);
+    for (int k = 0; k < 60 && std::abs(hi.orbit.omega - lo.orbit.omega) > 1e-10 * hi.orbit.omega; ++k) {
+      const double w = 0.5 * (lo.orbit.omega + hi.orbit.omega);
+      const Vec9 X = 0.5 * (unknowns(lo.orbit) + unknowns(hi.orbit));
+      const NewtonResult r = solve({m, w, Closure::Stuck, s}, X);
+      if (!r.converged) break;
+      const SteadyOrbit o = describe({m, w, Closure::Stuck, s}, r.X);
+      const LagOrbit mid = make_lag(m, o, omega_m_of(m, w, tie_drive_torque(m, o)), true);
+      (pred(mid) == at_lo ? lo : hi) = mid;
+    }
+    return hi;
+  };
+  const auto stable = [](const LagOrbit& L) { return L.st.stable; };
+  const auto held = [](const LagOrbit& L) { return L.orbit.admissible; };
+  for (std::size_t i = 0; i + 1 < br.points.size(); ++i) {
+    const LagOrbit &a = br.points[i], &b = br.points[i + 1];
+    // "As τ grows": orient each pair by its torque.
+    const bool rising = b.torque >= a.torque;
+    const LagOrbit &before = rising ? a : b, &after = rising ? b : a;
+    if (stable(a) != stable(b)) {
+      const LagOrbit at = locate(before, after, stable);
+      br.events.push_back({stable(before) ? LagEventKind::StabilityLoss : LagEventKind::StabilityGain, at,
+                           at.st.frequency > 1e-6 * at.orbit.omega});
+    }
+    if (held(a) != held(b))
+      br.events.push_back({held(before) ? LagEventKind::ConeExit : LagEventKind::ConeEntry, locate(before, after, held)});
+  }
+  return br;
+}
+
+}  // namespace ajx::orbits
