@@ -824,6 +824,33 @@ class rise_climb(unittest.TestCase):
         self.assertEqual((rc, "not a run file" in out), (2, True), out)
 
 
+class lag_limits(unittest.TestCase):
+    """analysis/lag_limits.py: ω_fall(s) and the lag's ceiling from `astrojax orbits --lag`."""
+
+    def test_both_rise_with_the_bead_position(self):
+        # The claim of README "The lag's ceiling": along the string, ω_fall(s) (the stuck
+        # family's entry into the cone) and the highest stable lag both grow with s, so the bead
+        # position that lowers one lowers the other. Three positions, about 4 s.
+        out = data("lag_limits.md")
+        script("lag_limits.py", "-o", out, "--s", "0.44:0.56:0.06")
+        rows = [cells(l) for l in section(out, "R = 15 mm, d = 3.5 cm") if l.startswith("| 0.")]
+        self.assertEqual([r[0] for r in rows], ["0.440", "0.500", "0.560"])
+        fall = [float(r[1]) for r in rows]
+        ceiling = [float(r[3]) for r in rows]
+        self.assertEqual(fall, sorted(fall))
+        self.assertEqual(ceiling, sorted(ceiling))
+        for f, c in zip(fall, ceiling):
+            self.assertLess(f, c)  # the held, stable lag spans ω_fall(s) .. ceiling(s)
+
+    def test_bad_input_names_the_option_and_range(self):
+        for args, words in ((["--s", "0.5:0.4:0.1"], ["--s", "LO < HI"]), (["--radii", "0.5"], ["--radii", "0.05"])):
+            code, text = script("lag_limits.py", "-o", data("lag_bad.md"), *args, check=False)
+            self.assertNotEqual(code, 0)
+            for w in words:
+                self.assertIn(w, text)
+            self.assertFalse(os.path.exists(data("lag_bad.md")))
+
+
 class fit(unittest.TestCase):
     """analysis/fit_thresholds.py: the fitting core on synthetic thresholds with a known optimum
     and covariance (no astrojax runs), the reading of astrojax's rows, and bad input."""

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <optional>
@@ -271,6 +272,10 @@ int lag_report(const config::OrbitsConfig& cfg, const std::vector<double>& omega
         if (L.orbit.admissible && new_side) starts.push_back(L);
       }
     }
+    // Also the held stuck orbits at the middle of the ω_ball range, so that a branch is found
+    // whatever τ the clutch passes at the given ω_m.
+    for (const SteadyOrbit& o : orbits_at({m, 0.5 * (lo + hi), Closure::Stuck, s}))
+      if (o.admissible) starts.push_back({o, std::numeric_limits<double>::quiet_NaN(), tie_drive_torque(m, o), {}});
     std::vector<LagBranch> done;
     for (const LagOrbit& start : starts) {
       // A start already on a branch continued (the sides meet at folds) adds nothing.
