@@ -22,6 +22,7 @@ import tempfile
 import numpy as np
 
 import astrojax_analysis as ajx
+import tie_scan
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 PAPER_FALL, PAPER_LAG = 3.24, 4.80  # [π rad/s]
@@ -29,11 +30,9 @@ TOLERANCE = 0.05  # the issue's target: within 5 %
 
 
 def numbers(text, option, lo, hi):
-    try:
-        values = [float(v) for v in text.split(",") if v.strip()]
-    except ValueError:
-        ajx.fail(f"{option}: '{text}' is not a comma-separated list of numbers")
-    if not values or any(not (lo <= v <= hi) for v in values):
+    """tie_scan's list of numbers, each also within [lo, hi]."""
+    values = tie_scan.numbers(text, option)
+    if any(not (lo <= v <= hi) for v in values):
         ajx.fail(f"{option}: '{text}': each value must lie in [{lo}, {hi}]")
     return values
 

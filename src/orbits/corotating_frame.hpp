@@ -19,8 +19,13 @@ using Vec12 = Eigen::Matrix<double, 12, 1>;  // (q1, q2, q̇1, q̇2) in the fram
 // The top at φ = 0 turning at constant ω: a = (R, 0, 0), ȧ = R ω ŷ, ä = −R ω² x̂.
 physics::TopKinematics corotating_top(double drive_radius, double omega);
 
-// The lab state (layout of physics::idx, work integrals zero) of frame coordinates z at φ = 0.
-numerics::Vec lab_state(const Vec12& z, double omega);
+// The lab state (layout of physics::idx, work integrals zero) of frame coordinates z at φ = 0,
+// in a vector of length dim (the tie's χ, χ̇ beyond idx::dim left zero).
+numerics::Vec lab_state(const Vec12& z, double omega, int dim = physics::idx::dim);
+
+// dz/dt in the frame turning at ω from the lab accelerations r̈1, r̈2 at z:
+//   q̈ = r̈ − 2 Ω×q̇ + ω² P q.
+Vec12 frame_derivative(const Vec12& z, const Vec3& acc1, const Vec3& acc2, double omega);
 
 // Frame coordinates of a lab state taken at motor phase φ: q = Rz(−φ) r, q̇ = Rz(−φ) v − Ω×q.
 Vec12 frame_state(const numerics::Vec& y, double phi, double omega);

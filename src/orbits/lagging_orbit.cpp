@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "orbits/continuation.hpp"
+#include "orbits/corotating_frame.hpp"
 #include "orbits/orbit_families.hpp"
 #include "physics/astrojax_system.hpp"
 #include "physics/tie.hpp"
@@ -32,31 +33,22 @@ double drive_torque(const physics::Model& m, const Vec9& X) {
 // Torques are measured against W R, the weight of the pair on the rod's lever.
 double torque_scale(const physics::Model& m) { return scales(m).force * m.p.drive_radius; }
 
-// dw/dt in the frame turning at ω_b with the tie slipping forward (θ = ϑ/R, θ̇ = ϑ̇/R):
-//   q̈ = r̈ − 2 Ω×q̇ + ω_b² P q,   θ̈ = χ̈ (physics::top_kinematics solves it with F1).
+// dw/dt in the frame turning at ω_b with the tie slipping forward (θ = ϑ/R, θ̇ = ϑ̇/R): the
+// balls' as corotating_frame.hpp's, and θ̈ = χ̈ (physics::top_kinematics solves it with F1).
 Vec14 frame_rhs(const physics::Model& m, const physics::MotorSchedule& motor, double omega_b,
                 const physics::Contact& c, const Vec14& w) {
   namespace idx = physics::idx;
   const double R = m.p.drive_radius;
-  const Vec3 W(0, 0, omega_b);
-  numerics::Vec y = numerics::Vec::Zero(idx::dim_tie);
-  for (int b = 0; b < 2; ++b) {
-    const Vec3 q = w.segment<3>(3 * b), qd = w.segment<3>(7 + 3 * b);
-    y.segment<3>(idx::r1 + 3 * b) = q;
-    y.segment<3>(idx::v1 + 3 * b) = qd + W.cross(q);
-  }
+  Vec12 z;
+  z << w.segment<6>(0), w.segment<6>(7);
+  numerics::Vec y = lab_state(z, omega_b, idx::dim_tie);
   y(idx::chi) = w(6) / R;
   y(idx::chi_dot) = omega_b + w(13) / R;
   const physics::TopKinematics top = physics::top_kinematics(m, motor, c, 0.0, y);
   const physics::Dynamics d = physics::evaluate(m, top, c, y, true);
+  const Vec12 dz = frame_derivative(z, d.acc1, d.acc2, omega_b);
   Vec14 dw;
-  dw.head<7>() = w.tail<7>();
-  const Vec3 acc[2] = {d.acc1, d.acc2};
-  for (int b = 0; b < 2; ++b) {
-    const Vec3 q = w.segment<3>(3 * b), qd = w.segment<3>(7 + 3 * b);
-    dw.segment<3>(7 + 3 * b) = acc[b] - 2.0 * W.cross(qd) + omega_b * omega_b * Vec3(q.x(), q.y(), 0.0);
-  }
-  dw(13) = R * top.omega_dot;
+  dw << dz.segment<6>(0), w(13), dz.segment<6>(6), R * top.omega_dot;
   return dw;
 }
 
