@@ -338,4 +338,13 @@ TEST(TieClutch, SettleJudgesTheRestingBeadAtTheHeldBeadsTop) {
   EXPECT_NEAR(out.s_star, L1, 1e-15);
   EXPECT_TRUE(out.tie.slip);
   EXPECT_EQ(out.tie.sigma, +1);
+
+  // The watch of the kinetic layer (no μ_s of its own) reports the μ_s cone's margin at ṡ = 0 by
+  // the same judgement: at the held top, inside (> 0), where the sliding top says outside.
+  physics::Model kinetic = m;
+  kinetic.layers.friction = physics::Friction::Kinetic;
+  const auto top_for_kinetic = [&](const physics::Contact& c) {
+    return physics::top_kinematics(kinetic, schedule, c, 0.0, y);
+  };
+  EXPECT_DOUBLE_EQ(physics::static_cone_margin(kinetic, top_for_kinetic, sliding, y), std::min(at_held.up, at_held.down));
 }

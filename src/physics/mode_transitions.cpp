@@ -147,6 +147,15 @@ Contact at_rest(const Model& m, const TopKinematics& top, const numerics::Vec& y
   return {Mode::Sliding, sdd > 0.0 ? +1 : (sdd < 0.0 ? -1 : 0), 0.0};
 }
 
+double static_cone_margin(const Model& m, const TopFor& top_for, const Contact& c, const numerics::Vec& y) {
+  Model held_model = m;
+  held_model.layers.friction = Friction::StickSlip;  // the μ_s cone
+  const Contact held = held_here(top_for(c), c, y);
+  // The held bead's top: its χ̈ does not depend on the friction layer (two constraints, no κ).
+  const ConeMargins k = evaluate(held_model, top_for(held), held, y).margins;
+  return std::min(k.up, k.down);
+}
+
 namespace {
 
 // settle() for the bead's mode only (the returned tie is the default one).

@@ -77,6 +77,11 @@ Contact held_here(const TopKinematics& top, const Contact& c, const numerics::Ve
 // `band` widens the cone by a few newtons (>= 0; the chatter resolution, see simulation.hpp).
 Contact at_rest(const Model& m, const TopKinematics& top, const numerics::Vec& y, double band = 0.0);
 
+// The margin of the μ_s cone of the bead held at its present s, min(up, down) [N] (> 0 inside),
+// at the top the held bead gives: what the watch of the `kinetic` and `regularised` layers
+// reports at ṡ = 0 (those layers have no static coefficient of their own).
+double static_cone_margin(const Model& m, const TopFor& top_for, const Contact& c, const numerics::Vec& y);
+
 // A taut mode entered with velocities already on its constraints: the held modes keep it
 // while their one-sided cones hold, else the bead slides in the direction of the violated
 // bound; a sliding bead gets σ = sgn ṡ, or the rest rule when ṡ = 0 (judged at the held

@@ -127,12 +127,7 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
   };
   // The cone margin a stuck bead would have here: > 0 means a model with stick would hold it.
   const auto stick_margin = [&](double t, const Vec& y) {
-    const physics::TopKinematics top = top_at(t, y);
-    Model held_model = model_;
-    held_model.layers.friction = physics::Friction::StickSlip;
-    const Contact held{Mode::Stuck, 0, (Vec3(y.segment<3>(physics::idx::r1)) - top.a).norm()};
-    const physics::ConeMargins c = physics::evaluate(held_model, top, held, y).margins;
-    return std::min(c.up, c.down);
+    return physics::static_cone_margin(model_, [&](const Contact& c) { return top_for(c, t, y); }, contact, y);
   };
   const auto follow_watches = [&](double t, const Vec& y) {
     for (auto& [g, w] : watches) {
