@@ -84,6 +84,23 @@ TEST(SweepConfig, TieClutchParametersAreGridAxes) {
   }
 }
 
+// The pair couple's τ_c and Ω_ε are grid axes; an Ω_ε out of range (> 0) is refused at its point.
+TEST(SweepConfig, PairCoupleParametersAreGridAxes) {
+  const SweepConfig c =
+      parse_sweep_config(quick(), "q.toml",
+                         {"layers.pair_couple=\"motor_clutch\"", "model.couple_torque=2e-3",
+                          "grid.couple_torque=[0.0,1e-3]", "grid.couple_slip_rate=[0.5]"});
+  const auto points = expand_grid(c);
+  ASSERT_EQ(points.size(), 2u * 1u * 2u);  // couple_slip_rate × couple_torque × drive_radius
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    EXPECT_DOUBLE_EQ(points[i].model.p.couple_slip_rate, 0.5);
+    EXPECT_DOUBLE_EQ(points[i].model.p.couple_torque, i < 2 ? 0.0 : 1e-3);
+  }
+  const std::string m = error_of({"grid.couple_slip_rate=[1.0,0.0]"});
+  EXPECT_NE(m.find("model.couple_slip_rate"), std::string::npos) << m;
+  EXPECT_NE(m.find("grid.couple_slip_rate[1]"), std::string::npos) << m;
+}
+
 TEST(SweepConfig, BadSweepFilesNameFileKeyAndRange) {
   const struct {
     std::vector<std::string> set;

@@ -238,7 +238,7 @@ TEST(TieClutch, TheBeadsModeSettlesAndTheTieKeepsItsState) {
   for (const physics::Contact::Tie tie : {physics::Contact::Tie{false, 0, 0.3}, physics::Contact::Tie{true, -1, 0.0}}) {
     physics::Contact c{physics::Mode::Sliding, 0, 0.0};
     c.tie = tie;
-    const physics::Contact out = physics::settle(m, top, c, y);
+    const physics::Contact out = physics::settle(m, [&](const physics::Contact&) { return top; }, c, y);
     EXPECT_EQ(out.mode, physics::Mode::Sliding);
     EXPECT_EQ(out.sigma, +1);
     EXPECT_EQ(out.tie.slip, tie.slip);
@@ -266,4 +266,85 @@ TEST(TieClutch, LedgerClosesWhenTheBeadChangesModeWhileTheTieIsOffset) {
   EXPECT_LT(r.max_drift, 1e-6);
   report("clutch_couple_rise", fmt::format("W_m {:.4e} J, residual {:.2e} J, tie slips {}, drift {:.1e} m",
                                            r.energy.motor_work, r.energy.residual, r.tie_slips, r.max_drift));
+}
+
+TEST(TieClutch, SettleJudgesTheRestingBeadAtTheHeldBeadsTop) {
+  // settle()'s rest rule (a sliding bead with σ = 0 at ṡ = 0 exactly) judges the held bead's cone.
+  // With the tie slipping, χ̈ solves I_a χ̈ = σ τ_k + c_a (ω_m − χ̇) + R (ê_χ·u1) F1 with the F1 of
+  // the bead's mode, and ∂F1/∂χ̈ differs between a sliding bead (the string runs through it) and
+  // a held one (two rigid links): the two modes' tops have different ä = R χ̈ ê_χ − R χ̇² ê_r.
+  // The state: the clutch set of sweeps/table1_staircase.toml (c_a = 2e-6), ω_m = 4π, the tie
+  // slipping behind the rod (χ̇ = 2π, σ = +1); the bead 0.7 m down the string at 1.15 rad from
+  // the vertical, off the rod's radial plane, moving with the top (v1 = ȧ, so ṡ = u1·(v1 − ȧ) is
+  // exactly 0); the ball below it, 1 m/s faster along ŷ. There (values printed below): χ̈ ≈ +123 rad/s²
+  // at the sliding top, ≈ −19 rad/s² at the held top, ä differs by R Δχ̈ ≈ 2.1 m/s² along ê_χ,
+  // and the held bead's T1/T2 leaves the cone e^{±μ_s ψ} downwards at the sliding top (margin
+  // ≈ −0.011 N) but lies inside it at the held top (both margins ≥ +0.012 N). The verdict must be
+  // the held top's: stuck. (Judged at the sliding top, the bead would slide down, σ = +1, and in
+  // the held mode the cone would hold it: the rest event would repeat at one instant.) The
+  // margins are far from zero against their rounding (~1e-16 of T ≈ 0.3 N), so the signs asserted
+  // are the physics', not noise.
+  physics::Model m;
+  m.layers.tie_clutch = true;
+  m.p.drive_radius = 0.015;
+  m.p.contact_distance = 0.035;
+  m.p.tie_static_torque = 1.5e-3;
+  m.p.tie_kinetic_torque = 1.35e-3;
+  m.p.tie_damping = 2e-6;
+  const double omega_m = 4 * pi, chi_dot = 2 * pi, R = m.p.drive_radius;
+  const physics::MotorSchedule schedule({{omega_m, omega_m, 100.0}});
+  const double L1 = 0.7, theta1 = 1.15, alpha = -1.0, theta2 = 0.1;
+  numerics::Vec y = numerics::Vec::Zero(physics::state_dim(m));
+  y(idx::chi) = 0.0;  // the tie at (R, 0, 0), ȧ = R χ̇ ŷ
+  y(idx::chi_dot) = chi_dot;
+  const physics::Vec3 a(R, 0.0, 0.0), a_dot(0.0, R * chi_dot, 0.0);
+  y.segment<3>(idx::r1) =
+      a + L1 * physics::Vec3(std::sin(theta1) * std::cos(alpha), std::sin(theta1) * std::sin(alpha), -std::cos(theta1));
+  y.segment<3>(idx::r2) = physics::Vec3(y.segment<3>(idx::r1)) +
+                          (m.p.string_length - L1) * physics::Vec3(std::sin(theta2), 0.0, -std::cos(theta2));
+  y.segment<3>(idx::v1) = a_dot;
+  y.segment<3>(idx::v2) = a_dot + physics::Vec3(0.0, 1.0, 0.0);
+  physics::Contact sliding{physics::Mode::Sliding, 0, 0.0};
+  sliding.tie = {true, +1, 0.0};
+  const auto top_for = [&](const physics::Contact& c) { return physics::top_kinematics(m, schedule, c, 0.0, y); };
+
+  const physics::TopKinematics top_slide = top_for(sliding);
+  ASSERT_EQ((top_slide.a - a).norm(), 0.0);
+  ASSERT_EQ((top_slide.a_dot - a_dot).norm(), 0.0);
+  ASSERT_EQ(physics::geometry(top_slide, y.segment<3>(idx::r1), y.segment<3>(idx::r2), y.segment<3>(idx::v1),
+                              y.segment<3>(idx::v2))
+                .L1_dot,
+            0.0);  // ṡ exactly 0: the rest rule, not σ = sgn ṡ
+  const physics::Contact held = physics::held_here(top_slide, sliding, y);
+  EXPECT_EQ(held.mode, physics::Mode::Stuck);
+  EXPECT_NEAR(held.s_star, L1, 1e-15);
+  EXPECT_TRUE(held.tie.slip);
+  const physics::TopKinematics top_held = top_for(held);
+  const physics::ConeMargins at_slide = physics::evaluate(m, top_slide, held, y).margins;
+  const physics::ConeMargins at_held = physics::evaluate(m, top_held, held, y).margins;
+  report("rest_verdict_tops",
+         fmt::format("χ̈ sliding top {:.4g} rad/s², held top {:.4g} rad/s²; held bead's margins (up, down) at the "
+                     "sliding top ({:.4g}, {:.4g}) N, at the held top ({:.4g}, {:.4g}) N",
+                     top_slide.omega_dot, top_held.omega_dot, at_slide.up, at_slide.down, at_held.up, at_held.down));
+  // The two tops' verdicts differ (the premise of this test).
+  EXPECT_GT(std::abs(top_slide.omega_dot - top_held.omega_dot), 100.0);
+  EXPECT_LT(at_slide.down, -1e-3);
+  EXPECT_GT(at_held.up, 1e-3);
+  EXPECT_GT(at_held.down, 1e-3);
+  EXPECT_EQ(physics::at_rest(m, top_slide, y).mode, physics::Mode::Sliding);  // the sliding top's verdict
+
+  const physics::Contact out = physics::settle(m, top_for, sliding, y);
+  EXPECT_EQ(out.mode, physics::Mode::Stuck);
+  EXPECT_NEAR(out.s_star, L1, 1e-15);
+  EXPECT_TRUE(out.tie.slip);
+  EXPECT_EQ(out.tie.sigma, +1);
+
+  // The watch of the kinetic layer (no μ_s of its own) reports the μ_s cone's margin at ṡ = 0 by
+  // the same judgement: at the held top, inside (> 0), where the sliding top says outside.
+  physics::Model kinetic = m;
+  kinetic.layers.friction = physics::Friction::Kinetic;
+  const auto top_for_kinetic = [&](const physics::Contact& c) {
+    return physics::top_kinematics(kinetic, schedule, c, 0.0, y);
+  };
+  EXPECT_DOUBLE_EQ(physics::static_cone_margin(kinetic, top_for_kinetic, sliding, y), std::min(at_held.up, at_held.down));
 }

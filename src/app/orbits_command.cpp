@@ -182,10 +182,21 @@ void print_family(const std::vector<Row>& stuck) {
 }
 
 // The brackets of a sweep's chains whose model equals m (every column of chains/model), as
-// `astrojax thresholds` finds them. Files written before the tie clutch's four columns have
-// the first kOlderModelColumns only, and are matched on those. Throws on a file that is not a
-// sweep's.
-inline constexpr std::size_t kOlderModelColumns = 10;
+// `astrojax thresholds` finds them. Older files have the first columns of model_row only, and
+// are matched on those. Throws on a file that is not a sweep's.
+struct OlderModelLayout {
+  std::size_t columns;
+  const char* lacking;  // the parameters such a file does not record
+};
+inline constexpr OlderModelLayout kOlderModelLayouts[] = {
+    {10, "none of the tie clutch's or the pair couple's"},  // before the tie clutch's four columns
+    {14, "none of the pair couple's"},                       // before the pair couple's two
+};
+const OlderModelLayout* older_model_layout(std::size_t columns) {
+  for (const auto& o : kOlderModelLayouts)
+    if (o.columns == columns) return &o;
+  return nullptr;
+}
 struct SweepBrackets {
   std::vector<std::size_t> chains;  // the matching chains
   std::size_t columns_matched = 0;  // of model_row's kModelColumns
@@ -197,9 +208,11 @@ SweepBrackets sweep_brackets(const std::string& path, const physics::Model& m) {
   const auto wb = f.read_doubles("windows/omega_m_begin"), we = f.read_doubles("windows/omega_m_end");
   const auto model = f.read_doubles("chains/model");
   const auto mine = model_row(m.p);
-  if (model.cols() != mine.size() && model.cols() != kOlderModelColumns)
+  if (model.cols() != mine.size() && !older_model_layout(model.cols()))
     throw std::runtime_error(fmt::format("chains/model has {} columns, expected {} (or {} in files before the tie "
-                                         "clutch's columns)", model.cols(), mine.size(), kOlderModelColumns));
+                                         "clutch's columns, {} before the pair couple's)",
+                                         model.cols(), mine.size(), kOlderModelLayouts[0].columns,
+                                         kOlderModelLayouts[1].columns));
   SweepBrackets out;
   out.columns_matched = model.cols();
   for (std::size_t c = 0; c < cls.rows(); ++c) {
@@ -481,9 +494,9 @@ int orbits_command(const OrbitsArgs& args) {
         return kExitBadInput;
       }
       std::printf("\nagainst the sweep %s (%zu chains with this model):\n", args.compare.c_str(), sb.chains.size());
-      if (sb.columns_matched < kModelColumns)
-        std::printf("  (the file records %zu of the %zu model parameters, none of the tie clutch's; matched on those)\n",
-                    sb.columns_matched, kModelColumns);
+      if (const OlderModelLayout* o = older_model_layout(sb.columns_matched))
+        std::printf("  (the file records %zu of the %zu model parameters, %s; matched on those)\n",
+                    sb.columns_matched, kModelColumns, o->lacking);
       for (const auto& t : pred->thresholds)
         for (std::size_t i = 0; i < sb.chains.size(); ++i) {
           const auto& b = sb.by_symbol[t.symbol][i];

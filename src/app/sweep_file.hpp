@@ -23,12 +23,14 @@ namespace ajx::app {
 inline constexpr double kNotComputed = std::numeric_limits<double>::quiet_NaN();
 
 // One row of /chains/model: the parameters a sweep's chain ran with, in the order of the
-// dataset's "columns" attribute (the tie clutch's four last).
-inline constexpr std::size_t kModelColumns = 14;
+// dataset's "columns" attribute (the tie clutch's four, then the pair couple's two last).
+// Files written before the tie clutch's columns have the first 10, before the couple's 14.
+inline constexpr std::size_t kModelColumns = 16;
 inline std::array<double, kModelColumns> model_row(const physics::Parameters& p) {
   return {p.string_length,  p.bead_mass,         p.ball_mass,          p.drag,         p.mu_static,
           p.mu_kinetic,     p.gravity,           p.drive_radius,       p.contact_distance, p.top_stop,
-          p.tie_static_torque, p.tie_kinetic_torque, p.tie_inertia, p.tie_damping};
+          p.tie_static_torque, p.tie_kinetic_torque, p.tie_inertia, p.tie_damping,
+          p.couple_torque,  p.couple_slip_rate};
 }
 
 // The sweep's file on rank 0, written while the sweep runs: every result dataset is made at
@@ -207,7 +209,7 @@ class SweepFile {
         .set_attribute("columns", "string_length [m],bead_mass [kg],ball_mass [kg],drag [kg/s],mu_static,mu_kinetic,"
                                   "gravity [m/s^2],drive_radius [m],contact_distance [m],top_stop [m],"
                                   "tie_static_torque [N m],tie_kinetic_torque [N m],tie_inertia [kg m^2],"
-                                  "tie_damping [N m s]");
+                                  "tie_damping [N m s],couple_torque [N m],couple_slip_rate [rad/s]");
   }
 
   void write_window_layout(const std::vector<sweep::ChainSetup>& setups) {

@@ -375,7 +375,8 @@ RunConfig load_run_config(const std::string& path, const std::vector<std::string
 namespace {
 
 // The [grid] axes that set a model parameter of each grid point; the other axis, ramp_rate,
-// sets the protocol's ramps. τ_s, τ_k, c_a are the tie clutch's (physics/tie.hpp).
+// sets the protocol's ramps. τ_s, τ_k, c_a are the tie clutch's (physics/tie.hpp); τ_c, Ω_ε
+// the pair couple's (physics/pair_couple.hpp).
 struct GridParameter {
   std::string_view key;
   void (*set)(physics::Parameters&, double);
@@ -392,6 +393,8 @@ constexpr GridParameter kGridParameters[] = {
     {"tie_static_torque", [](physics::Parameters& p, double v) { p.tie_static_torque = v; }},
     {"tie_kinetic_torque", [](physics::Parameters& p, double v) { p.tie_kinetic_torque = v; }},
     {"tie_damping", [](physics::Parameters& p, double v) { p.tie_damping = v; }},
+    {"couple_torque", [](physics::Parameters& p, double v) { p.couple_torque = v; }},
+    {"couple_slip_rate", [](physics::Parameters& p, double v) { p.couple_slip_rate = v; }},
 };
 const GridParameter* grid_parameter(std::string_view key) {
   for (const auto& axis : kGridParameters)

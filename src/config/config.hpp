@@ -59,7 +59,8 @@ struct RunConfig : CommonConfig {
 struct GridAxis {
   std::string key;             // "drive_radius", "contact_distance", "string_length", "mass",
                                // "mu_static", "mu_kinetic", "drag", "tie_static_torque",
-                               // "tie_kinetic_torque", "tie_damping" or "ramp_rate"
+                               // "tie_kinetic_torque", "tie_damping", "couple_torque",
+                               // "couple_slip_rate" or "ramp_rate"
   std::vector<double> values;  // in SI units
 };
 

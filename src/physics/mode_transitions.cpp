@@ -128,6 +128,12 @@ double guard_value(Guard g, const Model& m, const TopKinematics& top, const Cont
   }
 }
 
+Contact held_here(const TopKinematics& top, const Contact& c, const numerics::Vec& y) {
+  Contact held{Mode::Stuck, 0, (Vec3(y.segment<3>(idx::r1)) - top.a).norm()};
+  held.tie = c.tie;
+  return held;
+}
+
 Contact at_rest(const Model& m, const TopKinematics& top, const numerics::Vec& y, double band) {
   const double s = (Vec3(y.segment<3>(idx::r1)) - top.a).norm();
   const Contact held{Mode::Stuck, 0, s};
@@ -141,11 +147,21 @@ Contact at_rest(const Model& m, const TopKinematics& top, const numerics::Vec& y
   return {Mode::Sliding, sdd > 0.0 ? +1 : (sdd < 0.0 ? -1 : 0), 0.0};
 }
 
+double static_cone_margin(const Model& m, const TopFor& top_for, const Contact& c, const numerics::Vec& y) {
+  Model held_model = m;
+  held_model.layers.friction = Friction::StickSlip;  // the μ_s cone
+  const Contact held = held_here(top_for(c), c, y);
+  // The held bead's top: its χ̈ does not depend on the friction layer (two constraints, no κ).
+  const ConeMargins k = evaluate(held_model, top_for(held), held, y).margins;
+  return std::min(k.up, k.down);
+}
+
 namespace {
 
 // settle() for the bead's mode only (the returned tie is the default one).
-Contact settle_bead(const Model& m, const TopKinematics& top, const Contact& c, const numerics::Vec& y,
+Contact settle_bead(const Model& m, const TopFor& top_for, const Contact& c, const numerics::Vec& y,
                     double band) {
+  const TopKinematics top = top_for(c);
   switch (c.mode) {
     case Mode::Stuck:
     case Mode::BottomStop:
@@ -165,7 +181,9 @@ Contact settle_bead(const Model& m, const TopKinematics& top, const Contact& c, 
       const double sdot_floor = 1e-12;  // [m/s]
       if (c.sigma != 0 && std::abs(sdot) <= sdot_floor) return c;
       if (sdot != 0.0) return {Mode::Sliding, sdot > 0.0 ? +1 : -1, 0.0};
-      return at_rest(m, top, y, band);
+      // The cone is the held bead's, at the top the held bead gives (not this mode's: with a
+      // slipping tie the sliding mode's χ̈, hence ä, differs).
+      return at_rest(m, top_for(held_here(top, c, y)), y, band);
     }
     case Mode::Slack:
       return c;
@@ -175,9 +193,9 @@ Contact settle_bead(const Model& m, const TopKinematics& top, const Contact& c, 
 
 }  // namespace
 
-Contact settle(const Model& m, const TopKinematics& top, const Contact& c, const numerics::Vec& y,
+Contact settle(const Model& m, const TopFor& top_for, const Contact& c, const numerics::Vec& y,
                double band) {
-  Contact out = settle_bead(m, top, c, y, band);
+  Contact out = settle_bead(m, top_for, c, y, band);
   out.tie = c.tie;  // the bead's mode settles; the tie's state (held at its offset, or slipping) stays
   return out;
 }

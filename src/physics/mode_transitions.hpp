@@ -2,6 +2,7 @@
 // watches, as zero crossings located on the dense output, and the mode entered at a crossing.
 // Guards of omitted layers are watches: they count a violated assumption and switch nothing.
 #pragma once
+#include <functional>
 #include <string_view>
 #include <vector>
 
@@ -60,17 +61,33 @@ bool needs_dynamics(Guard g);
 double guard_value(Guard g, const Model& m, const TopKinematics& top, const Contact& c,
                    const numerics::Vec& y, const Dynamics& d);
 
+// The top of the string at the (t, y) being judged, for a candidate contact state c (the
+// bead's mode with the tie's state): tie.hpp's top_kinematics, or the rotating axes' top.
+// With a slipping tie ä depends on the bead's mode (through χ̈, solved with F1 of that mode),
+// so a mode's forces are judged at the top that mode gives.
+using TopFor = std::function<TopKinematics(const Contact& c)>;
+
+// The stuck mode at the bead's present s* = L1 = |r1 − a| with c's tie: the mode at_rest judges.
+Contact held_here(const TopKinematics& top, const Contact& c, const numerics::Vec& y);
+
 // The mode the bead takes when it is at rest on the string (ṡ = 0): stuck while the forces
 // of the held bead lie inside the sticking cone, else sliding in the direction of the violated
 // bound (σ = -1 up, +1 down). Without a stuck mode: sliding in the direction s̈ points.
+// `top` is the top the held bead would give (top_for(held_here(...))).
 // `band` widens the cone by a few newtons (>= 0; the chatter resolution, see simulation.hpp).
 Contact at_rest(const Model& m, const TopKinematics& top, const numerics::Vec& y, double band = 0.0);
 
+// The margin of the μ_s cone of the bead held at its present s, min(up, down) [N] (> 0 inside),
+// at the top the held bead gives: what the watch of the `kinetic` and `regularised` layers
+// reports at ṡ = 0 (those layers have no static coefficient of their own).
+double static_cone_margin(const Model& m, const TopFor& top_for, const Contact& c, const numerics::Vec& y);
+
 // A taut mode entered with velocities already on its constraints: the held modes keep it
 // while their one-sided cones hold, else the bead slides in the direction of the violated
-// bound; a sliding bead gets σ = sgn ṡ, or the rest rule when ṡ = 0. The tie's state (c.tie)
-// is kept: only the bead's mode settles.
-Contact settle(const Model& m, const TopKinematics& top, const Contact& c, const numerics::Vec& y,
+// bound; a sliding bead gets σ = sgn ṡ, or the rest rule when ṡ = 0 (judged at the held
+// bead's top, top_for(held_here(...))). The tie's state (c.tie) is kept: only the bead's mode
+// settles.
+Contact settle(const Model& m, const TopFor& top_for, const Contact& c, const numerics::Vec& y,
                double band = 0.0);
 
 }  // namespace ajx::physics

@@ -72,6 +72,8 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
                     : physics::top_kinematics(model_, schedule_, c, t, y);
   };
   const auto top_at = [&](double t, const Vec& y) { return top_for(contact, t, y); };
+  // The same for physics::settle, at the present state s (which it may be projecting).
+  const physics::TopFor top_now = [&](const Contact& c) { return top_for(c, s.t, s.y); };
   // A fixed step is not bounded by Ω, and neither sampled inside (as before the samples: the
   // step is the user's; the h_bound call alone cost 4-6 % of an Euler or RK4 step).
   if (!stepper->adaptive()) integ.event_samples = 0;
@@ -125,12 +127,7 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
   };
   // The cone margin a stuck bead would have here: > 0 means a model with stick would hold it.
   const auto stick_margin = [&](double t, const Vec& y) {
-    const physics::TopKinematics top = top_at(t, y);
-    Model held_model = model_;
-    held_model.layers.friction = physics::Friction::StickSlip;
-    const Contact held{Mode::Stuck, 0, (Vec3(y.segment<3>(physics::idx::r1)) - top.a).norm()};
-    const physics::ConeMargins c = physics::evaluate(held_model, top, held, y).margins;
-    return std::min(c.up, c.down);
+    return physics::static_cone_margin(model_, [&](const Contact& c) { return top_for(c, t, y); }, contact, y);
   };
   const auto follow_watches = [&](double t, const Vec& y) {
     for (auto& [g, w] : watches) {
@@ -321,7 +318,7 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
       const physics::ProjectionEnergy pe = physics::project_velocities(model_, next, top, s.y, e);
       s.y(physics::idx::motor_work) += pe.motor_work;
       s.impact_loss += pe.dissipated;
-      next = physics::settle(model_, top, next, s.y, band);
+      next = physics::settle(model_, top_now, next, s.y, band);
     }
     if (next.mode == Mode::Stuck && contact.mode != Mode::Stuck && sum.sticks++ == 0) sum.first_stick = s.t;
     if (next.mode == Mode::Slack && contact.mode != Mode::Slack) ++sum.slack_phases;
@@ -452,7 +449,7 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
         }
         return;
       }
-      const Contact settled = physics::settle(model_, top, contact, s.y, band);
+      const Contact settled = physics::settle(model_, top_now, contact, s.y, band);
       if (settled.mode != contact.mode || settled.sigma != contact.sigma) {
         enter(settled, 0.0);
         continue;
@@ -541,9 +538,7 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
           {
             // The cone is judged on the held bead's forces at the top the held bead would give:
             // with a slipping tie, ä (through χ̈) depends on the bead's mode.
-            Contact held{Mode::Stuck, 0, (s.y.segment<3>(physics::idx::r1) - top.a).norm()};
-            held.tie = contact.tie;
-            enter(physics::at_rest(model_, top_for(held, s.t, s.y), s.y, band), 0.0);
+            enter(physics::at_rest(model_, top_now(physics::held_here(top, contact, s.y)), s.y, band), 0.0);
           }
           break;
         case Guard::SlipUp:
