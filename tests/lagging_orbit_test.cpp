@@ -11,6 +11,7 @@
 
 #include "bench/scene_file.hpp"
 #include "measured.hpp"
+#include "one_set.hpp"
 #include "orbits/lagging_orbit.hpp"
 #include "orbits/orbit_families.hpp"
 #include "physics/state.hpp"
@@ -22,18 +23,6 @@ using namespace ajx::orbits;
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-
-// The one parameter set of README "One parameter set for the whole protocol".
-physics::Model one_set() {
-  physics::Model m;
-  m.layers.tie_clutch = true;
-  m.p.drive_radius = 0.015;
-  m.p.contact_distance = 0.035;
-  m.p.tie_static_torque = 1.5e-3;
-  m.p.tie_kinetic_torque = 1.35e-3;
-  m.p.tie_damping = 2e-6;
-  return m;
-}
 
 // The lag with the bead held by friction and stable (or, failing that, held), side +/-.
 const LagOrbit* held_lag(const std::vector<LagOrbit>& lags, bool want_stable) {
@@ -49,7 +38,7 @@ TEST(LaggingOrbit, TheTiesTorqueIsTheDragTorqueOfTheCircle) {
   // the tie passes, −R (ê_χ·u1) F1, equals the drag torque c_D ω_b (ρ1² + ρ2²). The two are
   // computed independently; they differ by the torque of the residual forces, at most
   // √3 (ρ1 + ρ2) W res (res the scaled residual of the force balance, W the pair's weight).
-  const physics::Model m = one_set();
+  const physics::Model m = one_parameter_set();
   const auto lags = lag_orbits(m, 0.4589, 10 * kPi);
   ASSERT_FALSE(lags.empty());
   for (const LagOrbit& L : lags) {
@@ -99,7 +88,7 @@ TEST(LaggingOrbit, AboveItsHopfPointAPerturbationGrowsAtThePredictedRate) {
   // most e^{−0.22·10} ≈ 0.1 of the amplitude: the rate measured between the windows at 10 s and
   // 25 s is off by at most ln(1.1)/15 s ≈ 0.007/s, 4 %; allow 10 %. The amplitude stays below
   // 1e-3 of the radii (linear).
-  const physics::Model m = one_set();
+  const physics::Model m = one_parameter_set();
   const double s = 0.4589, omega_m = 17 * kPi;
   const LagBranch br = lag_branch(m, held_lag(lag_orbits(m, s, 10 * kPi), true)->orbit, 3.5 * kPi, 5 * kPi);
   const auto hopf = std::find_if(br.events.begin(), br.events.end(), [](const LagEvent& e) {

@@ -14,6 +14,7 @@
 #include "bench/scene_file.hpp"
 #include "config/config.hpp"
 #include "measured.hpp"
+#include "one_set.hpp"
 #include "physics/energy.hpp"
 #include "physics/mode_transitions.hpp"
 #include "physics/tie.hpp"
@@ -284,13 +285,7 @@ TEST(TieClutch, SettleJudgesTheRestingBeadAtTheHeldBeadsTop) {
   // the held mode the cone would hold it: the rest event would repeat at one instant.) The
   // margins are far from zero against their rounding (~1e-16 of T ≈ 0.3 N), so the signs asserted
   // are the physics', not noise.
-  physics::Model m;
-  m.layers.tie_clutch = true;
-  m.p.drive_radius = 0.015;
-  m.p.contact_distance = 0.035;
-  m.p.tie_static_torque = 1.5e-3;
-  m.p.tie_kinetic_torque = 1.35e-3;
-  m.p.tie_damping = 2e-6;
+  const physics::Model m = one_parameter_set();
   const double omega_m = 4 * pi, chi_dot = 2 * pi, R = m.p.drive_radius;
   const physics::MotorSchedule schedule({{omega_m, omega_m, 100.0}});
   const double L1 = 0.7, theta1 = 1.15, alpha = -1.0, theta2 = 0.1;
