@@ -830,7 +830,7 @@ class lag_limits(unittest.TestCase):
     def test_both_rise_with_the_bead_position(self):
         # The claim of README "The lag's ceiling": along the string, ω_fall(s) (the stuck
         # family's entry into the cone) and the highest stable lag both grow with s, so the bead
-        # position that lowers one lowers the other. Three positions, about 4 s.
+        # position that lowers one lowers the other. Three positions, about 1 s.
         out = data("lag_limits.md")
         script("lag_limits.py", "-o", out, "--s", "0.44:0.56:0.06")
         rows = [cells(l) for l in section(out, "R = 15 mm, d = 3.5 cm") if l.startswith("| 0.")]

@@ -107,8 +107,7 @@ void write_table(io::Group g, const std::vector<Row>& rows) {
 
 Row make_row(const physics::Model& m, const SteadyOrbit& o, int id, double lambda) {
   Row r{id, lambda, o, stability({m, o.omega, o.closure, o.s}, unknowns(o)), 0};
-  const double rate = o.omega + std::sqrt(m.p.gravity / m.p.string_length);
-  for (int i = 0; i < r.st.eigenvalues.size(); ++i) r.unstable += r.st.eigenvalues(i).real() > 1e-7 * rate;
+  for (int i = 0; i < r.st.eigenvalues.size(); ++i) r.unstable += r.st.eigenvalues(i).real() > growth_noise(m, o.omega);
   return r;
 }
 
@@ -292,12 +291,9 @@ int lag_report(const config::OrbitsConfig& cfg, const std::vector<double>& omega
     std::vector<LagBranch> done;
     for (const LagOrbit& start : starts) {
       // A start already on a branch continued (the sides meet at folds) adds nothing.
-      const bool on_done = std::any_of(done.begin(), done.end(), [&](const LagBranch& b) {
-        return std::any_of(b.points.begin(), b.points.end(), [&](const LagOrbit& q) {
-          return (q.orbit.p1 - start.orbit.p1).norm() + (q.orbit.p2 - start.orbit.p2).norm() < 0.02 * p.string_length;
-        });
-      });
-      if (on_done) continue;
+      if (std::any_of(done.begin(), done.end(),
+                      [&](const LagBranch& b) { return on_branch(b.points, start.orbit, p.string_length); }))
+        continue;
       const LagBranch& br = done.emplace_back(lag_branch(m, start.orbit, lo, hi));
       std::printf("  branch of side %s continued over omega_ball in [%.3fπ, %.3fπ] (%zu points), events as tau grows:\n",
                   start.orbit.branch.c_str(), lo / kPi, hi / kPi, br.points.size());

@@ -151,6 +151,7 @@ Branch continue_branch(OrbitProblem pb, const Vec9& X0, const std::string& param
          : parameter == "s"   ? pb.model.p.string_length
                               : (lambda0 != 0 ? std::abs(lambda0) : 1.0);
   const double rate_scale = pb.omega + std::sqrt(pb.model.p.gravity / pb.model.p.string_length);
+  const double noise = growth_noise(pb.model, pb.omega);
 
   Branch br;
   br.parameter = parameter;
@@ -177,7 +178,7 @@ Branch continue_branch(OrbitProblem pb, const Vec9& X0, const std::string& param
       T.point.stab = stability(q, c.X(Z));
       // Eigenvalues within the finite-difference noise of zero do not count.
       for (int i = 0; i < T.point.stab.eigenvalues.size(); ++i)
-        T.point.unstable += T.point.stab.eigenvalues(i).real() > 1e-7 * rate_scale;
+        T.point.unstable += T.point.stab.eigenvalues(i).real() > noise;
     }
     return T;
   };

@@ -5,11 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numeric>
 #include <stdexcept>
 
 #include "orbits/continuation.hpp"
 #include "orbits/corotating_frame.hpp"
+#include "orbits/orbit_stability.hpp"
 #include "orbits/orbit_families.hpp"
 #include "physics/astrojax_system.hpp"
 #include "physics/tie.hpp"
@@ -147,12 +147,10 @@ std::vector<BranchPoint> branch_path(const physics::Model& m, double s, double o
 
 double tie_drive_torque(const physics::Model& m, const SteadyOrbit& o) { return drive_torque(m, unknowns(o)); }
 
+double separation(const SteadyOrbit& a, const SteadyOrbit& b) { return (a.p1 - b.p1).norm() + (a.p2 - b.p2).norm(); }
+
 double clutch_torque(const physics::Model& m, double omega_m, double omega_ball) {
   return m.p.tie_kinetic_torque + m.p.tie_damping * (omega_m - omega_ball);
-}
-
-double lag_unstable_threshold(const physics::Model& m, double omega_ball) {
-  return 1e-7 * (omega_ball + std::sqrt(m.p.gravity / m.p.string_length));
 }
 
 LagStability lag_stability(const physics::Model& m0, const SteadyOrbit& o) {
@@ -205,17 +203,12 @@ LagStability lag_stability(const physics::Model& m0, const SteadyOrbit& o) {
   st.symmetry_eigenvalue = B(0, 0);
   Eigen::EigenSolver<Eigen::MatrixXd> es(B.bottomRightCorner<9, 9>());
   const Eigen::VectorXcd ev = es.eigenvalues();
-  std::vector<int> order(ev.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](int x, int y) {
-    if (ev(x).real() != ev(y).real()) return ev(x).real() > ev(y).real();
-    return ev(x).imag() > ev(y).imag();
-  });
+  const std::vector<int> order = growth_order(ev);
   st.eigenvalues.resize(ev.size());
   for (int i = 0; i < int(ev.size()); ++i) st.eigenvalues(i) = ev(order[i]);
   st.growth = st.eigenvalues(0).real();
   st.frequency = std::abs(st.eigenvalues(0).imag());
-  st.stable = st.growth < lag_unstable_threshold(m, wb);
+  st.stable = st.growth < growth_noise(m, wb);
   return st;
 }
 
@@ -227,11 +220,16 @@ std::vector<LagOrbit> lag_orbits(const physics::Model& m, double s, double omega
     return tie_drive_torque(m, p.orbit) - clutch_torque(m, omega_m, p.lambda);
   };
   std::vector<LagOrbit> out;
+  std::vector<std::vector<BranchPoint>> traced;
   constexpr int kStarts = 8;  // the stuck family's branches at s, picked up at 8 speeds across [lo, hi]
   for (int k = 0; k < kStarts; ++k) {
     const double w0 = lo + (hi - lo) * (k + 0.5) / kStarts;
     for (const SteadyOrbit& o : orbits_at({m, w0, Closure::Stuck, s})) {
-      const std::vector<BranchPoint> path = branch_path(m, s, w0, unknowns(o), lo, hi);
+      // A start on a branch already traced over [lo, hi] adds nothing.
+      if (std::any_of(traced.begin(), traced.end(),
+                      [&](const std::vector<BranchPoint>& b) { return on_branch(b, o, m.p.string_length); }))
+        continue;
+      const std::vector<BranchPoint>& path = traced.emplace_back(branch_path(m, s, w0, unknowns(o), lo, hi));
       for (std::size_t i = 0; i + 1 < path.size(); ++i) {
         const double fa = f(path[i]), fb = f(path[i + 1]);
         if (!(fa * fb <= 0.0) || fa == fb) continue;
@@ -244,7 +242,7 @@ std::vector<LagOrbit> lag_orbits(const physics::Model& m, double s, double omega
         const SteadyOrbit orbit = describe({m, r.omega, Closure::Stuck, s}, r.X);
         const bool seen = std::any_of(out.begin(), out.end(), [&](const LagOrbit& q) {
           return std::abs(q.orbit.omega - r.omega) <= 1e-8 * omega_m &&
-                 (q.orbit.p1 - orbit.p1).norm() + (q.orbit.p2 - orbit.p2).norm() <= 1e-7 * m.p.string_length;
+                 separation(q.orbit, orbit) <= 1e-7 * m.p.string_length;
         });
         if (!seen) out.push_back(make_lag(m, orbit, omega_m, opt.stability));
       }

@@ -29,6 +29,25 @@ namespace ajx::orbits {
 // ê_χ = ŷ) [N m]: at an equilibrium, c_D ω (ρ1² + ρ2²).
 double tie_drive_torque(const physics::Model& m, const SteadyOrbit& o);
 
+// |Δp1| + |Δp2| between two orbits' positions [m]: how far apart two points of the family are.
+double separation(const SteadyOrbit& a, const SteadyOrbit& b);
+
+// Whether o lies on a branch continued in ω (points in order along it, each with an `orbit`):
+// two neighbours bracket o's ω, and their positions, interpolated linearly to it, lie within
+// 1e-3 l of o's (the interpolation's error over a continuation step is far smaller; another
+// branch at the same ω lies farther, except where branches cross).
+template <class Point>
+bool on_branch(const std::vector<Point>& path, const SteadyOrbit& o, double string_length) {
+  for (std::size_t i = 0; i + 1 < path.size(); ++i) {
+    const SteadyOrbit &a = path[i].orbit, &b = path[i + 1].orbit;
+    if ((a.omega - o.omega) * (b.omega - o.omega) > 0.0) continue;
+    const double t = b.omega != a.omega ? (o.omega - a.omega) / (b.omega - a.omega) : 0.0;
+    const Vec3 p1 = a.p1 + t * (b.p1 - a.p1), p2 = a.p2 + t * (b.p2 - a.p2);
+    if ((p1 - o.p1).norm() + (p2 - o.p2).norm() < 1e-3 * string_length) return true;
+  }
+  return false;
+}
+
 // The clutch torque τ_k + c_a (ω_m − ω_b) at a lag of rate ω_b [N m].
 double clutch_torque(const physics::Model& m, double omega_m, double omega_ball);
 
@@ -37,15 +56,12 @@ struct LagStability {
   double symmetry_eigenvalue = 0;  // the factored-out one, zero up to the differences' error [1/s]
   double growth = 0.0;             // max Re λ [1/s]
   double frequency = 0.0;          // |Im λ| of that eigenvalue [rad/s]
-  bool stable = false;             // growth below the round-off threshold (lag_unstable_threshold)
+  bool stable = false;             // growth below the differences' noise (growth_noise)
 };
 
 // Linear stability of the lag o (an orbit of the stuck family at ω = ω_b) with the tie slipping
 // forward. The motor speed drops out: the clutch's torque depends on χ̇ only through −c_a χ̇.
 LagStability lag_stability(const physics::Model& m, const SteadyOrbit& o);
-
-// Re λ above which an eigenvalue counts as growing: 1e-7 of the orbit's fastest rate.
-double lag_unstable_threshold(const physics::Model& m, double omega_ball);
 
 struct LagOrbit {
   SteadyOrbit orbit;      // at ω = ω_b (orbit.omega), positions in the frame turning with the tie

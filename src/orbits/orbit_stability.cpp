@@ -17,6 +17,20 @@ Vec12 frame_coordinates(const Vec9& X) {
   return z;
 }
 
+std::vector<int> growth_order(const Eigen::VectorXcd& ev) {
+  std::vector<int> order(ev.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    if (ev(a).real() != ev(b).real()) return ev(a).real() > ev(b).real();
+    return ev(a).imag() > ev(b).imag();
+  });
+  return order;
+}
+
+double growth_noise(const physics::Model& m, double omega) {
+  return 1e-7 * (omega + std::sqrt(m.p.gravity / m.p.string_length));
+}
+
 Stability stability(const OrbitProblem& pb, const Vec9& X) {
   const physics::Model& m = pb.model;
   Stability st;
@@ -47,13 +61,7 @@ Stability stability(const OrbitProblem& pb, const Vec9& X) {
   }
   Eigen::EigenSolver<Eigen::MatrixXd> es(B);
   const Eigen::VectorXcd ev = es.eigenvalues();
-  std::vector<int> order(ev.size());
-  std::iota(order.begin(), order.end(), 0);
-  // Largest real part first; of a conjugate pair, the one with Im > 0 first.
-  std::sort(order.begin(), order.end(), [&](int a, int b) {
-    if (ev(a).real() != ev(b).real()) return ev(a).real() > ev(b).real();
-    return ev(a).imag() > ev(b).imag();
-  });
+  const std::vector<int> order = growth_order(ev);
   st.eigenvalues.resize(ev.size());
   for (int i = 0; i < int(ev.size()); ++i) st.eigenvalues(i) = ev(order[i]);
   st.growth = st.eigenvalues(0).real();

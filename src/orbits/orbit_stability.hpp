@@ -8,6 +8,7 @@
 // growing oscillation seen from the co-rotating frame.
 #pragma once
 #include <Eigen/Core>
+#include <vector>
 
 #include "orbits/corotating_frame.hpp"
 #include "orbits/steady_orbit.hpp"
@@ -25,6 +26,13 @@ struct Stability {
 
 // Frame coordinates of the equilibrium X: q = (p1, p2), q̇ = 0.
 Vec12 frame_coordinates(const Vec9& X);
+
+// The order of eigenvalues by real part, largest first; of a conjugate pair, Im > 0 first.
+std::vector<int> growth_order(const Eigen::VectorXcd& ev);
+
+// Re λ below which an eigenvalue counts as zero (the finite differences' noise): 1e-7 of the
+// fastest rate of an orbit at ω, ω + √(g/l) [1/s].
+double growth_noise(const physics::Model& m, double omega);
 
 Stability stability(const OrbitProblem& pb, const Vec9& X);
 
