@@ -398,6 +398,10 @@ std::optional<Onset> flower_onset(const io::File& f, const SweepWindows& sw, std
 
 // ---- the report ---------------------------------------------------------------------------
 
+// The paper's lagging orbit: ω_ball nearly constant at about 4.8π between ω1 and ω2 (read off
+// its simulated Fig. 7(i), not measured) [rad/s].
+constexpr double kPaperLagOmegaBall = 4.8 * pi;
+
 std::string_view symbol(sweep::Threshold t) {
   switch (t) {
     case sweep::Threshold::Rise: return "ω_rise";
@@ -505,6 +509,21 @@ std::string report(const ThresholdsArgs& args, const SweepWindows& sw, const std
                widths);
         }
       if (!any) line({std::string(symbol(t)), "", "not reached", "", "", fmt::format("{:.2f}", paper / pi), "", ""}, widths);
+    }
+    // The lag's plateau: the longest lagging run on a rising leg, its mean ω_ball and slope.
+    for (std::size_t c = 0; c < sw.chains.size(); ++c) {
+      if (sw.variant[c] != v) continue;
+      std::optional<sweep::ClassRun> lag;
+      for (const sweep::ClassRun& r : sweep::class_runs(sw.chains[c], sw.omega_ball[c], false))
+        if (r.cls == sweep::OrbitClass::LaggingCircular && r.direction > 0 && (!lag || r.windows > lag->windows)) lag = r;
+      if (!lag || !std::isfinite(lag->omega_ball_mean)) continue;
+      line({"lag ω_ball", chain_name(sw, c), fmt::format("{:.3f}", lag->omega_ball_mean / pi), "",
+            fmt::format("over ω_m {:.2f} → {:.2f}π, dω_ball/dω_m {:+.3f}", lag->omega_from / pi, lag->omega_to / pi,
+                        lag->omega_ball_slope),
+            fmt::format("≈ {:.1f}", kPaperLagOmegaBall / pi),
+            fmt::format("{:+.1f} %", 100 * (lag->omega_ball_mean - kPaperLagOmegaBall) / kPaperLagOmegaBall),
+            fmt::format("{} windows", lag->windows)},
+           widths);
     }
     if (!reasons.empty()) {
       out += markdown ? "\nVerdicts:\n\n" : "  verdicts:\n";
