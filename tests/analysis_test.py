@@ -24,6 +24,8 @@ import zlib
 import numpy as np
 
 ASTROJAX, SOURCE, DATA = (os.path.abspath(p) for p in sys.argv[1:4])
+# Every script a test starts finds the astrojax under test, whatever the build folder.
+os.environ["ASTROJAX"] = ASTROJAX
 ANALYSIS = os.path.join(SOURCE, "analysis")
 PYTHON = sys.executable
 sys.path.insert(0, ANALYSIS)
