@@ -419,11 +419,15 @@ std::string against_paper(double a, double b, double p) {
   return fmt::format("{:+.1f} .. {:+.1f} %", 100 * (lo - p) / p, 100 * (hi - p) / p);
 }
 
+// What a chain is: its group and its grid point ("up", "drive_radius=0.01", "").
+std::string chain_label(const SweepWindows& sw, std::size_t c) {
+  if (sw.group[c].empty() || sw.params[c].empty()) return sw.group[c] + sw.params[c];
+  return sw.group[c] + " " + sw.params[c];
+}
+
 std::string chain_name(const SweepWindows& sw, std::size_t c) {
-  std::string name = fmt::format("{}", c);
-  if (!sw.group[c].empty()) name += " " + sw.group[c];
-  if (!sw.params[c].empty()) name += " " + sw.params[c];
-  return name;
+  const std::string label = chain_label(sw, c);
+  return label.empty() ? fmt::format("{}", c) : fmt::format("{} {}", c, label);
 }
 
 // One report, as text or as Markdown: per variant, a table of its brackets, the Hopf fits,
@@ -605,7 +609,7 @@ std::string sequence_report(const ThresholdsArgs& args, const SweepWindows& sw, 
                      "dω_ball/dω_m");
   std::vector<std::vector<sweep::StepMatch>> matches;
   for (std::size_t c = 0; c < sw.chains.size(); ++c) {
-    const std::string params = chain_name(sw, c).substr(std::to_string(c).size() + (sw.group[c].empty() && sw.params[c].empty() ? 0 : 1));
+    const std::string params = chain_label(sw, c);
     const std::vector<sweep::ClassRun> runs = sweep::class_runs(sw.chains[c], sw.omega_ball[c], args.absorb_blips);
     for (const sweep::ClassRun& r : runs) {
       out += fmt::format("{:<6} {:<28} {:<4} {:<5} {:<17} {:8.3f} .. {:<10.3f} {:<8} {:<6} {:<11} {}\n", c, params, r.leg,
