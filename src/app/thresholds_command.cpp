@@ -609,7 +609,8 @@ std::string sequence_report(const ThresholdsArgs& args, const SweepWindows& sw, 
                      "dω_ball/dω_m");
   std::vector<std::vector<sweep::StepMatch>> matches;
   for (std::size_t c = 0; c < sw.chains.size(); ++c) {
-    const std::string params = chain_label(sw, c);
+    const std::string& variant = sw.variants[sw.variant[c]].name;
+    const std::string params = chain_label(sw, c) + (variant.empty() ? "" : " (" + variant + ")");
     const std::vector<sweep::ClassRun> runs = sweep::class_runs(sw.chains[c], sw.omega_ball[c], args.absorb_blips);
     for (const sweep::ClassRun& r : runs) {
       out += fmt::format("{:<6} {:<28} {:<4} {:<5} {:<17} {:8.3f} .. {:<10.3f} {:<8} {:<6} {:<11} {}\n", c, params, r.leg,
@@ -631,7 +632,8 @@ std::string sequence_report(const ThresholdsArgs& args, const SweepWindows& sw, 
   }
   out += "\nagainst the paper's sequence (each step looked for after the last one found)\n";
   for (std::size_t c = 0; c < sw.chains.size(); ++c) {
-    out += fmt::format("chain {}\n", chain_name(sw, c));
+    const std::string& variant = sw.variants[sw.variant[c]].name;
+    out += fmt::format("chain {}{}\n", chain_name(sw, c), variant.empty() ? "" : " (" + variant + ")");
     for (const sweep::StepMatch& m : matches[c])
       out += fmt::format("  {:<9} {:<13} {:<13} {}\n", sweep::to_string(m.step), sweep::to_string(m.status),
                          m.run >= 0 ? fmt::format("at {:.3f}π", m.omega / pi) : "", sweep::describe(m.step));
