@@ -77,7 +77,8 @@ def main(argv=None):
             rise, what, n = outcome(runs.get(c, []))
             text = (f"{rise / PI:.2f}: " if np.isfinite(rise) else "") + what + (f", {n} windows" if n else "")
             cells.setdefault(key, {})[float(sweep.grid[c, col["ramp_rate"]])] = text
-            total[(v, what.split(" ")[0])] = total.get((v, what.split(" ")[0]), 0) + 1
+            kind = what.split(" (")[0]  # circular, falls back, ends <class>, no climb
+            total[(v, kind)] = total.get((v, kind), 0) + 1
         for (R, d), by_rate in sorted(cells.items()):
             lines.append(f"| {R * 1e3:g} | {d * 1e2:g} | " + " | ".join(by_rate.get(r, "") for r in rates) + " |")
         lines.append("")
