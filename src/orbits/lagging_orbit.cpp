@@ -7,6 +7,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "numerics/damped_newton.hpp"
 #include "orbits/continuation.hpp"
 #include "orbits/corotating_frame.hpp"
 #include "orbits/orbit_stability.hpp"
@@ -53,54 +54,30 @@ Vec14 frame_rhs(const physics::Model& m, const physics::MotorSchedule& motor, do
 }
 
 // Newton on the ten equations (the nine of steady_orbit.hpp at ω = ω_b, and the tie's balance)
-// in (X, ω_b), from a guess; damped and backtracking like orbits::solve.
+// in (X, ω_b), from a guess (numerics/damped_newton.hpp).
 struct LagRoot {
   Vec9 X;
   double omega = 0.0;
   bool converged = false;
 };
 LagRoot solve_lag(const physics::Model& m, double s, double omega_m, Vec9 X, double w) {
-  const auto F = [&](const Vec9& x, double om) {
+  // z = (X, ω_b): the nine equations at ω = ω_b and the tie's balance.
+  const auto F = [&](const Vec10& z) {
     Vec10 r;
-    r.head<9>() = residual({m, om, Closure::Stuck, s}, x);
-    r(9) = (drive_torque(m, x) - clutch_torque(m, omega_m, om)) / torque_scale(m);
+    r.head<9>() = residual({m, z(9), Closure::Stuck, s}, z.head<9>());
+    r(9) = (drive_torque(m, z.head<9>()) - clutch_torque(m, omega_m, z(9))) / torque_scale(m);
     return r;
   };
   const Scales sc = scales(m);
   Vec10 d;
   d << Vec3::Constant(sc.length), Vec3::Constant(sc.length), sc.force, sc.force, sc.length, omega_m;
-  const double tol = default_tolerance({m, omega_m, Closure::Stuck, s});
-  const double h = std::cbrt(kEps);
-  Vec10 r = F(X, w);
-  double norm = r.lpNorm<Eigen::Infinity>();
-  for (int it = 0; it < 60 && norm > tol && std::isfinite(norm); ++it) {
-    Mat10 J;
-    for (int j = 0; j < 10; ++j) {
-      Vec9 xp = X, xm = X;
-      double wp = w, wm = w;
-      if (j < 9) xp(j) += h * d(j), xm(j) -= h * d(j);
-      else wp += h * d(j), wm -= h * d(j);
-      J.col(j) = (F(xp, wp) - F(xm, wm)) / (2.0 * h * d(j));
-    }
-    const Vec10 dx = -J.colPivHouseholderQr().solve(r);
-    if (!dx.allFinite()) break;
-    double t = 1.0, trial_norm = std::numeric_limits<double>::infinity();
-    Vec9 xt;
-    double wt = w;
-    for (int k = 0; k < 12; ++k, t *= 0.5) {
-      xt = X + t * dx.head<9>();
-      wt = w + t * dx(9);
-      const Vec10 rt = F(xt, wt);
-      trial_norm = rt.allFinite() ? rt.lpNorm<Eigen::Infinity>() : std::numeric_limits<double>::infinity();
-      if (trial_norm < norm) break;
-    }
-    if (!(trial_norm < norm)) break;
-    X = xt;
-    w = wt;
-    norm = trial_norm;
-    r = F(X, w);
-  }
-  return {X, w, norm <= tol};
+  Vec10 z;
+  z << X, w;
+  const auto root = numerics::damped_newton<10>(
+      F, z, d, default_tolerance({m, omega_m, Closure::Stuck, s}), 60,
+      [](const Mat10& J, const Vec10& r) -> Vec10 { return -J.colPivHouseholderQr().solve(r); },
+      [](const Vec10& dx) { return dx; });
+  return {root.x.head<9>(), root.x(9), root.converged};
 }
 
 // ω_m = ω_b + (τ − τ_k)/c_a; NaN where no motor speed gives τ with the tie slipping forward

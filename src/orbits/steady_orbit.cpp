@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "numerics/damped_newton.hpp"
 #include "physics/string_friction.hpp"
 
 namespace ajx::orbits {
@@ -70,16 +71,7 @@ Vec9 residual(const OrbitProblem& pb, const Vec9& X) {
 }
 
 Mat9 jacobian(const OrbitProblem& pb, const Vec9& X) {
-  const Vec9 d = unknown_scales(pb.model);
-  const double step = std::cbrt(kEps);  // central differences: error O(h²) + O(ε/h), least at h ~ ε^(1/3)
-  Mat9 J;
-  for (int j = 0; j < 9; ++j) {
-    Vec9 xp = X, xm = X;
-    xp(j) += step * d(j);
-    xm(j) -= step * d(j);
-    J.col(j) = (residual(pb, xp) - residual(pb, xm)) / (2.0 * step * d(j));
-  }
-  return J;
+  return numerics::central_jacobian<9>([&](const Vec9& x) { return residual(pb, x); }, X, unknown_scales(pb.model));
 }
 
 double default_tolerance(const OrbitProblem& pb) {
@@ -92,37 +84,23 @@ double default_tolerance(const OrbitProblem& pb) {
 NewtonResult solve(const OrbitProblem& pb, Vec9 X, const NewtonOptions& opt) {
   const double tol = opt.tolerance > 0.0 ? opt.tolerance : default_tolerance(pb);
   const double l = pb.model.p.string_length;
-  NewtonResult out;
-  Vec9 r = residual(pb, X);
-  double norm = r.allFinite() ? r.lpNorm<Eigen::Infinity>() : std::numeric_limits<double>::infinity();
-  int it = 0;
-  for (; it < opt.max_iterations && norm > tol && std::isfinite(norm); ++it) {
-    const Mat9 J = jacobian(pb, X);
+  const auto solve_step = [](const Mat9& J, const Vec9& r) -> Vec9 {
     Eigen::CompleteOrthogonalDecomposition<Mat9> cod(J);
     cod.setThreshold(1e-11);  // R = 0 without drag: the azimuth is free, take the least step
-    Vec9 dx = -cod.solve(r);
-    if (!dx.allFinite()) break;
-    // Far from the root, no ball moves by more than l/5 in one step.
+    return -cod.solve(r);
+  };
+  const auto limit = [l](Vec9 dx) {  // far from the root, no ball moves by more than l/5 in one step
     const double move = std::max(dx.segment<3>(0).norm(), dx.segment<3>(3).norm());
     if (move > 0.2 * l) dx *= 0.2 * l / move;
-    // Backtracking: halve until the residual falls.
-    double t = 1.0, trial_norm = std::numeric_limits<double>::infinity();
-    Vec9 trial;
-    for (int k = 0; k < 12; ++k, t *= 0.5) {
-      trial = X + t * dx;
-      const Vec9 rt = residual(pb, trial);
-      trial_norm = rt.allFinite() ? rt.lpNorm<Eigen::Infinity>() : std::numeric_limits<double>::infinity();
-      if (trial_norm < norm) break;
-    }
-    if (!(trial_norm < norm)) break;  // no descent: stuck at the round-off floor or diverging
-    X = trial;
-    norm = trial_norm;
-    r = residual(pb, X);
-  }
-  out.X = X;
-  out.residual = norm;
-  out.iterations = it;
-  out.converged = norm <= tol;
+    return dx;
+  };
+  const auto root = numerics::damped_newton<9>([&](const Vec9& x) { return residual(pb, x); }, X,
+                                               unknown_scales(pb.model), tol, opt.max_iterations, solve_step, limit);
+  NewtonResult out;
+  out.X = root.x;
+  out.residual = root.residual;
+  out.iterations = root.iterations;
+  out.converged = root.converged;
   return out;
 }
 
