@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace ajx::orbits {
 
@@ -25,7 +26,7 @@ std::vector<Vec9> planar_guesses(const physics::Model& m, double omega, double L
     }
     return Eigen::Vector2d(M * g * s1 - w2 * mx * c1, g * s2 - w2 * x2 * c2);
   };
-  constexpr double half_pi = 1.5707963267948966;
+  constexpr double half_pi = 0.5 * std::numbers::pi;
   std::vector<Eigen::Vector2d> roots;
   const int n = 24;
   for (int i = 0; i < n; ++i)

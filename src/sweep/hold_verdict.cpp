@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <fmt/format.h>
 #include <optional>
 #include <stdexcept>
@@ -111,7 +112,7 @@ std::string_view to_string(Verdict v) {
 }
 
 Judgement judge(const HoldSide& pre, const HoldSide& post) {
-  constexpr double pi = 3.141592653589793;
+  constexpr double pi = std::numbers::pi;
   const auto name = [](OrbitClass c) { return std::string(to_string(c)); };
   for (const HoldSide* s : {&pre, &post})
     if (!s->ok || s->final_class == OrbitClass::Failed)
