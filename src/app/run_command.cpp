@@ -1,6 +1,7 @@
 // astrojax run: one trajectory, sampled on a fixed grid, into HDF5 with units as attributes
 // and the configuration stored verbatim.
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fmt/format.h>
@@ -95,7 +96,10 @@ struct Trajectory {
 sim::PairStart pair_start(const config::RunConfig& c, const physics::MotorSchedule& schedule) {
   const double h = c.run.integ.h_fixed;
   if (c.initial.preset == "table1")
-    return sim::table1_pair(c.initial.orbit, schedule.top(c.model.p.drive_radius, 0.0).omega, h);
+    return sim::table1_pair(c.initial.orbit,
+                            std::isnan(c.initial.orbit_omega) ? schedule.top(c.model.p.drive_radius, 0.0).omega
+                                                              : c.initial.orbit_omega,
+                            h);
   sim::PairStart p;
   p.r1_0 = c.initial.r1;
   p.r2_0 = c.initial.r2;

@@ -296,7 +296,10 @@ void parse_common(const toml::table& root, std::string_view file, CommonConfig& 
     Reader r(subtable(root, "initial", file), "initial", file);
     c.initial.preset = r.word("preset", "hanging", {"hanging", "explicit", "table1", "pair"});
     // Two-step starts (sim/paper_scheme.hpp): positions at t = 0 and at t = integrator.step.
-    if (c.initial.preset == "table1") c.initial.orbit = r.word("orbit", "circular1", sim::table1_orbits());
+    if (c.initial.preset == "table1") {
+      c.initial.orbit = r.word("orbit", "circular1", sim::table1_orbits());
+      c.initial.orbit_omega = r.number("omega", NAN, 0.0, kOmegaMax);  // the circular orbits' θ = ω h
+    }
     if (c.initial.preset == "pair") {
       const double bound = 10.0 * c.model.p.string_length;
       for (const char* k : {"r1", "r2", "r1_next", "r2_next"})
