@@ -9,7 +9,7 @@ event-driven model (DOP853), from the paper's Table 1 starts (docs/reports/paper
           against ω_m with the paper's reading (ω_ball = ω_m up to 4.8π, then 4.8π up to 15π).
   table1  Table 1's six starts (circular orbits 1-2 at --circular-omega, flower orbits 1-4 at
           --flower-omega, both in π rad/s) for --duration s with each model; top views of both
-          balls over the last --tail s, and a table of radii and ω_ball.
+          balls over the first and the last --tail s, and a table of radii and ω_ball.
 
 Models: paper, paper_corrected (the scheme's physics: kinetic point-contact friction, taut
 string, no stops; h = 1/2000 s) and dop853 (the project's full model: stick-slip, slack string,
@@ -154,15 +154,22 @@ def table1(args, astrojax, work):
             d = read(path)
             runs[orbit, model] = d
             with h5py.File(path, "r") as f:
-                moved = f["summary"].attrs.get("start_projection", float("nan"))
+                a = f["summary"].attrs
+                moved = a.get("start_projection", float("nan"))
+                start = (a["start_pair_length_excess"], a["start_pair_speed_bead"], a["start_pair_speed_ball"])
             t_end = d["t"][-1]
             tail = d["t"] >= t_end - args.tail
             rows.append(dict(orbit=orbit, omega=w, model=model, t_end=t_end, ok=d["status"] == "ok",
                              rho1=np.hypot(d["r1"][tail, 0], d["r1"][tail, 1]).mean(),
                              rho2=np.hypot(d["r2"][tail, 0], d["r2"][tail, 1]).mean(),
                              z1=d["r1"][tail, 2].mean(), z2=d["r2"][tail, 2].mean(),
-                             w=omega_ball(d, t_end - args.tail, t_end) / math.pi, moved=moved))
-    lines = [f"# Table 1's starts, {args.duration:g} s, radii and ω_ball over the last {args.tail:g} s reached", "",
+                             w=omega_ball(d, t_end - args.tail, t_end) / math.pi, moved=moved, start=start))
+    lines = ["# Table 1's pairs as read (mirrored y -> -y; R from the scene)", "",
+             "| orbit | L1 + L2 - l at q^(0) [cm] | bead speed |q^(1) - q^(0)|/h [m/s] | bottom ball's [m/s] |",
+             "|---|---|---|---|"]
+    for r in rows[::len(models)]:
+        lines.append(f"| {r['orbit']} | {100 * r['start'][0]:+.2f} | {r['start'][1]:.2f} | {r['start'][2]:.2f} |")
+    lines += ["", f"# Table 1's starts, {args.duration:g} s, radii and ω_ball over the last {args.tail:g} s reached", "",
              "| orbit | ω_m/π | model | reached [s] | ρ1 [cm] | ρ2 [cm] | z1 [cm] | z2 [cm] | ω_ball/π | start moved onto L1+L2=l [cm] |",
              "|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
@@ -173,26 +180,32 @@ def table1(args, astrojax, work):
     if args.report:
         ajx.write_report(args.report, text)
     print(text)
-    fig = ajx.new_figure(args, (3.2 * len(models), 3.0 * len(orbits)))
-    axes = fig.subplots(len(orbits), len(models), squeeze=False)
+    fig = ajx.new_figure(args, (2.6 * 2 * len(models), 2.6 * len(orbits)))
+    axes = fig.subplots(len(orbits), 2 * len(models), squeeze=False)
     for i, orbit in enumerate(orbits):
         for j, model in enumerate(models):
-            ax, d = axes[i][j], runs[orbit, model]
-            tail = d["t"] >= d["t"][-1] - args.tail
-            ax.plot(100 * d["r1"][tail, 0], 100 * d["r1"][tail, 1], lw=0.7, color="tab:orange", label="bead")
-            ax.plot(100 * d["r2"][tail, 0], 100 * d["r2"][tail, 1], lw=0.7, color="tab:blue", label="bottom ball")
-            ax.set_aspect("equal")
-            lim = 40 if orbit.startswith("flower") else 25
-            ax.set_xlim(-lim, lim)
-            ax.set_ylim(-lim, lim)
-            ax.grid(alpha=0.3)
-            failed = "" if d["status"] == "ok" else f", failed at {d['t'][-1]:.1f} s"
-            ax.set_title(f"{orbit}, {model}{failed}", fontsize=8)
-            if j == 0:
-                ax.set_ylabel("y [cm]")
-            if i == len(orbits) - 1:
-                ax.set_xlabel("x [cm]")
-    axes[0][0].legend(fontsize=7, loc="upper left")
+            d = runs[orbit, model]
+            t_end = d["t"][-1]
+            windows = ((d["t"] <= d["t"][0] + args.tail, f"first {args.tail:g} s"),
+                       (d["t"] >= t_end - args.tail, f"last {args.tail:g} s to {t_end:.1f} s"))
+            for w, (sel, label) in enumerate(windows):
+                ax = axes[i][2 * j + w]
+                ax.plot(100 * d["r1"][sel, 0], 100 * d["r1"][sel, 1], lw=0.7, color="tab:orange", label="bead")
+                ax.plot(100 * d["r2"][sel, 0], 100 * d["r2"][sel, 1], lw=0.7, color="tab:blue", label="bottom ball")
+                ax.plot([0], [0], "k+", ms=6)
+                lim = 1.1 * max(5.0, 100 * np.abs(np.concatenate([d["r1"][sel, :2], d["r2"][sel, :2]])).max())
+                ax.set_xlim(-lim, lim)
+                ax.set_ylim(-lim, lim)
+                ax.set_aspect("equal")
+                ax.grid(alpha=0.3)
+                ax.tick_params(labelsize=6)
+                failed = "" if d["status"] == "ok" else " (failed)"
+                ax.set_title(f"{orbit}, {model}{failed}\n{label}", fontsize=7)
+                if j == 0 and w == 0:
+                    ax.set_ylabel("y [cm]", fontsize=7)
+                if i == len(orbits) - 1:
+                    ax.set_xlabel("x [cm]", fontsize=7)
+    axes[0][0].legend(fontsize=6, loc="lower left")
     ajx.save(fig, args)
 
 
@@ -209,7 +222,8 @@ def main(argv=None):
     b.add_argument("--circular-omega", type=float, default=4.8, help="ω_m of circular orbits 1-2 [π rad/s]")
     b.add_argument("--flower-omega", type=float, default=16.0, help="ω_m of flower orbits 1-4 [π rad/s]")
     b.add_argument("--duration", type=float, default=20.0, help="run length [s] (default 20)")
-    b.add_argument("--tail", type=float, default=2.0, help="top view and radii over the last [s] (default 2)")
+    b.add_argument("--tail", type=float, default=2.0,
+                   help="radii over the last [s]; top views of the first and the last [s] (default 2)")
     for p in (a, b):
         ajx.add_figure_args(p, "as the panels need")
         p.add_argument("--report", default=None, help="write the table (markdown) here too")

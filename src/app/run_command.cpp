@@ -206,6 +206,15 @@ int run_command(const RunArgs& args) {
     g.set_attribute("worst_units", v.unit);
   }
   if (paper) sg.set_attribute("start_projection", start_projection);
+  if (cfg.initial.preset == "table1" || cfg.initial.preset == "pair") {
+    // The raw pair: its speeds |q^(1) - q^(0)|/h and its L1 + L2 - l at t = 0.
+    const sim::PairStart raw = pair_start(cfg, schedule);
+    const double h = cfg.run.integ.h_fixed;
+    sg.set_attribute("start_pair_speed_bead", (raw.r1_1 - raw.r1_0).norm() / h);
+    sg.set_attribute("start_pair_speed_ball", (raw.r2_1 - raw.r2_0).norm() / h);
+    sg.set_attribute("start_pair_length_excess", (raw.r1_0 - schedule.top(cfg.model.p.drive_radius, 0.0).a).norm() +
+                                                     (raw.r2_0 - raw.r1_0).norm() - cfg.model.p.string_length);
+  }
   sg.set_attribute("wall_time", wall);
   f.commit();
 
