@@ -36,6 +36,7 @@ FULL_MODEL = ["layers.friction=stick_slip", "layers.friction_law=capstan", "laye
 MODELS = {"paper": ["integrator.method=paper"], "paper_corrected": ["integrator.method=paper_corrected"],
           "dop853": FULL_MODEL}
 COLOURS = {"paper": "tab:red", "paper_corrected": "tab:blue", "dop853": "k"}
+EXTRA_SETS = []  # --set of the command line, after each model's own
 MIN_RHO = 0.03  # [m] an orbit closer to the axis (2R) has no meaningful azimuth rate about it
 
 
@@ -53,7 +54,7 @@ def run(astrojax, work, name, omega, duration, model, sets):
         f.write(scene_text(omega, duration))
     out = os.path.join(work, f"{name}.h5")
     cmd = [astrojax, "run", toml, "-q", "-o", out]
-    for s in MODELS[model] + sets:
+    for s in MODELS[model] + sets + EXTRA_SETS:
         cmd += ["--set", s]
     proc = ajx.run_checked(cmd, allowed=(0, 3))
     return out, proc.stdout.strip().splitlines()[0] if proc.stdout.strip() else "ok"
@@ -230,11 +231,14 @@ def main(argv=None):
         p.add_argument("--models", default="paper,paper_corrected,dop853", help="models, comma separated")
         p.add_argument("--astrojax", default=None, help="the astrojax executable (default: build/astrojax)")
         p.add_argument("--keep", default=None, help="keep the run files in this folder")
+        p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                       help="override for every run (e.g. model.drive_radius=0.04), repeatable")
     args = ap.parse_args(argv)
     for m in args.models.split(","):
         if m not in MODELS:
             ajx.fail(f"--models: '{m}' is not one of {', '.join(MODELS)}")
     ajx.check_output(args.output)
+    EXTRA_SETS.extend(args.set)
     astrojax = ajx.require_astrojax(args.astrojax)
     if args.keep:
         os.makedirs(args.keep, exist_ok=True)
