@@ -160,7 +160,10 @@ def table1(args, astrojax, work):
                 start = (a["start_pair_length_excess"], a["start_pair_speed_bead"], a["start_pair_speed_ball"])
             t_end = d["t"][-1]
             tail = d["t"] >= t_end - args.tail
+            head = d["t"] <= d["t"][0] + args.tail
             rows.append(dict(orbit=orbit, omega=w, model=model, t_end=t_end, ok=d["status"] == "ok",
+                             head=[100 * np.hypot(d[r][head, 0], d[r][head, 1]).mean() for r in ("r1", "r2")],
+                             w_head=omega_ball(d, d["t"][0], d["t"][0] + args.tail) / math.pi,
                              rho1=np.hypot(d["r1"][tail, 0], d["r1"][tail, 1]).mean(),
                              rho2=np.hypot(d["r2"][tail, 0], d["r2"][tail, 1]).mean(),
                              z1=d["r1"][tail, 2].mean(), z2=d["r2"][tail, 2].mean(),
@@ -170,12 +173,14 @@ def table1(args, astrojax, work):
              "|---|---|---|---|"]
     for r in rows[::len(models)]:
         lines.append(f"| {r['orbit']} | {100 * r['start'][0]:+.2f} | {r['start'][1]:.2f} | {r['start'][2]:.2f} |")
-    lines += ["", f"# Table 1's starts, {args.duration:g} s, radii and ω_ball over the last {args.tail:g} s reached", "",
-             "| orbit | ω_m/π | model | reached [s] | ρ1 [cm] | ρ2 [cm] | z1 [cm] | z2 [cm] | ω_ball/π | start moved onto L1+L2=l [cm] |",
-             "|---|---|---|---|---|---|---|---|---|---|"]
+    lines += ["", f"# Table 1's starts, {args.duration:g} s: radii and ω_ball over the first {args.tail:g} s and over "
+              f"the last {args.tail:g} s reached", "",
+             "| orbit | ω_m/π | model | reached [s] | first: ρ1, ρ2 [cm] | first: ω_ball/π | last: ρ1 [cm] | ρ2 [cm] | "
+             "z1 [cm] | z2 [cm] | ω_ball/π | start moved onto L1+L2=l [cm] |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         lines.append(f"| {r['orbit']} | {r['omega']:g} | {r['model']} | {r['t_end']:.2f}{'' if r['ok'] else ' (failed)'} | "
-                     f"{100 * r['rho1']:.1f} | {100 * r['rho2']:.1f} | {100 * r['z1']:.1f} | {100 * r['z2']:.1f} | "
+                     f"{r['head'][0]:.1f}, {r['head'][1]:.1f} | {r['w_head']:.2f} | {100 * r['rho1']:.1f} | {100 * r['rho2']:.1f} | {100 * r['z1']:.1f} | {100 * r['z2']:.1f} | "
                      f"{r['w']:.2f} | {100 * r['moved']:.2f} |")
     text = "\n".join(lines) + "\n"
     if args.report:
