@@ -79,23 +79,23 @@ def omega_ball(d, t0, t1):
 
 
 def ledger(d):
-    """Mean injection and drag power over the whole run [W]."""
+    """Mean injection, drag power and motor power over the whole run [W]."""
     t = d["t"]
     dt = t[-1] - t[0]
     delta = lambda k: d[k][-1] - d[k][0]
     inj = delta("energy") - (delta("motor_work") - delta("drag_loss") - delta("friction_loss") - delta("impact_loss"))
-    return inj / dt, delta("drag_loss") / dt
+    return inj / dt, delta("drag_loss") / dt, delta("motor_work") / dt
 
 
 def summary(d, early):
     t_end = d["t"][-1]
     tail = d["t"] >= t_end - 10.0
-    inj, p_drag = ledger(d)
+    inj, p_drag, p_motor = ledger(d)
     return dict(t_end=t_end, w_early=omega_ball(d, d["t"][0], min(early, t_end)) / math.pi,
                 w_last=omega_ball(d, t_end - 10.0, t_end) / math.pi,
                 rho1=np.hypot(d["r1"][tail, 0], d["r1"][tail, 1]).mean(),
                 rho2=np.hypot(d["r2"][tail, 0], d["r2"][tail, 1]).mean(), L1=d["L1"][tail].mean(),
-                injection=inj, p_drag=p_drag, ok=d["status"] == "ok")
+                injection=inj, p_drag=p_drag, p_motor=p_motor, ok=d["status"] == "ok")
 
 
 def lag(args, astrojax, work):
@@ -111,11 +111,11 @@ def lag(args, astrojax, work):
     lines = [f"# ω_ball against ω_m from Table 1's circular orbit 1 (turning at {turning}), "
              f"{args.duration:g} s holds", "",
              f"| ω_m/π | model | reached [s] | ω_ball/π first {args.early:g} s | ω_ball/π last 10 s | ρ1, ρ2 [m] last 10 s "
-             "| L1 [m] | injection [W] | P_drag [W] |", "|---|---|---|---|---|---|---|---|---|"]
+             "| L1 [m] | injection [W] | P_drag [W] | P_motor [W] |", "|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         lines.append(f"| {r['omega_m']:g} | {r['model']} | {r['t_end']:.2f}{'' if r['ok'] else ' (failed)'} | "
                      f"{r['w_early']:.3f} | {r['w_last']:.3f} | {r['rho1']:.3f}, {r['rho2']:.3f} | {r['L1']:.3f} | "
-                     f"{r['injection']:+.3e} | {r['p_drag']:.3e} |")
+                     f"{r['injection']:+.3e} | {r['p_drag']:.3e} | {r['p_motor']:+.2e} |")
     text = "\n".join(lines) + "\n"
     if args.report:
         ajx.write_report(args.report, text)
