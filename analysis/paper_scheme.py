@@ -98,6 +98,14 @@ def summary(d, early):
                 injection=inj, p_drag=p_drag, p_motor=p_motor, ok=d["status"] == "ok")
 
 
+def publish(lines, args):
+    """The report's table on stdout, and into --report when given."""
+    text = "\n".join(lines) + "\n"
+    if args.report:
+        ajx.write_report(args.report, text)
+    print(text)
+
+
 def lag(args, astrojax, work):
     omegas = [float(w) for w in args.omegas.split(",")]
     rows = []
@@ -116,10 +124,7 @@ def lag(args, astrojax, work):
         lines.append(f"| {r['omega_m']:g} | {r['model']} | {r['t_end']:.2f}{'' if r['ok'] else ' (failed)'} | "
                      f"{r['w_early']:.3f} | {r['w_last']:.3f} | {r['rho1']:.3f}, {r['rho2']:.3f} | {r['L1']:.3f} | "
                      f"{r['injection']:+.3e} | {r['p_drag']:.3e} | {r['p_motor']:+.2e} |")
-    text = "\n".join(lines) + "\n"
-    if args.report:
-        ajx.write_report(args.report, text)
-    print(text)
+    publish(lines, args)
     fig = ajx.new_figure(args, (14, 4.5))
     axes = fig.subplots(1, 3)
     panels = ((axes[0], "w_early", f"ω_ball over the first {args.early:g} s"),
@@ -182,10 +187,7 @@ def table1(args, astrojax, work):
         lines.append(f"| {r['orbit']} | {r['omega']:g} | {r['model']} | {r['t_end']:.2f}{'' if r['ok'] else ' (failed)'} | "
                      f"{r['head'][0]:.1f}, {r['head'][1]:.1f} | {r['w_head']:.2f} | {100 * r['rho1']:.1f} | {100 * r['rho2']:.1f} | {100 * r['z1']:.1f} | {100 * r['z2']:.1f} | "
                      f"{r['w']:.2f} | {100 * r['moved']:.2f} |")
-    text = "\n".join(lines) + "\n"
-    if args.report:
-        ajx.write_report(args.report, text)
-    print(text)
+    publish(lines, args)
     fig = ajx.new_figure(args, (2.6 * 2 * len(models), 2.6 * len(orbits)))
     axes = fig.subplots(len(orbits), 2 * len(models), squeeze=False)
     for i, orbit in enumerate(orbits):
