@@ -24,6 +24,8 @@ import zlib
 import numpy as np
 
 ASTROJAX, SOURCE, DATA = (os.path.abspath(p) for p in sys.argv[1:4])
+# Every script a test starts finds the astrojax under test, whatever the build folder.
+os.environ["ASTROJAX"] = ASTROJAX
 ANALYSIS = os.path.join(SOURCE, "analysis")
 PYTHON = sys.executable
 sys.path.insert(0, ANALYSIS)
@@ -184,8 +186,8 @@ class hysteresis(ImageChecks):
                            capture_output=True, text=True, env=dict(os.environ, ASTROJAX=ASTROJAX))
         self.assertEqual(p.returncode, 0, p.stderr)
         w, h = png_size(out)
-        self.assertEqual(w, 1980)  # 3 panels of 5.5 in at 120 dpi
-        self.assertGreater(h, 4.5 * 120)  # a row of 4.5 in and the legend
+        self.assertEqual(w, 2340)  # 3 panels of 6.5 in at 120 dpi
+        self.assertGreater(h, 5.5 * 120)  # a row of 5.5 in and the legend
 
 
 class branches(ImageChecks):
@@ -826,6 +828,38 @@ class rise_climb(unittest.TestCase):
         self.assertEqual((rc, "--levels a,b" in out), (2, True), out)
         rc, out = script("rise_climb.py", data("phase.h5"), check=False)
         self.assertEqual((rc, "not a run file" in out), (2, True), out)
+
+
+class first_half(unittest.TestCase):
+    """analysis/first_half.py: the climb's outcome from a chain's class runs, and the script on
+    a small grouped sweep over R, d and the ramp rate (sweeps/first_half.toml made short)."""
+
+    def runs(self, *classes):
+        """Rising runs of these classes, each ending 1π further up."""
+        return [{"direction": "1", "class": k, "omega_to_rad_s": str((i + 1) * np.pi), "windows": "2",
+                 "omega_ball_mean_rad_s": str(4.5 * np.pi)} for i, k in enumerate(classes)]
+
+    def test_outcomes(self):
+        import first_half
+        rise, what, n = first_half.outcome(self.runs("fallen", "not-settled", "locked-circular", "fallen"))
+        self.assertAlmostEqual(rise, np.pi)
+        self.assertEqual((what, n), ("circular (locked-circular, ω_ball 4.50π)", 2))
+        self.assertEqual(first_half.outcome(self.runs("fallen", "not-settled", "fallen"))[1:], ("falls back", 0))
+        self.assertEqual(first_half.outcome(self.runs("fallen"))[1], "no climb")
+        self.assertEqual(first_half.outcome(self.runs("fallen", "flower"))[1], "ends flower")
+
+    def test_script_on_a_small_grouped_sweep(self):
+        h5, md = data("first_half.h5"), data("first_half.md")
+        run([ASTROJAX, "sweep", os.path.join(SOURCE, "sweeps/first_half.toml"), "-o", h5, "-q",
+             "--set", "grid.drive_radius=[0.02]", "--set", "grid.contact_distance=[0.035]",
+             "--set", "grid.ramp_rate=[2.0]"])
+        script("first_half.py", h5, "-o", md)
+        with open(md) as f:
+            text = f.read()
+        for label in ("## paper's physics (rigid tie)", "## tie clutch", "| 20 | 3.5 | ", "## Outcomes counted"):
+            self.assertIn(label, text)
+        rc, out = script("first_half.py", data("hold.h5"), "-o", md, check=False)
+        self.assertEqual((rc, "no grid axis" in out), (2, True), out)
 
 
 class lag_limits(unittest.TestCase):
