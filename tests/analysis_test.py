@@ -889,6 +889,33 @@ class lag_limits(unittest.TestCase):
             self.assertFalse(os.path.exists(data("lag_bad.md")))
 
 
+class paper_scheme(ImageChecks):
+    """analysis/paper_scheme.py: the paper's scheme against DOP853 from Table 1's starts."""
+
+    def test_lag_ledger_and_figure(self):
+        # Two ω_m, 4 s each (well under 1 s of runs): the printed drag injects 2 P_drag
+        # (tests/paper_scheme_test.cpp derives it), the corrected scheme closes the ledger.
+        out, report = data("paper_lag.png"), data("paper_lag.md")
+        script("paper_scheme.py", "lag", "--omegas", "4.8,15", "--duration", "4", "--early", "1",
+               "--models", "paper,paper_corrected", "-o", out, "--report", report, "--size", "9,3", "--dpi", "50",
+               "--astrojax", ASTROJAX)
+        self.assert_png(out, 450, 150)
+        rows = [[c.strip() for c in l.split("|")[1:-1]] for l in open(report) if re.match(r"\| (4\.8|15) \|", l)]
+        self.assertEqual([(r[0], r[1]) for r in rows],
+                         [("4.8", "paper"), ("4.8", "paper_corrected"), ("15", "paper"), ("15", "paper_corrected")])
+        for r in rows:
+            injection, p_drag = float(r[7]), float(r[8])
+            if r[1] == "paper":
+                self.assertAlmostEqual(injection / (2 * p_drag), 1.0, delta=0.01)
+            else:
+                self.assertLess(abs(injection), 1e-4 * p_drag)
+
+    def test_bad_model_named(self):
+        rc, out = script("paper_scheme.py", "lag", "--models", "euler", "-o", data("paper_bad.png"), check=False)
+        self.assertEqual(rc, 2)
+        self.assertIn("--models: 'euler' is not one of paper, paper_corrected, dop853", out)
+
+
 class fit(unittest.TestCase):
     """analysis/fit_thresholds.py: the fitting core on synthetic thresholds with a known optimum
     and covariance (no astrojax runs), the reading of astrojax's rows, and bad input."""

@@ -1,6 +1,7 @@
 // The lagging orbit after the lock is lost (sweeps/scenes/lag_after_lock.toml): the exact
-// equations let it decay, the paper's explicit Euler at h = 1/2000 s sustains it with energy
-// of its own making.
+// equations let it decay, explicit Euler at the paper's step h = 1/2000 s sustains it with
+// energy of its own making. (The paper's own scheme is not Euler but the two-step central
+// difference of its eq. (15): tests/paper_scheme_test.cpp.)
 //
 // Explicit Euler on the balls' velocities, v ← v + h a, raises the kinetic energy by
 // ½ m h² |a|² per step beyond the exact work (the Hessian of E in v is the mass; gravity's

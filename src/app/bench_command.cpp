@@ -156,7 +156,7 @@ int bench_stability_command(const StabilityArgs& a) {
                      a.scene, a.horizon, crit.energy_tol);
   csv << "omega,omega_over_pi,method,step,pass,largest_stable,status,final_mode_ok,err_position_m,max_drift_m,"
          "energy_residual_rel,cpu_s\n";
-  std::printf("%-10s %-9s %16s   the paper's Euler at 1/2000 s: %s\n", "ω_m/π", "method", "largest stable h",
+  std::printf("%-10s %-9s %16s   explicit Euler at the paper's step 1/2000 s: %s\n", "ω_m/π", "method", "largest stable h",
               "energy residual, drift, error, final mode");
   for (double wpi : a.omegas_pi) {
     const double omega = wpi * std::numbers::pi;

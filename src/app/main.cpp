@@ -128,7 +128,7 @@ int main(int argc, char** argv) {
 
   ajx::app::StabilityArgs st;
   CLI::App* st_cmd = bench_cmd->add_subcommand(
-      "stability", "Largest acceptable step of each fixed-step method against ω_m held, and the paper's Euler -> CSV");
+      "stability", "Largest acceptable step of each fixed-step method against ω_m held, and explicit Euler at the paper's step 1/2000 s -> CSV");
   st_cmd->add_option("scene", st.scene, "Run file (its schedule is replaced by each held ω_m)")->required();
   st_cmd->add_option("-o,--output", st.output, "CSV output path")->capture_default_str();
   st_cmd->add_option("-s,--set", st.overrides, "Override a key of the scene (repeatable)");

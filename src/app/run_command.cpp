@@ -1,6 +1,7 @@
 // astrojax run: one trajectory, sampled on a fixed grid, into HDF5 with units as attributes
 // and the configuration stored verbatim.
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fmt/format.h>
@@ -13,7 +14,9 @@
 #include "config/config.hpp"
 #include "io/hdf5_file.hpp"
 #include "physics/energy.hpp"
+#include "sim/paper_scheme.hpp"
 #include "sim/simulation.hpp"
+#include "sim/table1_starts.hpp"
 
 namespace ajx::app {
 
@@ -88,8 +91,28 @@ struct Trajectory {
   }
 };
 
+// The two positions a two-step start gives: Table 1's pair, the explicit pair, or an explicit
+// state's r and r + h v (h = integrator.step).
+sim::PairStart pair_start(const config::RunConfig& c, const physics::MotorSchedule& schedule) {
+  const double h = c.run.integ.h_fixed;
+  if (c.initial.preset == "table1")
+    return sim::table1_pair(c.initial.orbit,
+                            std::isnan(c.initial.orbit_omega) ? schedule.top(c.model.p.drive_radius, 0.0).omega
+                                                              : c.initial.orbit_omega,
+                            h);
+  sim::PairStart p;
+  p.r1_0 = c.initial.r1;
+  p.r2_0 = c.initial.r2;
+  p.r1_1 = c.initial.preset == "pair" ? c.initial.r1_next : physics::Vec3(c.initial.r1 + h * c.initial.v1);
+  p.r2_1 = c.initial.preset == "pair" ? c.initial.r2_next : physics::Vec3(c.initial.r2 + h * c.initial.v2);
+  return p;
+}
+
 physics::State initial_state(const config::RunConfig& c, const physics::MotorSchedule& schedule) {
   if (c.initial.preset == "hanging") return sim::hanging_at_rest(c.model, schedule);
+  if (c.initial.preset == "table1" || c.initial.preset == "pair")
+    return sim::state_from_pair(c.model, schedule, pair_start(c, schedule), c.run.integ.h_fixed,
+                                c.initial.length_tolerance);
   return sim::explicit_state(c.model, schedule, c.initial.r1, c.initial.r2, c.initial.v1, c.initial.v2,
                              c.initial.mode, 0.0, c.initial.length_tolerance, c.initial.tie_slip_rate);
 }
@@ -101,13 +124,22 @@ int run_command(const RunArgs& args) {
   physics::MotorSchedule schedule;
   physics::State state;
   std::optional<io::File> file;
+  std::optional<sim::PaperDrag> paper;  // the paper's two-step scheme (sim/paper_scheme.hpp)
+  sim::PairStart pair;
+  double start_projection = 0.0;        // |L1 + L2 - l| of the pair before projection [m]
   // Everything that can be checked is checked before any work, and before any file exists.
   try {
     cfg = config::load_run_config(args.config_path, args.overrides);
     if (!args.output.empty()) cfg.output.path = args.output;
+    paper = sim::paper_variant(cfg.run.method);
     schedule = physics::MotorSchedule(cfg.schedule);
     try {
-      state = initial_state(cfg, schedule);
+      if (paper) {
+        pair = pair_start(cfg, schedule);
+        start_projection = sim::project_pair(cfg.model, schedule, cfg.run.integ.h_fixed, pair);
+      } else {
+        state = initial_state(cfg, schedule);
+      }
     } catch (const std::invalid_argument& e) {
       throw config::ConfigError(fmt::format("{}: key 'initial.r1', 'initial.r2': {}; allowed "
                                             "|L1 + L2 - l| <= initial.length_tolerance and L2 >= d",
@@ -128,10 +160,12 @@ int run_command(const RunArgs& args) {
   }
 
   Trajectory traj;
-  sim::Simulation simulation(cfg.model, schedule, cfg.run);
   const auto wall0 = std::chrono::steady_clock::now();
-  const sim::RunSummary sum = simulation.run(state, schedule.duration(), cfg.output.sample_interval,
-                                             [&](const sim::Sample& s) { traj.add(s, cfg.model.p); });
+  const sim::SampleObserver add = [&](const sim::Sample& s) { traj.add(s, cfg.model.p); };
+  const sim::RunSummary sum =
+      paper ? sim::run_paper_scheme(cfg.model, schedule, *paper, cfg.run.integ.h_fixed, pair, schedule.duration(),
+                                    cfg.output.sample_interval, add, state, cfg.run.omega_window)
+            : sim::Simulation(cfg.model, schedule, cfg.run).run(state, schedule.duration(), cfg.output.sample_interval, add);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
 
   io::File& f = *file;
@@ -170,6 +204,16 @@ int run_command(const RunArgs& args) {
     g.set_attribute("first_time", v.first_time);
     g.set_attribute("worst", v.worst);
     g.set_attribute("worst_units", v.unit);
+  }
+  if (paper) sg.set_attribute("start_projection", start_projection);
+  if (cfg.initial.preset == "table1" || cfg.initial.preset == "pair") {
+    // The raw pair: its speeds |q^(1) - q^(0)|/h and its L1 + L2 - l at t = 0.
+    const sim::PairStart raw = pair_start(cfg, schedule);
+    const double h = cfg.run.integ.h_fixed;
+    sg.set_attribute("start_pair_speed_bead", (raw.r1_1 - raw.r1_0).norm() / h);
+    sg.set_attribute("start_pair_speed_ball", (raw.r2_1 - raw.r2_0).norm() / h);
+    sg.set_attribute("start_pair_length_excess", (raw.r1_0 - schedule.top(cfg.model.p.drive_radius, 0.0).a).norm() +
+                                                     (raw.r2_0 - raw.r1_0).norm() - cfg.model.p.string_length);
   }
   sg.set_attribute("wall_time", wall);
   f.commit();

@@ -24,9 +24,11 @@
 #include "config/config.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/journal.hpp"
+#include "numerics/stepper.hpp"
 #include "parallel/farm.hpp"
 #include "parallel/mpi_env.hpp"
 #include "parallel/signals.hpp"
+#include "sim/paper_scheme.hpp"
 #include "sim/simulation.hpp"
 #include "sweep/codec.hpp"
 #include "sweep/orbit_classifier.hpp"
@@ -70,6 +72,10 @@ int sweep_command(const SweepArgs& args) {
     if (cfg.initial.preset != "hanging")
       throw config::ConfigError(fmt::format("{}: key 'initial.preset': sweeps start every chain from 'hanging'",
                                             cfg.source_name));
+    if (sim::paper_variant(cfg.run.method))
+      throw config::ConfigError(fmt::format("{}: key 'integrator.method': the paper's two-step scheme runs with "
+                                            "`astrojax run` only; allowed here: {}", cfg.source_name,
+                                            numerics::stepper_names()));
     plan = sweep::make_plan(cfg);  // chains, each split into tasks on window boundaries
   } catch (const config::ConfigError& e) {
     error = e.what();

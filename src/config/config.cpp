@@ -14,6 +14,8 @@
 #include "config/did_you_mean.hpp"
 #include "numerics/stepper.hpp"
 #include "orbits/continuation.hpp"
+#include "sim/paper_scheme.hpp"
+#include "sim/table1_starts.hpp"
 
 namespace ajx::config {
 
@@ -254,7 +256,12 @@ void parse_common(const toml::table& root, std::string_view file, CommonConfig& 
       w.erase(0, w.find_first_not_of(' '));
       methods.push_back(w);
     }
+    // The paper's own two-step scheme (sim/paper_scheme.hpp): its own simulation path.
+    methods.insert(methods.end(), {"paper", "paper_corrected"});
     c.run.method = r.word("method", c.run.method, methods);
+    if (sim::paper_variant(c.run.method))
+      for (const auto& [key, need] : sim::paper_scheme_conflicts(c.model))
+        throw ConfigError(fmt::format("{}: key '{}': integrator.method = \"{}\" needs {}", file, key, c.run.method, need));
     c.run.integ.tol.rtol = r.number("rtol", 1e-10, 1e-15, 1.0, false, true);
     c.run.integ.tol.atol = r.number("atol", 1e-12, 0.0, 1.0, true);
     c.run.integ.h_fixed = r.number("step", 5e-4, 0.0, 0.1, true);
@@ -294,7 +301,21 @@ void parse_common(const toml::table& root, std::string_view file, CommonConfig& 
   }
   {
     Reader r(subtable(root, "initial", file), "initial", file);
-    c.initial.preset = r.word("preset", "hanging", {"hanging", "explicit"});
+    c.initial.preset = r.word("preset", "hanging", {"hanging", "explicit", "table1", "pair"});
+    // Two-step starts (sim/paper_scheme.hpp): positions at t = 0 and at t = integrator.step.
+    if (c.initial.preset == "table1") {
+      c.initial.orbit = r.word("orbit", "circular1", sim::table1_orbits());
+      c.initial.orbit_omega = r.number("omega", NAN, 0.0, kOmegaMax);  // the circular orbits' θ = ω h
+    }
+    if (c.initial.preset == "pair") {
+      const double bound = 10.0 * c.model.p.string_length;
+      for (const char* k : {"r1", "r2", "r1_next", "r2_next"})
+        if (!r.has(k)) r.fail(k, "missing: \"pair\" needs r1, r2 (at t = 0) and r1_next, r2_next (at t = integrator.step) [m]");
+      c.initial.r1 = r.vec3("r1", bound);
+      c.initial.r2 = r.vec3("r2", bound);
+      c.initial.r1_next = r.vec3("r1_next", bound);
+      c.initial.r2_next = r.vec3("r2_next", bound);
+    }
     if (c.initial.preset == "hanging" && !c.model.layers.bottom_stop)
       r.fail("preset", "'hanging' rests the bead on the bottom ball and needs layers.bottom_stop = true");
     if (c.initial.preset == "explicit") {

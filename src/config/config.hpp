@@ -23,7 +23,12 @@ class ConfigError : public std::runtime_error {
 };
 
 struct InitialSpec {
-  std::string preset = "hanging";  // "hanging" (at rest on the bottom stop) or "explicit"
+  // "hanging" (at rest on the bottom stop), "explicit", or a two-step start (positions at t = 0
+  // and t = integrator.step): "table1" (the paper's Table 1, `orbit`) or "pair" (r1, r2, r1_next, r2_next).
+  std::string preset = "hanging";
+  std::string orbit;               // "table1": circular1, circular2, flower1 ... flower4
+  double orbit_omega = std::numeric_limits<double>::quiet_NaN();  // "table1": θ = ω h [rad/s] (NaN: ω_m(0))
+  physics::Vec3 r1_next = physics::Vec3::Zero(), r2_next = physics::Vec3::Zero();  // "pair" [m]
   physics::Vec3 r1 = physics::Vec3::Zero(), r2 = physics::Vec3::Zero();  // [m]
   physics::Vec3 v1 = physics::Vec3::Zero(), v2 = physics::Vec3::Zero();  // [m/s]
   physics::Mode mode = physics::Mode::Sliding;

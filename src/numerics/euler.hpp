@@ -1,4 +1,4 @@
-// Explicit Euler, y1 = y0 + h f(t0, y0): order 1, fixed step (the paper's baseline at
+// Explicit Euler, y1 = y0 + h f(t0, y0): order 1, fixed step (a baseline at the paper's step
 // h = 1/2000 s). Dense output: cubic Hermite (hermite.hpp).
 #pragma once
 #include "numerics/hermite.hpp"
