@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Where fixed-step methods fail, from `astrojax bench stability`: the largest acceptable step
-against the held ω_m for each method (left), and the paper's explicit Euler at 1/2000 s at
+against the held ω_m for each method (left), and explicit Euler at the paper's step, 1/2000 s, at
 each ω_m: its energy-balance residual (energy injected against the drag) and its position
 error against the reference (right).
 
@@ -46,7 +46,7 @@ def main():
             if r["final_mode_ok"] != "1":
                 ax2.annotate("wrong mode", (w, float(r["err_position_m"])), fontsize=7)
         ax2.set_xlabel("ω_m / π [rad/s]")
-        ax2.set_title("the paper's Euler at 1/2000 s", fontsize=9)
+        ax2.set_title("explicit Euler at the paper's step, 1/2000 s", fontsize=9)
         ax2.grid(True, which="both", alpha=0.3)
         ax2.legend(fontsize=8)
     fig.tight_layout()

@@ -5,7 +5,7 @@ horizon, one panel per scene, one line per method, from the CSV files of
 
 Errors left of the dashed line (the reference floor: |DOP853 at rtol 1e-13 - DOPRI5 at rtol
 1e-12|) are not resolved by the reference. Hollow markers: the run ended in another contact
-mode than the reference, or failed. The star is the paper's explicit Euler at 1/2000 s.
+mode than the reference, or failed. The star is explicit Euler at the paper's step, 1/2000 s.
 
 With --table E1,E2,...: for each scene and target error, the CPU time of each method's
 cheapest run that reached it (same final contact mode, status ok), and the ratio to the best.
