@@ -15,7 +15,7 @@ PACKAGES=(build-essential cmake pkg-config libeigen3-dev libopenmpi-dev openmpi-
           libhdf5-dev hdf5-tools libcli11-dev libtomlplusplus-dev libfmt-dev
           libgtest-dev libgmock-dev libbenchmark-dev
           python3-numpy python3-h5py python3-matplotlib
-          zlib1g-dev clang libclang-rt-14-dev
+          zlib1g-dev libdeflate-dev clang libclang-rt-14-dev
           procps)  # pgrep, for the fault tests
 # Only for the work-precision comparison with peer solvers (./setup.sh peers); the product
 # never needs them.

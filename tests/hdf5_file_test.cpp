@@ -566,3 +566,29 @@ TEST_F(Hdf5FileTest, ChunksEncodedOutsideHdf5ReadBackThroughItsFilters) {
   }
   EXPECT_EQ(a.data[5 * 12 + 3], v[3]);
 }
+
+TEST_F(Hdf5FileTest, Float32ChunksEncodedOutsideHdf5ReadBackAsTheFloatsWritten) {
+  // The float32 sample columns: a chunk of floats through shuffle (4 bytes) + deflate reads
+  // back, converted to double, as exactly the floats written; NaN padding stays NaN.
+  const fs::path p = file("chunks32.h5");
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::vector<float> v(12);
+  for (std::size_t i = 0; i < v.size(); ++i) v[i] = float(std::sin(0.3 * double(i)) * 1e3 + double(i));
+  v[10] = v[11] = nan;
+  {
+    File f = File::create(p);
+    auto d = f.create_filled("direct", {2, 12}, DType::Float32, std::numeric_limits<double>::quiet_NaN(), {1, 12}, 1);
+    d.write_chunk({1, 0}, ajx::io::encode_chunk(std::span<const float>(v), 1));
+    f.flush();
+  }
+  File f = File::open_read(p);
+  const auto a = f.read_doubles("direct");
+  ASSERT_EQ(a.data.size(), 24u);
+  for (std::size_t i = 0; i < 12; ++i) {
+    EXPECT_TRUE(std::isnan(a.data[i])) << i;  // the chunk never written: the fill value
+    if (std::isnan(v[i]))
+      EXPECT_TRUE(std::isnan(a.data[12 + i])) << i;
+    else
+      EXPECT_EQ(a.data[12 + i], double(v[i])) << i;
+  }
+}

@@ -78,13 +78,14 @@ truncate -s $(($(size tail.h5.journal) - 1000)) tail.h5.journal
 check "torn journal: resume exit 0 and says so" "[ $? -eq 0 ] && grep -q 'cut short' tail.out"
 check "torn journal: resumed file equals the uninterrupted one" "same tail.h5 straight.h5"
 
-# The disk filling up mid-sweep (a 1.5 MB file-size limit set once the sweep runs, SIGXFSZ
-# ignored so writes fail with EFBIG as with ENOSPC): a clear error that says how to resume; then
-# resumed without the limit.
+# The disk filling up mid-sweep (a file-size limit of half the finished file, set once the sweep
+# runs, SIGXFSZ ignored so writes fail with EFBIG as with ENOSPC): a clear error that says how to
+# resume; then resumed without the limit.
 (trap '' XFSZ; exec "$bin" sweep "${sweep[@]}" -o full.h5 > full.out 2>&1) &
 p=$!
 for _ in $(seq 1000); do [ -e full.h5.journal ] && break; sleep 0.01; done
-prlimit --pid $p --fsize=1500000:1500000
+limit=$(($(size straight.h5) / 2))
+prlimit --pid $p --fsize=$limit:$limit
 wait $p
 rc=$?
 check "disk full: exit 1 with the reason and how to resume (got $rc)" \

@@ -73,15 +73,16 @@ class SweepFile {
         .set_attribute("description", "time fraction in modes 0 sliding, 1 bottom stop, 2 stuck, 3 top stop, 4 slack");
     io::Group sg = f_.create_group("samples");
     sg.set_attribute("sample_rate", cfg.sample_rate);
-    sg.set_attribute("description", "every window's samples, padded with NaN beyond count");
+    sg.set_attribute("description", "every window's samples, padded with NaN beyond count; t float64, the others float32");
+    sg.set_attribute("format_version", std::int64_t(kSampleFormatVersion));
     sg.create_filled("count", dims, io::DType::Int32, 0.0, chunk);
     // One chunk per window: the workers compress it (sweep_result.hpp), the master stores it.
     for (std::size_t k = 0; k < kNumSampleColumns; ++k) {
+      const io::DType type = kSampleFloat32[k] ? io::DType::Float32 : io::DType::Float64;
       if (k < 6)
-        sg.create_filled(kSampleColumns[k], {C_, W_, cap_}, io::DType::Float64, kNotComputed, {1, 1, cap_}, kSampleDeflate);
+        sg.create_filled(kSampleColumns[k], {C_, W_, cap_}, type, kNotComputed, {1, 1, cap_}, kSampleDeflate);
       else
-        sg.create_filled(kSampleColumns[k], {C_, W_, cap_, 3}, io::DType::Float64, kNotComputed, {1, 1, cap_, 3},
-                         kSampleDeflate);
+        sg.create_filled(kSampleColumns[k], {C_, W_, cap_, 3}, type, kNotComputed, {1, 1, cap_, 3}, kSampleDeflate);
     }
     io::Group tg = f_.create_group("tasks");
     std::vector<std::int64_t> chain, index;

@@ -21,9 +21,27 @@ WindowRow window_row(const sweep::OrbitClassification& c) {
   return r;
 }
 
+namespace {
+// The stored precision in memory: a float32 column's values rounded to float.
+void round_to_stored(sweep::WindowRecord& rec) {
+  std::vector<double>* columns[] = {&rec.t, &rec.omega_m, &rec.L1, &rec.T1, &rec.T2, nullptr, &rec.r1, &rec.r2};
+  for (std::size_t k = 0; k < kNumSampleColumns; ++k)
+    if (kSampleFloat32[k] && columns[k])
+      for (double& v : *columns[k]) v = double(float(v));
+}
+
+// One column's first `values` entries as a chunk of `size` (NaN beyond), in its stored type.
+template <class T>
+std::vector<std::byte> chunk_of(std::span<const double> values, std::size_t size) {
+  std::vector<T> chunk(size, std::numeric_limits<T>::quiet_NaN());
+  std::copy(values.begin(), values.end(), chunk.begin());
+  return io::encode_chunk(std::span<const T>(chunk), kSampleDeflate);
+}
+}  // namespace
+
 TaskResult make_result(const sweep::ChainSetup& chain, sweep::TaskOutput out, std::size_t cap) {
+  for (sweep::WindowRecord& rec : out.windows) round_to_stored(rec);
   const std::vector<sweep::OrbitClassification> classes = sweep::classify_windows(chain, out);
-  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
   TaskResult r;
   for (std::size_t i = 0; i < out.windows.size(); ++i) {
     const sweep::WindowRecord& rec = out.windows[i];
@@ -39,9 +57,8 @@ TaskResult make_result(const sweep::ChainSetup& chain, sweep::TaskOutput out, st
       const std::vector<double>* columns[] = {&rec.t, &rec.omega_m, &rec.L1, &rec.T1, &rec.T2, &mode, &rec.r1, &rec.r2};
       for (std::size_t k = 0; k < kNumSampleColumns; ++k) {
         const std::size_t width = k < 6 ? 1 : 3;  // r1 and r2: three components per sample
-        std::vector<double> chunk(width * cap, nan);
-        std::copy_n(columns[k]->begin(), width * n, chunk.begin());
-        w.chunks.push_back(io::encode_chunk(chunk, kSampleDeflate));
+        const std::span<const double> values(columns[k]->data(), width * n);
+        w.chunks.push_back(kSampleFloat32[k] ? chunk_of<float>(values, width * cap) : chunk_of<double>(values, width * cap));
       }
     }
     r.windows.push_back(std::move(w));

@@ -56,7 +56,7 @@ struct Array {
 };
 
 // Element type stored in the file for appendable tables.
-enum class DType { Float64, Int64, Int32, Int8 };
+enum class DType { Float64, Float32, Int64, Int32, Int8 };
 
 namespace detail {
 
@@ -156,10 +156,12 @@ class Dataset : public Object {
   using Object::Object;
 };
 
-// One chunk of doubles through the filters Group::create_filled sets for deflate > 0, in
-// HDF5's order: byte shuffle, then zlib's deflate at that level. For Dataset::write_chunk;
-// `values` fills the whole chunk (pad with the fill value). Pure: any rank may call it.
+// One chunk of doubles (a Float64 dataset) or floats (Float32) through the filters
+// Group::create_filled sets for deflate > 0, in HDF5's order: byte shuffle, then deflate at
+// that level. For Dataset::write_chunk; `values` fills the whole chunk (pad with the fill
+// value). Pure: any rank may call it.
 std::vector<std::byte> encode_chunk(std::span<const double> values, int deflate);
+std::vector<std::byte> encode_chunk(std::span<const float> values, int deflate);
 
 class AppendableTable;
 

@@ -7,7 +7,16 @@ namespace ajx::physics {
 TopKinematics top_in_rotating_axes(const MotorSchedule& schedule, double R, double t) {
   double phi, omega, omega_dot;
   schedule.phase(t, phi, omega, omega_dot);
-  return point_on_circle(R, 0.0, omega, omega_dot);  // the top at φ' = 0 of the turning axes
+  // point_on_circle(R, 0, ω, ω̇) without its cos 0 and sin 0: a = (R, 0, 0), ȧ = (0, R ω, 0),
+  // ä = (−R ω², R ω̇, 0), the same values to the last bit (up to the sign of a zero).
+  TopKinematics k;
+  k.phi = 0.0;
+  k.omega = k.motor_omega = omega;
+  k.omega_dot = k.motor_omega_dot = omega_dot;
+  k.a = Vec3(R, 0.0, 0.0);
+  k.a_dot = Vec3(0.0, R * omega, 0.0);
+  k.a_ddot = Vec3(-(R * omega * omega), R * omega_dot, 0.0);
+  return k;
 }
 
 void rhs_in_rotating_axes(const Model& m, const MotorSchedule& schedule, const Contact& c, double t,

@@ -208,10 +208,12 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
     if (rotating) physics::rotate_about_z(ylab, axes_angle(t));
     const physics::TopKinematics top = physics::top_kinematics(model_, schedule_, contact, t, ylab);
     const physics::Dynamics dyn = physics::evaluate(model_, top, contact, ylab);
-    sum.max_sample_drift =
-        std::max(sum.max_sample_drift, physics::constraint_drift(model_, contact, top, ylab).position);
-    if (contact.mode != Mode::Slack) sum.min_tension = std::min({sum.min_tension, dyn.T1, dyn.T2});
-    sum.min_friction_power = std::min(sum.min_friction_power, dyn.friction_power);
+    if (opt_.run_statistics) {
+      sum.max_sample_drift =
+          std::max(sum.max_sample_drift, physics::constraint_drift(model_, contact, top, ylab).position);
+      if (contact.mode != Mode::Slack) sum.min_tension = std::min({sum.min_tension, dyn.T1, dyn.T2});
+      sum.min_friction_power = std::min(sum.min_friction_power, dyn.friction_power);
+    }
     if (on_sample) on_sample(Sample{t, contact, ylab, dyn, top, s.impact_loss});
   };
   // The larger |dθ/dt| of the two balls about the axis, in the integrator's axes:
@@ -247,6 +249,7 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
       }
       ++next_sample;
     }
+    if (!opt_.run_statistics) return true;
     // Azimuths in increments small enough to unwrap (< 0.25 rad, with the rates of both ends of
     // the step). One increment takes the end state and leaves the interpolant alone (DOP853's
     // costs 3 extra evaluations per step).
@@ -590,6 +593,10 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
         (0.5 * (az1.theta + az2.theta) - theta_window + axes_angle(s.t) - theta_axes_window) / (s.t - t_window);
   if (!std::isfinite(sum.min_tension)) sum.min_tension = 0.0;
   if (!std::isfinite(sum.min_friction_power)) sum.min_friction_power = 0.0;
+  if (!opt_.run_statistics) {
+    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+    sum.omega_ball = sum.min_tension = sum.min_friction_power = sum.max_sample_drift = nan;
+  }
   return sum;
 }
 

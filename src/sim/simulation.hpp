@@ -47,6 +47,10 @@ struct RunOptions {
   int chatter_switches = 50;           // this many switches ...
   double chatter_window = 1e-3;        // ... within this time [s] is chattering
   double omega_window = 10.0;          // ω_ball is averaged over the last window [s]
+  // The summary's statistics over samples and steps: max_sample_drift, min_tension,
+  // min_friction_power and omega_ball. Off (a sweep: its classifier measures the windows from
+  // the samples), the observer skips their cost and they are NaN.
+  bool run_statistics = true;
 };
 
 // One sample of the trajectory with the quantities derived from it.

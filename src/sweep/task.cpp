@@ -10,7 +10,9 @@ namespace ajx::sweep {
 
 TaskOutput run_task(const ChainSetup& chain, const TaskSpan& span, physics::State start) {
   const physics::MotorSchedule schedule(chain.protocol.schedule);
-  sim::Simulation simulation(chain.model, schedule, chain.run);
+  sim::RunOptions run = chain.run;
+  run.run_statistics = false;  // the windows are measured from the samples
+  sim::Simulation simulation(chain.model, schedule, run);
   TaskOutput out;
   const auto& windows = chain.protocol.windows;
   for (int i = 0; i < span.num_windows; ++i) out.windows.push_back({span.first_window + i, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}});

@@ -1,5 +1,6 @@
 // Micro-benchmarks (Google Benchmark): the cost of one right-hand-side evaluation in each
-// contact mode, of one step of each method, and the integrator overhead of a step,
+// contact mode, of one step of each method, of the full run path per evaluation (BM_run),
+// and the integrator overhead of a step,
 //   overhead = 1 - (RHS evaluations per step) x (cost of one evaluation) / (cost of a step),
 // i.e. the part of a step spent outside the physics (stage combinations, error norm, the
 // std::function call, the derivative cache). Printed as a table after the benchmarks.
@@ -17,6 +18,7 @@
 #include "numerics/stepper.hpp"
 #include "physics/astrojax_system.hpp"
 #include "physics/rotating_axes.hpp"
+#include "sim/simulation.hpp"
 #include "sweep/seeds.hpp"
 
 namespace {
@@ -70,6 +72,7 @@ BENCHMARK_CAPTURE(BM_rhs, bottom_stop, physics::Mode::BottomStop);
 BENCHMARK_CAPTURE(BM_rhs, slack, physics::Mode::Slack);
 BENCHMARK_CAPTURE(BM_rhs_rotating, sliding, physics::Mode::Sliding);
 BENCHMARK_CAPTURE(BM_rhs_rotating, stuck, physics::Mode::Stuck);
+BENCHMARK_CAPTURE(BM_rhs_rotating, bottom_stop, physics::Mode::BottomStop);
 
 // The motor kinematics alone (φ(t), sin φ, cos φ, ȧ, ä), part of every evaluation above: the
 // most a formulation in the frame co-rotating with the motor (autonomous, no sin/cos) could
@@ -118,6 +121,46 @@ BENCHMARK_CAPTURE(BM_step, rk4, "rk4", 5e-4);
 BENCHMARK_CAPTURE(BM_step, dopri5, "dopri5", 2e-3);
 BENCHMARK_CAPTURE(BM_step, dop853, "dop853", 5e-3);
 BENCHMARK_CAPTURE(BM_step, radau_iia, "radau_iia", 2e-3);
+
+// The full run path per right-hand-side evaluation: sim::Simulation::run with the product's
+// defaults (DOP853, rotating axes, guard events with the certified step bound, projection),
+// 1 s of the orbit per iteration, without samples and with the sweeps' 100 Hz samples, and
+// without the guards' step bound.
+// s_per_eval = CPU time / RHS evaluations (printed as ...n: nanoseconds), to set against BM_rhs_rotating/sliding (the bare
+// right-hand side). The state is the seed orbit (sliding, taut) or the bead resting on the
+// bottom ball of sweeps/scenes/bottom_stop_fast.toml at 15π rad/s.
+void BM_run(benchmark::State& st, bool bottom, double sample_rate, bool bound = true) {
+  const Fixture& fx = fixture();
+  const physics::MotorSchedule fast{{{15 * std::numbers::pi, 15 * std::numbers::pi, 1e6}}};
+  const physics::MotorSchedule& schedule = bottom ? fast : fx.schedule;
+  const physics::State start =
+      bottom ? sim::explicit_state(fx.model, fast, {-0.00047020629163896111, -8.5514041346164998e-05, -0.79593113236439883},
+                                   {-0.00030637474098384307, -7.5606879979839547e-05, -0.82593068337876641},
+                                   {-0.00014442299005515755, -0.0066561981605852659, 5.3244405839770204e-05},
+                                   {-0.00032151735987066675, 0.0010426578278003615, 5.4819768458085324e-05},
+                                   physics::Mode::BottomStop)
+             : fx.s0;
+  sim::RunOptions opt;
+  opt.run_statistics = false;  // as a sweep runs it
+  opt.guard_step_bound = bound;
+  sim::Simulation simulation(fx.model, schedule, opt);
+  long evals = 0, samples = 0;
+  const sim::SampleObserver count = [&](const sim::Sample&) { ++samples; };
+  for (auto _ : st) {
+    physics::State s = start;
+    const sim::RunSummary r = simulation.run(s, s.t + 1.0, sample_rate > 0 ? 1.0 / sample_rate : 0.0, count);
+    evals += r.rhs_evals;
+  }
+  st.counters["s_per_eval"] = benchmark::Counter(double(evals), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  st.counters["evals_per_s"] = double(evals) / double(st.iterations());
+}
+BENCHMARK_CAPTURE(BM_run, sliding, false, 0.0)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_run, sliding_100Hz, false, 100.0)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_run, bottom_stop_fast, true, 0.0)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_run, bottom_stop_fast_100Hz, true, 100.0)->Unit(benchmark::kMicrosecond);
+// Without the guards' step bound (h ≤ 4/Ω): the most a cheaper certified bound could save.
+BENCHMARK_CAPTURE(BM_run, sliding_no_bound, false, 0.0, false)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_run, bottom_stop_fast_no_bound, true, 0.0, false)->Unit(benchmark::kMicrosecond);
 
 // Collects the mean CPU time per iteration, then prints the overhead table.
 class OverheadReporter : public benchmark::ConsoleReporter {
