@@ -1,5 +1,8 @@
-// Subcommands of the astrojax executable. Each returns the process exit code:
-// 0 success, 2 bad input (nothing written), 3 the integration failed (file written, marked failed).
+// Subcommands of the astrojax executable. Each returns the process exit code, one meaning each
+// (also under mpirun, where the master's code is the job's): 0 success, 1 an internal error (a
+// bug, an MPI failure), 2 bad input (refused before any work, nothing written), 3 the
+// integration failed (file written, marked failed), 4 interrupted (resumable: --resume),
+// 5 the output could not be written while running (disk full; resumable once fixed).
 #pragma once
 #include <string>
 #include <vector>
@@ -19,6 +22,9 @@ struct RunArgs {
 int run_command(const RunArgs& args);
 
 inline constexpr int kExitInterrupted = 4;
+// The output could not be written while the work ran (disk full, file too large, I/O error):
+// what was finished is kept, but running again without fixing the cause cannot finish.
+inline constexpr int kExitOutputFailed = 5;
 
 struct SweepArgs {
   std::string config_path;
@@ -26,6 +32,7 @@ struct SweepArgs {
   std::string output;
   bool quiet = false;
   bool resume = false;  // continue an interrupted sweep from <output>.part
+  bool force = false;   // start afresh even over an interrupted sweep's .part and journal
   long max_tasks = 0;   // stop (resumably) after this many task results; 0: no limit
   double task_timeout = 0;  // [s] a task not back within it is failed and its rank given up; 0: no bound
   std::string command_line;

@@ -1,12 +1,36 @@
 // astrojax: the driven-Astrojax explorer. Subcommands: run (one trajectory into HDF5) and
 // sweep (the MPI farm over a sweep file's chains).
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <fmt/format.h>
 
 #include "app/commands.hpp"
 #include "parallel/mpi_env.hpp"
+
+namespace {
+
+// Every floating-point option of `app` and its subcommands refuses NaN and infinity (CLI11
+// converts "nan" and "inf", and its ranges let NaN through).
+void require_finite(CLI::App& app) {
+  static const CLI::Validator finite(
+      [](std::string& s) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(s.c_str(), &end);
+        return end != s.c_str() && !std::isfinite(v) ? fmt::format("{} is not a finite number", s) : std::string();
+      },
+      "", "FINITE");
+  for (CLI::Option* o : app.get_options())
+    if (o->get_type_name().rfind("FLOAT", 0) == 0) o->check(finite);
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) require_finite(*sub);
+}
+
+const CLI::Validator non_empty([](std::string& s) { return s.empty() ? std::string("the output path is empty") : std::string(); },
+                               "", "NONEMPTY");
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"astrojax: bifurcation explorer for the motor-driven Astrojax pendulum"};
@@ -21,7 +45,7 @@ int main(int argc, char** argv) {
   run_cmd->add_option("config", run.config_path, "TOML file with [model], [layers], [integrator], [initial], [[schedule]], [output]")
       ->required();
   run_cmd->add_option("-s,--set", run.overrides, "Override a key, e.g. --set model.drive_radius=0.005 (repeatable)");
-  run_cmd->add_option("-o,--output", run.output, "HDF5 output path (overrides output.path)");
+  run_cmd->add_option("-o,--output", run.output, "HDF5 output path (overrides output.path)")->check(non_empty);
   run_cmd->add_flag("-q,--quiet", run.quiet, "Print only errors");
 
   ajx::app::SweepArgs sweep;
@@ -31,17 +55,20 @@ int main(int argc, char** argv) {
   sweep_cmd->add_option("config", sweep.config_path, "TOML file with [protocol], [grid] and the [model] sections")
       ->required();
   sweep_cmd->add_option("-s,--set", sweep.overrides, "Override a key, e.g. --set grid.drive_radius=[0.005,0.01]");
-  sweep_cmd->add_option("-o,--output", sweep.output, "HDF5 output path (overrides output.path)");
+  sweep_cmd->add_option("-o,--output", sweep.output, "HDF5 output path (overrides output.path)")->check(non_empty);
   sweep_cmd->add_flag("-q,--quiet", sweep.quiet, "No progress lines");
   sweep_cmd->add_flag("--resume", sweep.resume,
                       "Continue an interrupted sweep from <output>.part (same file and overrides)");
+  sweep_cmd->add_flag("--force", sweep.force,
+                      "Start afresh even where an interrupted sweep left <output>.part or <output>.journal "
+                      "(their finished tasks are discarded)");
   sweep_cmd->add_option("--max-tasks", sweep.max_tasks,
                         "Stop after this many task results, as an interruption would (resume later with --resume)")
       ->check(CLI::NonNegativeNumber);
   sweep_cmd->add_option("--task-timeout", sweep.task_timeout,
                         "Wall-clock bound of one task [s]: a task not back within it is reported failed, its rank "
                         "given up, and the job ended once the rest is done (default 0: no bound)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0.0, 1e7));
 
   ajx::app::ThresholdsArgs thresholds;
   CLI::App* thresholds_cmd = app.add_subcommand(
@@ -171,6 +198,7 @@ int main(int argc, char** argv) {
   th_cmd->add_option("--repeats", th.repeats, "Timed runs per point (the median is kept)")->capture_default_str();
   th_cmd->add_option("--sample", th_sample, "Sampling step that brackets the landing [s]")->capture_default_str();
 
+  require_finite(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

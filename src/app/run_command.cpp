@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "app/commands.hpp"
+#include "app/output_paths.hpp"
 #include "app/provenance.hpp"
 #include "config/config.hpp"
 #include "io/hdf5_file.hpp"
@@ -94,48 +95,10 @@ physics::State initial_state(const config::RunConfig& c, const physics::MotorSch
                              c.initial.mode, 0.0, c.initial.length_tolerance, c.initial.tie_slip_rate);
 }
 
-}  // namespace
-
-int run_command(const RunArgs& args) {
-  config::RunConfig cfg;
-  physics::MotorSchedule schedule;
-  physics::State state;
-  std::optional<io::File> file;
-  // Everything that can be checked is checked before any work, and before any file exists.
-  try {
-    cfg = config::load_run_config(args.config_path, args.overrides);
-    if (!args.output.empty()) cfg.output.path = args.output;
-    schedule = physics::MotorSchedule(cfg.schedule);
-    try {
-      state = initial_state(cfg, schedule);
-    } catch (const std::invalid_argument& e) {
-      throw config::ConfigError(fmt::format("{}: key 'initial.r1', 'initial.r2': {}; allowed "
-                                            "|L1 + L2 - l| <= initial.length_tolerance and L2 >= d",
-                                            cfg.source_name, e.what()));
-    }
-    const std::filesystem::path out(cfg.output.path);
-    std::error_code ec;
-    if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path(), ec);
-    try {
-      file.emplace(io::File::create_temporary(out));
-    } catch (const io::Hdf5Error& e) {
-      throw config::ConfigError(fmt::format("{}: key 'output.path': cannot write '{}' ({})",
-                                            cfg.source_name, cfg.output.path, e.what()));
-    }
-  } catch (const config::ConfigError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return kExitBadInput;
-  }
-
-  Trajectory traj;
-  sim::Simulation simulation(cfg.model, schedule, cfg.run);
-  const auto wall0 = std::chrono::steady_clock::now();
-  const sim::RunSummary sum = simulation.run(state, schedule.duration(), cfg.output.sample_interval,
-                                             [&](const sim::Sample& s) { traj.add(s, cfg.model.p); });
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-
-  io::File& f = *file;
-  write_provenance(f, args.command_line, cfg);
+// The trajectory, the summary and the provenance into the run's file, then committed.
+void write_run(io::File& f, const std::string& command_line, const config::RunConfig& cfg, const Trajectory& traj,
+               const sim::RunSummary& sum, const physics::State& state, double wall) {
+  write_provenance(f, command_line, cfg);
   io::Group tg = f.create_group("trajectory");
   traj.write(tg);
   io::Group sg = f.create_group("summary");
@@ -173,6 +136,57 @@ int run_command(const RunArgs& args) {
   }
   sg.set_attribute("wall_time", wall);
   f.commit();
+}
+
+}  // namespace
+
+int run_command(const RunArgs& args) {
+  config::RunConfig cfg;
+  physics::MotorSchedule schedule;
+  physics::State state;
+  std::optional<io::File> file;
+  // Everything that can be checked is checked before any work, and before any file exists.
+  try {
+    cfg = config::load_run_config(args.config_path, args.overrides);
+    if (!args.output.empty()) cfg.output.path = args.output;
+    check_output_path(cfg.source_name, "output.path", cfg.output.path,
+                      {args.config_path}, {".part"});
+    schedule = physics::MotorSchedule(cfg.schedule);
+    try {
+      state = initial_state(cfg, schedule);
+    } catch (const std::invalid_argument& e) {
+      throw config::ConfigError(fmt::format("{}: key 'initial.r1', 'initial.r2': {}; allowed "
+                                            "|L1 + L2 - l| <= initial.length_tolerance and L2 >= d",
+                                            cfg.source_name, e.what()));
+    }
+    const std::filesystem::path out(cfg.output.path);
+    std::error_code ec;
+    if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path(), ec);
+    try {
+      file.emplace(io::File::create_temporary(out));
+    } catch (const io::Hdf5Error& e) {
+      throw config::ConfigError(fmt::format("{}: key 'output.path': cannot write '{}' ({})",
+                                            cfg.source_name, cfg.output.path, e.what()));
+    }
+  } catch (const config::ConfigError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return kExitBadInput;
+  }
+
+  Trajectory traj;
+  sim::Simulation simulation(cfg.model, schedule, cfg.run);
+  const auto wall0 = std::chrono::steady_clock::now();
+  const sim::RunSummary sum = simulation.run(state, schedule.duration(), cfg.output.sample_interval,
+                                             [&](const sim::Sample& s) { traj.add(s, cfg.model.p); });
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+
+  try {
+    write_run(*file, args.command_line, cfg, traj, sum, state, wall);
+  } catch (const io::Hdf5Error& e) {  // disk full, file too large, I/O error
+    file.reset();  // an uncommitted temporary file is removed
+    std::fprintf(stderr, "error: cannot write %s: %s\n", cfg.output.path.c_str(), e.what());
+    return kExitOutputFailed;
+  }
 
   if (!args.quiet || !sum.ok())
     std::printf(

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "app/commands.hpp"
+#include "app/output_paths.hpp"
 #include "app/sweep_file.hpp"
 #include "app/sweep_recovery.hpp"
 #include "app/sweep_result.hpp"
@@ -113,6 +114,8 @@ int sweep_command(const SweepArgs& args) {
   };
   if (master && error.empty()) {
     try {
+      check_output_path(cfg.source_name, "output.path", cfg.output_path, {args.config_path}, {".part", ".journal"});
+      if (!args.resume && !args.force) check_no_unfinished_sweep(cfg, part_path, journal_path);
       if (args.resume) {
         if (!std::filesystem::exists(part_path) && !std::filesystem::exists(journal_path)) {
           throw config::ConfigError(fmt::format(
@@ -155,9 +158,9 @@ int sweep_command(const SweepArgs& args) {
           status.assign(n_tasks, 0);  // the journal's replay below says what is done
         }
       } else {
+        check_space(cfg, final_path, setups, cap);
         std::error_code ec;
         if (final_path.has_parent_path()) std::filesystem::create_directories(final_path.parent_path(), ec);
-        check_space(cfg, final_path, setups, cap);
         journal.emplace(io::Journal::create(journal_path));  // locked first: no other sweep writes here
         make_file();
         journal->append(kJournalIdentity, journal_identity(cfg));
@@ -311,9 +314,11 @@ int sweep_command(const SweepArgs& args) {
     // The workers have been told to stop; every result committed to the journal is safe.
     std::fprintf(stderr, "error: %s\nthe finished tasks are in %s (with %s); fix the cause and continue with the "
                  "same command and --resume\n", e.what(), part_path.c_str(), journal_path.c_str());
-    return 1;
+    return kExitOutputFailed;
   }
-  if (!master) return fs.status == parallel::FarmStatus::Completed ? 0 : kExitInterrupted;
+  // The job's exit code is the master's: mpirun returns the first non-zero code of any rank,
+  // so a worker that returned its own view (4 when the master stopped the farm) could decide it.
+  if (!master) return 0;
   if (terminal && !args.quiet) std::printf("\n");
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
 
@@ -348,7 +353,7 @@ int sweep_command(const SweepArgs& args) {
 
   std::printf("%s  %zu chains, %zu tasks (%lld failed, %lld not run, %lld never started), %.0f of %.0f simulated s "
               "in %.1f s wall on %d ranks -> %s\n",
-              complete ? "ok" : "INTERRUPTED", setups.size(), n_tasks, (long long)fs.failed, (long long)fs.not_run,
+              !complete ? "INTERRUPTED" : failures.empty() ? "ok" : "FAILED", setups.size(), n_tasks, (long long)fs.failed, (long long)fs.not_run,
               (long long)fs.unstarted, simulated, total_sim, wall, ranks,
               complete ? final_path.c_str() : part_path.c_str());
   for (const auto& fl : failures) std::printf("  failed: %s\n", fl.c_str());
