@@ -125,11 +125,16 @@ class FarmComm {
     check_mpi(MPI_Send(msg.data(), static_cast<int>(msg.size()), MPI_BYTE, dest, tag, comm_), "MPI_Send");
   }
 
-  // Blocking wait for the next message from `source`.
-  MPI_Status probe(int source) const {
+  // Waits for the next message from `source`, polling with `backoff` between looks: MPI_Probe
+  // busy-polls in Open MPI, so a worker waiting for work would hold a core at 100 %.
+  template <class Backoff>
+  MPI_Status probe(int source, Backoff& backoff) const {
     MPI_Status st;
-    check_mpi(MPI_Probe(source, MPI_ANY_TAG, comm_, &st), "MPI_Probe");
-    return st;
+    for (backoff.reset();; backoff.wait()) {
+      int flag = 0;
+      check_mpi(MPI_Iprobe(source, MPI_ANY_TAG, comm_, &flag, &st), "MPI_Iprobe");
+      if (flag) return st;
+    }
   }
 
   // Non-blocking: a message from anyone, if one is waiting.
@@ -523,8 +528,9 @@ FarmSummary run_worker(const FarmComm& comm, int rank, int size, const WorkFunct
   s.busy_seconds.assign(static_cast<std::size_t>(size), 0.0);
   s.tasks_per_rank.assign(static_cast<std::size_t>(size), 0);
   comm.send(pack(Header{}), 0, kTagHello);
+  Backoff backoff;
   while (true) {
-    const Message m = comm.receive(comm.probe(0));
+    const Message m = comm.receive(comm.probe(0, backoff));
     if (m.tag == kTagStop) {
       if (m.header.code < 0 || m.header.code > static_cast<std::int32_t>(FarmStatus::Aborted))
         throw std::runtime_error("farm: stop message with unknown status " + std::to_string(m.header.code));
