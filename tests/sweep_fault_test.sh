@@ -87,8 +87,8 @@ for _ in $(seq 1000); do [ -e full.h5.journal ] && break; sleep 0.01; done
 prlimit --pid $p --fsize=1500000:1500000
 wait $p
 rc=$?
-check "disk full: exit 1 with the reason and how to resume (got $rc)" \
-  "[ $rc -eq 1 ] && grep -q 'too large\|No space' full.out && grep -q -- '--resume' full.out"
+check "disk full: exit 5 with the reason and how to resume (got $rc)" \
+  "[ $rc -eq 5 ] && grep -q 'too large\|No space' full.out && grep -q -- '--resume' full.out"
 "$bin" sweep "${sweep[@]}" -o full.h5 --resume > full.resume 2>&1
 check "disk full: resumed file equals the uninterrupted one" "[ $? -eq 0 ] && same full.h5 straight.h5"
 
