@@ -13,10 +13,12 @@
 #   preemption) is passed on as SIGUSR1: the sweep's master stops handing out tasks, writes those
 #   in flight and exits with 4. The script then requeues the job (scontrol requeue) when the
 #   job is requeueable, or says how to resubmit it.
-# Exit codes: those of astrojax sweep (0 ok, 2 bad input, 3 tasks failed, 4 interrupted).
+# Exit codes: those of astrojax sweep (0 ok, 1 internal error, 2 bad input, 3 tasks failed,
+# 4 interrupted, 5 output not writable: disk full). Only 4 is requeued: the others would fail
+# again the same way (5 resumes with --resume once the disk has room).
 set -uo pipefail
 
-if [ $# -lt 2 ]; then sed -n '2,18p' "$0"; exit 2; fi
+if [ $# -lt 2 ]; then sed -n '2,20p' "$0"; exit 2; fi
 sweep_file=$1; output=$2; shift 2
 bin=${ASTROJAX_BIN:-${ASTROJAX_DIR:-${SLURM_SUBMIT_DIR:-.}}/build/astrojax}
 ntasks=${SLURM_NTASKS:-1}

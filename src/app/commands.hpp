@@ -34,7 +34,8 @@ struct SweepArgs {
   bool resume = false;  // continue an interrupted sweep from <output>.part
   bool force = false;   // start afresh even over an interrupted sweep's .part and journal
   long max_tasks = 0;   // stop (resumably) after this many task results; 0: no limit
-  double task_timeout = 0;  // [s] a task not back within it is failed and its rank given up; 0: no bound
+  double task_timeout = 0;  // [s] a task not back within it runs elsewhere, its rank given up; 0: automatic
+  double min_task_timeout = 60;  // [s] the least automatic bound (20 times the slowest finished task)
   std::string command_line;
 };
 // Collective: every rank of MPI_COMM_WORLD calls it (rank 0 is the master).

@@ -35,6 +35,10 @@ const CLI::Validator non_empty([](std::string& s) { return s.empty() ? std::stri
 int main(int argc, char** argv) {
   CLI::App app{"astrojax: bifurcation explorer for the motor-driven Astrojax pendulum"};
   app.require_subcommand(1);
+  app.footer("Exit codes (also of mpirun, which returns rank 0's): 0 done; 1 internal error (a bug, an MPI failure); "
+             "2 bad input, refused before any work, nothing written; 3 done, but some integrations or tasks failed "
+             "(marked in the file); 4 interrupted, resumable with --resume; 5 the output could not be written while "
+             "running (disk full, file too large), resumable with --resume once the cause is fixed.");
   std::string command_line;
   for (int i = 0; i < argc; ++i) command_line += (i ? " " : "") + std::string(argv[i]);
 
@@ -66,9 +70,14 @@ int main(int argc, char** argv) {
                         "Stop after this many task results, as an interruption would (resume later with --resume)")
       ->check(CLI::NonNegativeNumber);
   sweep_cmd->add_option("--task-timeout", sweep.task_timeout,
-                        "Wall-clock bound of one task [s]: a task not back within it is reported failed, its rank "
-                        "given up, and the job ended once the rest is done (default 0: no bound)")
+                        "Wall-clock bound of one task [s]: a task not back within it is handed to another rank, its "
+                        "rank given up (after 3 such timeouts the task fails), and the job ended once the rest is "
+                        "done (default 0: automatic, 20 times the slowest finished task, at least --min-task-timeout)")
       ->check(CLI::Range(0.0, 1e7));
+  sweep_cmd->add_option("--min-task-timeout", sweep.min_task_timeout,
+                        "The least automatic task bound [s] (see --task-timeout)")
+      ->check(CLI::Range(0.1, 1e7))
+      ->capture_default_str();
 
   ajx::app::ThresholdsArgs thresholds;
   CLI::App* thresholds_cmd = app.add_subcommand(

@@ -38,6 +38,9 @@ namespace ajx::app {
 
 namespace {
 
+// Without --task-timeout, a task still out after this many times the slowest finished task (and
+// at least --min-task-timeout) is taken as hung: its rank is given up and the task runs elsewhere.
+constexpr double kTaskTimeoutFactor = 20.0;
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 
 std::string now_iso() {
@@ -305,6 +308,8 @@ int sweep_command(const SweepArgs& args) {
   };
   fo.progress_interval = terminal ? 0.5 : 10.0;
   fo.task_timeout = args.task_timeout;
+  fo.timeout_factor = kTaskTimeoutFactor;  // without --task-timeout: a task this many times the slowest is hung
+  fo.min_task_timeout = args.min_task_timeout;
   const std::string started = now_iso();
   parallel::FarmSummary fs;
   try {
@@ -362,8 +367,8 @@ int sweep_command(const SweepArgs& args) {
   const int code = !complete ? kExitInterrupted : failures.empty() ? 0 : kExitRunFailed;
   if (!fs.lost_ranks.empty()) {
     // A hung rank never reaches MPI_Finalize: the file is closed, so end the job here.
-    std::printf("ranks %s did not return their task within --task-timeout %g s (see the failures above); "
-                "ending the job\n", fmt::format("{}", fmt::join(fs.lost_ranks, ", ")).c_str(), args.task_timeout);
+    std::printf("ranks %s did not return their task within the task bound and were given up (their tasks ran "
+                "elsewhere); ending the job\n", fmt::format("{}", fmt::join(fs.lost_ranks, ", ")).c_str());
     std::fflush(stdout);
     MPI_Abort(MPI_COMM_WORLD, code);
   }

@@ -1,0 +1,134 @@
+#!/usr/bin/env bash
+# Exit codes that mean one thing, liveness, and finished work never discarded:
+# - a rerun without --resume over an interrupted sweep is refused (exit 2), its files untouched;
+#   --force starts afresh;
+# - a sweep whose tasks all failed prints a summary starting with FAILED and exits 3;
+# - under mpirun the job's code is the master's: SIGUSR1 gives 4, a full disk 5 (workers used to
+#   return 4 first), SIGTERM to cluster/run_sweep.sh gives 4 and no requeue outside Slurm;
+#   every interrupted file resumes into one equal to the uninterrupted run's;
+# - a stopped worker without --task-timeout is noticed by the automatic bound, its task runs on
+#   another rank and the file is complete; a worker waiting for work does not spin.
+# Usage: reliability_fault_test.sh ASTROJAX MPIEXEC SOURCE_DIR
+set -u
+bin=$1; mpiexec=$2; src=$3
+source "$(dirname "$0")/check.sh"
+cd "$work"
+# As in sweep_fault_test.sh: about 2 s of CPU, so that every fault lands mid-sweep.
+sweep=("$src/sweeps/quick.toml" -q --set protocol.windows_per_task=1 --set "grid.drive_radius=[0.01,0.015,0.02]"
+       --set integrator.method=rk4 --set integrator.step=2e-4)
+same() { for g in /config /chains /windows /samples /tasks; do h5diff "$1" "$2" "$g" > /dev/null 2>&1 || return 1; done; }
+size() { stat -c %s "$1" 2> /dev/null || echo 0; }
+# Starts the sweep on 3 ranks into $1, waits until its journal holds more than $2 bytes; sets
+# mp (mpirun's pid) and rank0..rank2.
+start_mpi() {
+  rm -f "$1"*
+  "$mpiexec" --oversubscribe -n 3 "$bin" sweep "${sweep[@]}" -o "$1" "${@:3}" > "$1.out" 2>&1 &
+  mp=$!
+  for _ in $(seq 1500); do [ "$(size "$1.journal")" -gt "$2" ] && break; sleep 0.01; done
+  rank0=; rank1=; rank2=
+  for k in $(pgrep -P $mp); do
+    r=$(tr '\0' '\n' < /proc/$k/environ 2> /dev/null | sed -n 's/^OMPI_COMM_WORLD_RANK=//p')
+    [ -n "$r" ] && eval "rank$r=$k"
+  done
+}
+gone() { for p in "$@"; do for _ in $(seq 100); do kill -0 "$p" 2> /dev/null || break; sleep 0.1; done; done; }
+resume() { "$mpiexec" --oversubscribe -n 3 "$bin" sweep "${sweep[@]}" -o "$1" --resume > "$1.resume" 2>&1; }
+ticks() { awk '{print $14 + $15}' "/proc/$1/stat" 2> /dev/null || echo 0; }  # user + system CPU [1/100 s]
+
+"$bin" sweep "${sweep[@]}" -o straight.h5 > straight.out 2>&1
+check "uninterrupted run: exit 0" "[ $? -eq 0 ]"
+
+# Finished work is never discarded silently.
+"$bin" sweep "${sweep[@]}" -o rerun.h5 --max-tasks 10 > /dev/null 2>&1
+check "interrupted by --max-tasks: exit 4" "[ $? -eq 4 ]"
+sums=$(md5sum rerun.h5.part rerun.h5.journal)
+"$bin" sweep "${sweep[@]}" -o rerun.h5 > rerun.out 2>&1
+rc=$?
+check "rerun without --resume: exit 2 (got $rc)" "[ $rc -eq 2 ]"
+check "rerun without --resume: says what is there and both ways on" \
+  "grep -q 'rerun.h5.journal (10 finished task results)' rerun.out && grep -q -- '--resume' rerun.out && grep -q -- '--force' rerun.out"
+check "rerun without --resume: the .part and the journal untouched" "[ \"\$(md5sum rerun.h5.part rerun.h5.journal)\" = \"\$sums\" ]"
+"$bin" sweep "${sweep[@]}" -o rerun.h5 --force > /dev/null 2>&1
+check "rerun with --force: exit 0, a complete file" "[ $? -eq 0 ] && [ ! -e rerun.h5.part ] && same rerun.h5 straight.h5"
+
+# Every task failed: not "ok". (Euler at 90 ms blows up: "non-finite state".)
+"$bin" sweep "${sweep[@]}" -o failed.h5 --set integrator.method=euler --set integrator.step=0.09 > failed.out 2>&1
+rc=$?
+check "all tasks failed: exit 3 (got $rc)" "[ $rc -eq 3 ]"
+check "all tasks failed: the summary starts with FAILED ($(head -1 failed.out))" "head -1 failed.out | grep -q '^FAILED '"
+
+# SIGUSR1 to mpirun (forwarded to the ranks): interrupted, 4, resumable.
+start_mpi usr1.h5 300000
+kill -USR1 "$mp"
+wait "$mp"
+rc=$?
+check "SIGUSR1 to mpirun: exit 4 (got $rc)" "[ $rc -eq 4 ] && [ -e usr1.h5.part ]"
+resume usr1.h5
+check "SIGUSR1 to mpirun: the resume completes and equals the uninterrupted run" "[ $? -eq 0 ] && same usr1.h5 straight.h5"
+
+# SIGTERM to mpirun: the ranks stop as for SIGUSR1 and the file resumes; mpirun itself returns
+# its own code for a job it was told to terminate (Open MPI: 1), so batch jobs stop through
+# cluster/run_sweep.sh, which turns SIGTERM into SIGUSR1.
+start_mpi term.h5 300000
+kill -TERM "$mp"
+wait "$mp"
+rc=$?
+gone $rank0 $rank1 $rank2
+check "SIGTERM to mpirun: the master wrote an interrupted, resumable file (mpirun exit $rc)" \
+  "grep -q '^INTERRUPTED' term.h5.out && [ -e term.h5.part ]"
+resume term.h5
+check "SIGTERM to mpirun: the resume completes and equals the uninterrupted run" "[ $? -eq 0 ] && same term.h5 straight.h5"
+rm -f script.h5*
+SLURM_NTASKS=3 ASTROJAX_BIN="$bin" ASTROJAX_LAUNCHER=mpirun ASTROJAX_MPIRUN_FLAGS=--oversubscribe \
+  "$src/cluster/run_sweep.sh" "${sweep[0]}" script.h5 "${sweep[@]:1}" > script.out 2>&1 &
+sp=$!
+for _ in $(seq 1500); do [ "$(size script.h5.journal)" -gt 300000 ] && break; sleep 0.01; done
+kill -TERM "$sp"
+wait "$sp"
+rc=$?
+check "SIGTERM to run_sweep.sh: exit 4 (got $rc), no requeue outside Slurm" \
+  "[ $rc -eq 4 ] && grep -q 'continue with' script.out && ! grep -q requeueing script.out"
+
+# A full disk under mpirun (a file-size limit on the master, SIGXFSZ ignored by a shell that
+# then becomes the rank: mpirun resets the signals of what it starts): the job's code is the
+# master's 5, which run_sweep.sh does not requeue; the workers' stop no longer decides it.
+rm -f full.h5*
+"$mpiexec" --oversubscribe -n 3 bash -c 'trap "" XFSZ; exec "$0" "$@"' "$bin" sweep "${sweep[@]}" -o full.h5 > full.out 2>&1 &
+mp=$!
+for _ in $(seq 1500); do [ -e full.h5.journal ] && break; sleep 0.01; done
+for k in $(pgrep -P $mp); do
+  [ "$(tr '\0' '\n' < /proc/$k/environ 2> /dev/null | sed -n 's/^OMPI_COMM_WORLD_RANK=//p')" = 0 ] && prlimit --pid $k --fsize=1500000:1500000
+done
+wait $mp
+rc=$?
+resume full.h5
+check "disk full under mpirun: the resume completes and equals the uninterrupted run" "[ $? -eq 0 ] && same full.h5 straight.h5"
+
+# A stopped worker without --task-timeout: the automatic bound (20 times the slowest task, here
+# at least 2 s) gives it up and hands its task to the other worker.
+start_mpi stop.h5 100000 --min-task-timeout 2
+kill -STOP "$rank2"
+t0=$(date +%s)
+for _ in $(seq 600); do kill -0 "$rank0" 2> /dev/null || break; sleep 0.1; done
+check "stopped worker: the master ends within 60 s ($(($(date +%s) - t0)) s)" "! kill -0 $rank0 2> /dev/null"
+for _ in $(seq 100); do kill -0 "$mp" 2> /dev/null || break; sleep 0.1; done
+kill -CONT "$rank2" 2> /dev/null
+wait "$mp"
+rc=$?
+gone $rank2
+check "stopped worker: exit 0 (got $rc), the rank named" "[ $rc -eq 0 ] && grep -q 'rank 2: no result after' stop.h5.out"
+check "stopped worker: the file is complete and equals the uninterrupted one" "[ ! -e stop.h5.part ] && same stop.h5 straight.h5"
+
+# A worker waiting for work does not spin: one chain in one long task, so one worker works and
+# the other waits; their CPU over 3 s.
+start_mpi idle.h5 0 --set "grid.drive_radius=[0.01]" --set protocol.windows_per_task=1000 --set integrator.step=2e-5
+sleep 1
+a1=$(ticks "$rank1"); a2=$(ticks "$rank2")
+sleep 3
+b1=$(ticks "$rank1"); b2=$(ticks "$rank2")
+kill -USR1 "$mp"; wait "$mp"
+busy=$(( b1 - a1 > b2 - a2 ? b1 - a1 : b2 - a2 )); idle=$(( b1 - a1 > b2 - a2 ? b2 - a2 : b1 - a1 ))
+echo "CPU over 3 s [1/100 s]: working worker $busy, waiting worker $idle"
+check "a waiting worker uses less than a tenth of the working one's CPU ($idle vs $busy)" "[ $busy -gt 0 ] && [ $((10 * idle)) -lt $busy ]"
+
+finish "reliability_fault"
