@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # One entry point for a fresh Debian 12 machine: installs what is missing (apt, idempotent),
 # builds in Release, and runs the demo or the tests.
-#   ./setup.sh demo        install, build, run the quick sweep (MPI) and one trajectory, and plot them
+#   ./setup.sh demo        install, build the program, run the main job: sweeps/paper.toml under mpirun,
+#                          its thresholds and its figures (out/paper*)
 #   ./setup.sh test        install, build, run the default test suite (ctest -L unit)
 #   ./setup.sh test-long   install, build, run the long physics validations (ctest -L long)
 #   ./setup.sh install | build
@@ -39,33 +40,43 @@ install() {
 }
 
 build() {
-  # The product build; ./setup.sh peers turns the peer solvers on for itself only.
+  # The product build; ./setup.sh peers turns the peer solvers on for itself only. With a
+  # target (build astrojax), only that target and what it needs.
   cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DASTROJAX_PEERS=OFF >/dev/null
-  cmake --build "$BUILD_DIR" -j"$(nproc)"
+  cmake --build "$BUILD_DIR" -j"$(nproc)" ${1:+--target "$1"}
 }
 
 demo() {
+  # The main job: sweeps/paper.toml on the MPI farm (one master, the other ranks workers), the
+  # four thresholds of both model variants with their verdicts, the hysteresis diagram and the
+  # orbit pictures. Open MPI's mpirun refuses to run as root; there the same sweep runs as one
+  # process (the master computes every task: the same file).
   mkdir -p out
-  # The main job: the quick sweep on the MPI farm (1 master + 1 worker fit 2 cores), its
-  # hysteresis diagram, and one trajectory. Open MPI's mpirun refuses to run as root; then
-  # the same sweep runs as a single process (the master computes every task: the same file).
+  local ranks; ranks=$(( $(nproc) < 2 ? 2 : $(nproc) ))
+  local start=$SECONDS
   if [ "$(id -u)" -eq 0 ]; then
     echo "note: running as root, where mpirun refuses; running the sweep as one process instead"
-    echo "      (as a normal user this is: mpirun -n 2 $BUILD_DIR/astrojax sweep sweeps/quick.toml)"
-    "$BUILD_DIR"/astrojax sweep sweeps/quick.toml
+    echo "      (as a normal user this is: mpirun -n $ranks $BUILD_DIR/astrojax sweep sweeps/paper.toml)"
+    "$BUILD_DIR"/astrojax sweep sweeps/paper.toml -o out/paper.h5
   else
-    mpirun -n 2 "$BUILD_DIR"/astrojax sweep sweeps/quick.toml
+    mpirun -n "$ranks" "$BUILD_DIR"/astrojax sweep sweeps/paper.toml -o out/paper.h5
   fi
-  ASTROJAX="$BUILD_DIR"/astrojax "$PYTHON" analysis/plot_hysteresis.py out/quick.h5 -o out/quick_hysteresis.png
-  ASTROJAX="$BUILD_DIR"/astrojax "$PYTHON" analysis/threshold_report.py out/quick.h5 -o out/quick_thresholds.md
-  "$BUILD_DIR"/astrojax run sweeps/spin_up.toml
-  "$PYTHON" analysis/plot_run.py out/spin_up.h5 -o out/spin_up.png
+  "$BUILD_DIR"/astrojax thresholds out/paper.h5 --markdown out/paper_thresholds.md --csv out/paper_thresholds.csv
+  "$PYTHON" analysis/plot_hysteresis.py out/paper.h5 --thresholds out/paper_thresholds.csv -o out/paper_hysteresis.png
+  "$PYTHON" analysis/plot_orbits.py out/paper.h5 --group up --variant clutch --direction up \
+    --classes locked-circular,lagging-circular,flower --top -o out/paper_orbits.png
+  echo
+  echo "the main job took $(( SECONDS - start )) s after the build; it wrote:"
+  echo "  out/paper.h5                the sweep: every window's class, ω_ball and samples (HDF5)"
+  echo "  out/paper_thresholds.md     ω_rise, ω_fall, ω1, ω2 per model variant, brackets and verdicts"
+  echo "  out/paper_hysteresis.png    ω_ball against ω_m, one panel per model variant"
+  echo "  out/paper_orbits.png        a locked, a lagging and a flower orbit from the top"
 }
 
 case "${1:-}" in
   install) install ;;
   build) install; build ;;
-  demo) install; build; demo ;;
+  demo) install; build astrojax; demo ;;
   test) install; build; (cd "$BUILD_DIR" && ctest -L unit -j"$(nproc)" --output-on-failure) ;;
   peers) PACKAGES+=("${PEER_PACKAGES[@]}"); install
          cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DASTROJAX_PEERS=ON >/dev/null

@@ -21,14 +21,16 @@ import numpy as np
 
 PI = np.pi
 
-# Orbit classes (the 'names' attribute of /windows/class) and their colours.
+# Orbit classes (the 'names' attribute of /windows/class) and their colours, the same in every
+# figure: the Okabe–Ito palette, told apart with any colour vision; grey for the fallen bead.
+# Thresholds are drawn in black and grey only, so no threshold mark shares a class colour.
 CLASS_COLOURS = {
-    "fallen": "tab:grey",
-    "locked-circular": "tab:blue",
-    "lagging-circular": "tab:green",
-    "flower": "tab:purple",
-    "not-settled": "tab:orange",
-    "failed": "tab:red",
+    "fallen": "#999999",
+    "locked-circular": "#0072B2",
+    "lagging-circular": "#009E73",
+    "flower": "#CC79A7",
+    "not-settled": "#E69F00",
+    "failed": "#000000",
 }
 # Classes of a steady orbit: where two of them meet at one ω_m, two orbits coexist.
 STEADY_CLASSES = ("fallen", "locked-circular", "lagging-circular", "flower")
@@ -37,9 +39,12 @@ DIRECTION_MARKERS = {1: "^", -1: "v", 0: "o"}
 DIRECTION_WORDS = {1: "ω_m rising", -1: "ω_m falling", 0: "ω_m held"}
 # Held windows (hold mode): marker by seed, in the order of /chains/seed@names.
 SEED_MARKERS = ["o", "s", "D", "P", "X", "*"]
+# Chain groups of a grouped sweep (/chains/group): marker by group, in the order of its names.
+GROUP_MARKERS = ["o", "s", "D", "P", "X", "*"]
 # astrojax thresholds' names (sweep::to_string) and how the figures write them.
 THRESHOLD_SYMBOLS = {"omega_rise": "ω_rise", "omega_fall": "ω_fall", "omega_1": "ω1", "omega_2": "ω2"}
-THRESHOLD_COLOURS = {"omega_rise": "tab:red", "omega_fall": "tab:cyan", "omega_1": "tab:pink", "omega_2": "tab:olive"}
+BRACKET_SHADE = "0.82"   # a measured bracket: a grey span
+PAPER_LINE = {"color": "k", "ls": "--", "lw": 0.8}  # the paper's measured value
 MODE_NAMES = {0: "sliding", 1: "on bottom ball", 2: "stuck", 3: "top stop", 4: "slack"}
 MODE_COLOURS = {0: "tab:blue", 1: "tab:grey", 2: "tab:orange", 3: "tab:red", 4: "tab:green"}
 
@@ -107,6 +112,15 @@ class Sweep:
             self.seed = ch["seed"][:] if "seed" in ch else None
             self.seed_names = text_attr(ch["seed"], "names").split(",") if "seed" in ch else []
             self.perturbation = ch["perturbation"][:] if "perturbation" in ch else None
+            # A grouped sweep: each chain's group and model variant (indices into the names).
+            self.group = ch["group"][:] if "group" in ch else None
+            self.group_names = text_attr(ch["group"], "names").split("\n") if "group" in ch else []
+            self.group_purposes = text_attr(ch["group"], "purposes").split("\n") if "group" in ch else []
+            self.variant = ch["variant"][:] if "variant" in ch else None
+            self.variant_names = text_attr(ch["variant"], "names").split("\n") if "variant" in ch else []
+            self.variant_labels = text_attr(ch["variant"], "labels").split("\n") if "variant" in ch else []
+            self.start_seed = ch["start_seed"][:] if "start_seed" in ch else None
+            self.start_seed_names = text_attr(ch["start_seed"], "names").split("\n") if "start_seed" in ch else []
             self.sample_rate = float(f["samples"].attrs.get("sample_rate", np.nan))
             prov = f["provenance"] if "provenance" in f else None
             self.provenance = {k: text_attr(prov, k) for k in prov.attrs} if prov is not None else {}
@@ -127,11 +141,30 @@ class Sweep:
 
     def grid_label(self, c):
         """'drive_radius=0.01 ...' for the grid point of chain c ('' without grid axes)."""
-        return " ".join(f"{a}={v:g}" for a, v in zip(self.axes, self.grid[c]))
+        return " ".join(f"{a}={v:g}" for a, v in zip(self.axes, self.grid[c]) if np.isfinite(v))
+
+    @property
+    def is_grouped(self):
+        return self.variant is not None
+
+    def group_name(self, c):
+        return self.group_names[int(self.group[c])] if self.is_grouped else ""
+
+    def variant_name(self, c):
+        return self.variant_names[int(self.variant[c])] if self.is_grouped else ""
+
+    def start_seed_name(self, c):
+        """Where a grouped sweep's chain starts: 'hanging', 'circular_high', ..."""
+        return self.start_seed_names[int(self.start_seed[c])] if self.start_seed is not None else "hanging"
+
+    def variant_label(self, c):
+        return self.variant_labels[int(self.variant[c])] if self.is_grouped else ""
 
     def chain_label(self, c):
         label = f"chain {c}"
-        if self.axes:
+        if self.is_grouped:
+            label += f" ({self.group_name(c)}, {self.variant_name(c)})"
+        if self.grid_label(c):
             label += f": {self.grid_label(c)}"
         if self.is_hold:
             seed = self.seed_names[int(self.seed[c])] if self.seed_names else str(self.seed[c])
@@ -146,14 +179,22 @@ class Sweep:
         return DIRECTION_MARKERS.get(d, "o")
 
     def groups(self, chains=None):
-        """Chains grouped by grid point, in order: [(label, [chain, ...]), ...]. A ramp sweep
-        has one chain per grid point; a hold sweep has one per held ω_m, seed and kick."""
+        """Chains grouped for one panel each, in order: [(label, [chain, ...]), ...]. A grouped
+        sweep: by model variant (its chain groups together); otherwise by grid point (a ramp
+        sweep has one chain per grid point; a hold sweep one per held ω_m, seed and kick)."""
         chains = range(self.n_chains) if chains is None else chains
         out = {}
         for c in chains:
-            key = tuple(self.grid[c])
+            key = (self.variant_name(c),) if self.is_grouped else tuple(np.nan_to_num(self.grid[c], nan=-1e300))
             out.setdefault(key, []).append(c)
+        if self.is_grouped:
+            return [(self.variant_label(cs[0]), cs) for cs in out.values()]
         return [(self.grid_label(cs[0]) or "all chains", cs) for cs in out.values()]
+
+    def parameter_title(self, c):
+        """The chain's drive and contact, in symbols and units: 'R = 15 mm, d = 3.5 cm'."""
+        return (f"R = {self.parameter(c, 'drive_radius') * 1e3:.3g} mm, "
+                f"d = {self.parameter(c, 'contact_distance') * 1e2:.3g} cm")
 
     def windows(self, c):
         """The classified windows of chain c, in protocol order."""
@@ -263,7 +304,9 @@ def write_report(path, text, stream=sys.stdout):
 
 
 def run_thresholds(h5_path, astrojax, extra=()):
-    """Runs `astrojax thresholds FILE --csv TMP [extra]`; returns (rows of its CSV, its stdout)."""
+    """Runs `astrojax thresholds FILE --csv TMP [extra]`; returns (rows of its CSV, its stdout).
+    Without --hold in `extra` the brackets alone (--no-hold): holds integrate, brackets do not."""
+    extra = list(extra) if "--hold" in extra else ["--no-hold", *extra]
     with tempfile.TemporaryDirectory() as tmp:
         out_csv = os.path.join(tmp, "thresholds.csv")
         proc = run_checked([astrojax, "thresholds", h5_path, "--csv", out_csv, *extra])
@@ -326,7 +369,7 @@ def run_sequence(h5_path, astrojax):
     sequence: present, out of order or missing)."""
     with tempfile.TemporaryDirectory() as tmp:
         out_csv = os.path.join(tmp, "sequence.csv")
-        run_checked([astrojax, "thresholds", h5_path, "--sequence-csv", out_csv])
+        run_checked([astrojax, "thresholds", h5_path, "--no-hold", "--sequence-csv", out_csv])
         return read_sequence_csv(out_csv)
 
 
@@ -336,23 +379,46 @@ def read_sequence_csv(path):
                              "astrojax thresholds --sequence-csv")
 
 
-def draw_thresholds(ax, rows, chains, paper=True):
-    """On an axis with ω_m [π rad/s] along x: each chain's threshold brackets as shaded
-    spans with their symbol, and (paper=True) the paper's measured values as dashed lines
-    (named in the legend by threshold_legend_handles)."""
+def draw_thresholds(ax, rows, chains, paper=True, values=False):
+    """On an axis with ω_m [π rad/s] along x: each chain's threshold brackets as grey spans
+    labelled with their symbol (values=True: and the bracket's ends, written upright beside it),
+    and (paper=True) the paper's measured values as dashed black lines (values=True: labelled)."""
+    labels = []  # (x, text, ha) of the upright labels, placed below
     for row in rows:
         if int(row["chain"]) not in chains:
             continue
-        colour = THRESHOLD_COLOURS.get(row["threshold"], "k")
         lo, hi = sorted((number(row["before_rad_s"]) / PI, number(row["after_rad_s"]) / PI))
-        if np.isfinite(lo):
-            ax.axvspan(lo, hi, color=colour, alpha=0.2, lw=0)
-            ax.text(0.5 * (lo + hi), 1.0, THRESHOLD_SYMBOLS.get(row["threshold"], row["threshold"]),
-                    transform=ax.get_xaxis_transform(), ha="center", va="bottom", fontsize=7, color=colour,
-                    fontweight="bold")
+        if not np.isfinite(lo):
+            continue
+        ax.axvspan(lo, hi, color=BRACKET_SHADE, lw=0, zorder=0)
+        symbol = THRESHOLD_SYMBOLS.get(row["threshold"], row["threshold"])
+        if values:
+            labels.append((hi, f" {symbol} {lo:.2f}–{hi:.2f}π", "left", "bold"))
+        else:
+            ax.text(0.5 * (lo + hi), 1.0, symbol, transform=ax.get_xaxis_transform(), ha="center", va="bottom",
+                    fontsize=7, color="k", fontweight="bold")
     if paper:
         for name, p in paper_values(rows).items():
-            ax.axvline(p / PI, color=THRESHOLD_COLOURS.get(name, "k"), ls="--", lw=0.9)
+            ax.axvline(p / PI, zorder=1, **PAPER_LINE)
+            if values:
+                labels.append((p / PI, f"paper {THRESHOLD_SYMBOLS.get(name, name)} ", "right", "normal"))
+    place_upright_labels(ax, labels)
+
+
+def place_upright_labels(ax, labels, fontsize=7):
+    """Upright labels hanging from the top of the axis beside their x; one that would overlap
+    an earlier one on the same side drops to the next tier."""
+    x0, x1 = ax.get_xlim() if ax.get_xlim()[1] > 1 else (0.0, max([x for x, *_ in labels] + [1.0]) * 1.05)
+    width = 0.03 * (x1 - x0)  # an upright 7-pt label's width, as a share of the axis
+    placed = []
+    for x, text, ha, weight in sorted(labels):
+        edge = (x - width, x) if ha == "right" else (x, x + width)
+        tier = 0
+        while any(t == tier and e[0] < edge[1] and edge[0] < e[1] for t, e in placed):
+            tier += 1
+        placed.append((tier, edge))
+        ax.text(x, 0.99 - 0.36 * (tier % 3), text, transform=ax.get_xaxis_transform(), ha=ha, va="top",
+                fontsize=fontsize, rotation=90, color="k", fontweight=weight)
 
 
 def paper_values(rows):
@@ -366,14 +432,13 @@ def paper_values(rows):
 
 
 def threshold_legend_handles(rows, paper=True):
-    """Legend entries: the bracket shading and, per threshold, the paper's value."""
+    """Legend entries: the bracket shading and the paper's values."""
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
-    handles = [Patch(color="0.5", alpha=0.3, label="bracket (astrojax thresholds)")]
+    handles = [Patch(color=BRACKET_SHADE, label="threshold bracket (astrojax thresholds)")]
     if paper:
-        for name, p in paper_values(rows).items():
-            handles.append(Line2D([], [], color=THRESHOLD_COLOURS.get(name, "k"), ls="--", lw=0.9,
-                                  label=f"paper {THRESHOLD_SYMBOLS.get(name, name)} = {p / PI:.2f}π"))
+        values = ", ".join(f"{THRESHOLD_SYMBOLS.get(n, n)} {p / PI:.2f}π" for n, p in paper_values(rows).items())
+        handles.append(Line2D([], [], label=f"paper: {values}", **PAPER_LINE))
     return handles
 
 

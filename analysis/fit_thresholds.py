@@ -2,7 +2,7 @@
 """Least-squares fit of model parameters to the paper's thresholds, with the tie clutch.
 
 Residuals r_k = (ω_k − paper_k) / paper_k for
-  ω_rise = 12.63π   from rest: the first ramp of sweeps/paper.toml (up to 14π);
+  ω_rise = 12.63π   from rest: the first ramp of sweeps/paper_ramps.toml (up to 14π);
   ω1 = 4.80π, ω2 = 15.00π   from Table 1's orbit: sweeps/table1.toml's 60 s hold at 4π, then
                     its up-ramp, extended to --top (default 18π) so that an ω2 above 16π is
                     still measured;
@@ -38,7 +38,7 @@ and a small finite-difference step sees zero or jumping derivatives. So:
      directions whose σ exceeds 100 % of the parameters are reported as not constrained and
      left out of the pseudo-inverse; with more residuals than parameters the covariance is
      scaled by max(1, χ²/(m − n));
-  5. at the optimum, the shipped paper.toml and table1.toml (with --protocol holds,
+  5. at the optimum, the shipped paper_ramps.toml and table1.toml (with --protocol holds,
      table1_staircase.toml) with `astrojax thresholds --sequence`: is the paper's class
      sequence reproduced?
 
@@ -363,7 +363,7 @@ def write_sweep(doc, name, work):
 
 
 def rise_file(paper_path, work):
-    """'rise': paper.toml's first ramp, up from rest. Returns ({name: path}, {name: description})."""
+    """'rise': paper_ramps.toml's first ramp, up from rest. Returns ({name: path}, {name: description})."""
     paper = load_toml(paper_path, "--paper-sweep")
     seg = segments(paper, paper_path, "--paper-sweep", ["ramp"])[0]
     if not seg["to"] > seg["from"]:
@@ -729,7 +729,7 @@ def report(args, params, ev, best, D, how, h, cov, loose, tight, factor, sv, fin
 
 
 def final_check(args, values, work):
-    """The shipped paper.toml and table1.toml at `values`: {label: (command, astrojax
+    """The shipped paper_ramps.toml and table1.toml at `values`: {label: (command, astrojax
     thresholds --sequence output, step rows)}."""
     out = {}
     second = ("table1_staircase", args.staircase_sweep) if args.protocol == "holds" else ("table1", args.table1_sweep)
@@ -739,7 +739,7 @@ def final_check(args, values, work):
         if label == "table1_staircase":  # its grid runs c_a: one chain at the fitted value
             sets += ["--set", f"grid.tie_damping=[{values['tie_damping']!r}]"]
         ajx.run_checked([args.astrojax_exe, "sweep", path, "-q", "-o", h5, *sets])
-        text = ajx.run_checked([args.astrojax_exe, "thresholds", h5, "--sequence"]).stdout
+        text = ajx.run_checked([args.astrojax_exe, "thresholds", h5, "--no-hold", "--sequence"]).stdout
         steps = [r for r in ajx.run_sequence(h5, args.astrojax_exe) if r["kind"] == "step"]
         cmd = "build/astrojax sweep " + os.path.relpath(path) + " -o OUT " + " ".join(
             f'"{s}"' if i % 2 else s for i, s in enumerate(sets)) + "; build/astrojax thresholds OUT --sequence"
@@ -795,7 +795,7 @@ def parse_args(argv):
     ap.add_argument("--jobs", type=int, default=2, help="sweeps run at a time (default 2)")
     ap.add_argument("--refine", type=int, default=0, metavar="F",
                     help="refine every bracket F times slower (`astrojax thresholds --refine F`; default off)")
-    ap.add_argument("--paper-sweep", default=os.path.join(SWEEPS, "paper.toml"), help="default sweeps/paper.toml")
+    ap.add_argument("--paper-sweep", default=os.path.join(SWEEPS, "paper_ramps.toml"), help="default sweeps/paper_ramps.toml")
     ap.add_argument("--table1-sweep", default=os.path.join(SWEEPS, "table1.toml"), help="default sweeps/table1.toml")
     ap.add_argument("--protocol", choices=("ramps", "holds"), default="ramps",
                     help="ω1, ω2, ω_fall from the ramps of table1.toml (default) or from the levels held in "

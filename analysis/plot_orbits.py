@@ -15,10 +15,14 @@ grid point, seed and kick); by default one window per orbit class (the middle ω
 its most confident windows). The sweep does not store the
 motor phase: it is recovered from the string (the top is at distance L1 from the bead)
 and ∫ω_m dt.
+--top draws only the top view in the lab frame, the orbits side by side, as the paper's Fig. 7
+and 8 show them; --classes picks one window per named class (the default picks every class).
 From a run file (`astrojax run`): the --tail seconds ending at the last time each --omega
 value is reached, or ending at each --time; by default the end of the run.
 
 usage: /usr/bin/python3 analysis/plot_orbits.py out/hold.h5 -o out/hold_orbits.png --chain 2 --omega 3,6,7.5
+       /usr/bin/python3 analysis/plot_orbits.py out/paper.h5 -o out/paper_orbits.png --group up --variant clutch --direction up \
+           --classes locked-circular,lagging-circular,flower --top
        /usr/bin/python3 analysis/plot_orbits.py out/quick.h5 -o orbits.pdf --chain 1 --omega 4,8,12 --direction down
        /usr/bin/python3 analysis/plot_orbits.py out/spin_up.h5 -o out/spin_up_orbits.png --omega 6,14 --tail 3
 """
@@ -40,6 +44,15 @@ def number_list(text, what):
 def sweep_orbits(args):
     """[(title, samples with phi, R)] for the chosen windows of a sweep file."""
     sweep = ajx.Sweep(args.input)
+    if args.group or args.variant:  # a grouped sweep's chain by its group and variant
+        if not sweep.is_grouped:
+            ajx.fail(f"--group/--variant: {args.input} has no chain groups or model variants")
+        found = [c for c in range(sweep.n_chains) if (not args.group or sweep.group_name(c) == args.group) and
+                 (not args.variant or sweep.variant_name(c) == args.variant)]
+        if not found:
+            ajx.fail(f"--group {args.group} --variant {args.variant}: no such chain in {args.input}; groups "
+                     f"{', '.join(sweep.group_names)}, variants {', '.join(sweep.variant_names)}")
+        args.chain = found[0]
     if not 0 <= args.chain < sweep.n_chains:
         ajx.fail(f"--chain {args.chain}: outside 0..{sweep.n_chains - 1} of {args.input}")
     c0 = args.chain
@@ -67,6 +80,14 @@ def sweep_orbits(args):
                 else members
             sure.sort(key=omega)
             best[name] = sure[len(sure) // 2]
+        if args.classes:
+            wanted = [c.strip() for c in args.classes.split(",")]
+            missing = [c for c in wanted if c not in best]
+            if missing:
+                ajx.fail(f"--classes: chain {c0} has no {', '.join(missing)} window"
+                         f"{' with direction ' + args.direction if want is not None else ''}; it has "
+                         f"{', '.join(sorted(best))}")
+            best = {c: best[c] for c in wanted}
         chosen = sorted(best.values(), key=omega)[:6]
     out = []
     for c, k in chosen:
@@ -80,8 +101,12 @@ def sweep_orbits(args):
         s["phi"] = ajx.motor_phase(s["t"], s["omega_m"], s["r1"], s["L1"], R)
         wb = sweep.stats["omega_ball"][c, k]
         arrow = {1: "▲", -1: "▼", 0: "●"}[int(sweep.direction[c, k])]
-        title = (f"{sweep.chain_label(c)}, window {k}: ω_m {sweep.omega_mean[c, k] / PI:.2f}π {arrow}, "
-                 f"{sweep.class_name(c, k)}, ω_ball " + (f"{wb / PI:.2f}π rad/s" if np.isfinite(wb) else "undefined"))
+        if args.top:
+            title = (f"{sweep.class_name(c, k)}\nω_m = {sweep.omega_mean[c, k] / PI:.2f}π {arrow}, ω_ball = " +
+                     (f"{wb / PI:.2f}π rad/s" if np.isfinite(wb) else "undefined"))
+        else:
+            title = (f"{sweep.chain_label(c)}, window {k}: ω_m {sweep.omega_mean[c, k] / PI:.2f}π {arrow}, "
+                     f"{sweep.class_name(c, k)}, ω_ball " + (f"{wb / PI:.2f}π rad/s" if np.isfinite(wb) else "undefined"))
         out.append((title, s, R))
     return out
 
@@ -145,6 +170,37 @@ def draw_orbit(axes, s, R):
         ax.tick_params(labelsize=7)
 
 
+def top_views(args, orbits):
+    """The orbits side by side, each from the top in the lab frame (the paper's Fig. 7, 8)."""
+    from matplotlib.lines import Line2D
+    cm = 100.0
+    n = len(orbits)
+    handles = [Line2D([], [], color="#0072B2", marker="o", ms=4, label="bead (● last position)"),
+               Line2D([], [], color="#D55E00", marker="o", ms=4, label="bottom ball"),
+               Line2D([], [], color="k", ls="--", lw=0.6, label="drive circle (radius R)")]
+    fig = ajx.new_figure(args, (3.6 * n, 4.6))
+    axes, leg = ajx.panels(fig, 1, n, len(handles))
+    axes = axes[0]
+    lim = max(max(np.abs(s[k][:, :2]).max() for k in ("r1", "r2")) for _, s, _ in orbits) * cm * 1.08
+    for ax, (title, s, R) in zip(axes, orbits):
+        for name, colour in (("r1", "#0072B2"), ("r2", "#D55E00")):
+            ax.plot(s[name][:, 0] * cm, s[name][:, 1] * cm, lw=0.7, color=colour)
+            ax.plot(s[name][-1, 0] * cm, s[name][-1, 1] * cm, "o", ms=4, color=colour)
+        a = np.linspace(0, 2 * PI, 100)
+        ax.plot(R * cm * np.cos(a), R * cm * np.sin(a), "k--", lw=0.6)
+        ax.plot(0, 0, "kx", ms=4)
+        ax.set_xlim(-lim, lim)
+        ax.set_ylim(-lim, lim)
+        ax.set_aspect("equal")
+        ax.set_xlabel("x [cm]", fontsize=8)
+        ax.set_ylabel("y [cm]", fontsize=8)
+        ax.tick_params(labelsize=7)
+        ax.set_title(title, fontsize=8.5)
+    ajx.legend(leg, handles)
+    fig.suptitle("Top view in the lab frame over one measured window", fontsize=10)
+    ajx.save(fig, args)
+
+
 def main(argv=None):
     ap = ajx.parser(__doc__)
     ap.add_argument("input", help="HDF5 file from `astrojax sweep` or `astrojax run`")
@@ -156,11 +212,19 @@ def main(argv=None):
     ap.add_argument("--time", help="run file: end times of the stretches shown, comma-separated [s]")
     ap.add_argument("--tail", type=float, default=0.0,
                     help="seconds of path shown (default: the whole window of a sweep; 2 s of a run)")
+    ap.add_argument("--group", help="grouped sweep file: the chain of this group (with --variant)")
+    ap.add_argument("--variant", help="grouped sweep file: the chain of this model variant (with --group)")
+    ap.add_argument("--classes", help="sweep file: one window of each of these classes, comma-separated "
+                                      "(e.g. locked-circular,lagging-circular,flower)")
+    ap.add_argument("--top", action="store_true", help="only the top view in the lab frame, the orbits side by side")
     args = ap.parse_args(argv)
     if args.tail < 0:
         ajx.fail(f"--tail {args.tail}: must be >= 0")
 
+    ap_top = args.top
     orbits = sweep_orbits(args) if ajx.file_kind(args.input) == "sweep" else run_orbits(args)
+    if ap_top:
+        return top_views(args, orbits)
     from matplotlib.lines import Line2D
     handles = [Line2D([], [], color="tab:blue", marker="o", ms=4, label="bead (● last position)"),
                Line2D([], [], color="tab:red", marker="o", ms=4, label="bottom ball"),
@@ -182,7 +246,7 @@ def main(argv=None):
     leg = subs[-1].add_subplot()
     leg.axis("off")
     ajx.legend(leg, handles)
-    fig.suptitle(f"{args.input}: orbits", fontsize=10)
+    fig.suptitle("Orbits of the bead and the bottom ball: lab frame and the frame turning with the motor", fontsize=10)
     ajx.save(fig, args)
 
 

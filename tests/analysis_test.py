@@ -55,7 +55,7 @@ def make():
     # For the calibration: two drive radii at two ramp rates across ω_rise.
     run([ASTROJAX, "sweep", os.path.join(SOURCE, "tests/data/tiny_rise.toml"), "-o", data("calib.h5"), "-q",
          "--set", "grid.drive_radius=[0.01,0.02]", "--set", "grid.ramp_rate=[0.5,1.0]"])
-    run([ASTROJAX, "thresholds", data("calib.h5"), "--csv", data("calib_thresholds.csv")])
+    run([ASTROJAX, "thresholds", data("calib.h5"), "--no-hold", "--csv", data("calib_thresholds.csv")])
     # For the scripts of `astrojax orbits` and `astrojax bench`: a short continuation, and a
     # tiny work-precision and stability scan (about 1 s together).
     run([ASTROJAX, "orbits", os.path.join(SOURCE, "sweeps/orbits.toml"), "--continue", "omega", "--s", "0.5443",
@@ -65,7 +65,7 @@ def make():
          "--repeats", "1", "-o", data("work_precision.csv")])
     run([ASTROJAX, "bench", "stability", os.path.join(SOURCE, "sweeps/spin_up.toml"), "--methods", "rk4,euler",
          "--omegas-pi", "2,4", "--horizon", "1", "-o", data("stability.csv")])
-    _, out = run([ASTROJAX, "thresholds", data("phase.h5"), "--csv", data("thresholds.csv")])
+    _, out = run([ASTROJAX, "thresholds", data("phase.h5"), "--no-hold", "--csv", data("thresholds.csv")])
     with open(data("thresholds.txt"), "w") as f:
         f.write(out)
 
@@ -291,13 +291,17 @@ class report(unittest.TestCase):
         script("threshold_report.py", data("phase.h5"), "-o", md, "--csv", out_csv, *THRESHOLD_ARGS)
         # The CSV: astrojax's rows and fields, verbatim.
         theirs, reached = self.assert_rows_verbatim(out_csv, data("thresholds.csv"))
-        # The Markdown: every row's numbers as astrojax prints them on stdout.
+        # The Markdown: every row's numbers, the bracket, its midpoint and the paper's value in
+        # π rad/s and the relative difference in %, at the precision astrojax gives them.
         printed = {}
-        with open(data("thresholds.txt")) as f:
-            for line in f:
-                m = re.match(r"(\d+)\s+.*?(omega_\w+)\s+(.*)$", line)
-                if m:
-                    printed[(m.group(1), m.group(2))] = re.findall(r"[+-]?\d+\.\d+", m.group(3))
+        for b in theirs:
+            nums = []
+            if b["mid_rad_s"]:
+                nums = [f"{float(b[k]) / math.pi:.3f}" for k in ("before_rad_s", "after_rad_s", "mid_rad_s")]
+                nums += [f"{float(b['paper_rad_s']) / math.pi:.2f}", f"{100 * float(b['relative_difference']):+.1f}"]
+            else:
+                nums = [f"{float(b['paper_rad_s']) / math.pi:.2f}"]
+            printed[(b["chain"], b["threshold"])] = nums
         symbols = {"omega_rise": "ω_rise", "omega_fall": "ω_fall", "omega_1": "ω1", "omega_2": "ω2"}
         table = [line for line in section(md, "Every chain") if re.match(r"\| \d+ \|", line)]
         self.assertEqual(len(table), len(theirs))
@@ -356,7 +360,7 @@ class report(unittest.TestCase):
         # boundary between the last fallen window and the first climbing one).
         md = data("report_seq.md")
         script("threshold_report.py", data("phase.h5"), "-o", md, "--csv", data("report_seq.csv"), *THRESHOLD_ARGS)
-        run([ASTROJAX, "thresholds", data("phase.h5"), "--sequence-csv", data("sequence.csv")])
+        run([ASTROJAX, "thresholds", data("phase.h5"), "--no-hold", "--sequence-csv", data("sequence.csv")])
         with open(data("sequence.csv"), newline="") as f:
             theirs = list(csv.DictReader(f))
         with open(data("report_seq_sequence.csv"), newline="") as f:
@@ -515,7 +519,7 @@ class adequacy(unittest.TestCase):
         # The ramp's ω_rise is astrojax thresholds' midpoint on the full model's own file.
         import model_adequacy as ma
         full = os.path.join(work, f"{ma.layer_tag(ma.FULL)}_ramp.h5")
-        run([ASTROJAX, "thresholds", full, "--csv", data("adequacy_full.csv")])
+        run([ASTROJAX, "thresholds", full, "--no-hold", "--csv", data("adequacy_full.csv")])
         with open(data("adequacy_full.csv"), newline="") as f:
             rise = [r for r in csv.DictReader(f) if r["threshold"] == "omega_rise"][0]
         self.assertTrue(rise["mid_rad_s"], "the tiny ramp must cross ω_rise, or this comparison proves nothing")
@@ -527,7 +531,7 @@ class adequacy(unittest.TestCase):
         # The staircase's held ω1 and ω_fall are astrojax thresholds' on the clutch set's own file,
         # and the lagging orbit, which no tiny hold gives, comes from the staircase alone.
         clutch = os.path.join(work, f"{ma.layer_tag(ma.CLUTCH)}_staircase.h5")
-        run([ASTROJAX, "thresholds", clutch, "--csv", data("adequacy_clutch.csv")])
+        run([ASTROJAX, "thresholds", clutch, "--no-hold", "--csv", data("adequacy_clutch.csv")])
         with open(data("adequacy_clutch.csv"), newline="") as f:
             held = {r["threshold"]: r for r in csv.DictReader(f)}
         for name, symbol in (("omega_1", "ω1"), ("omega_fall", "ω_fall")):
@@ -1028,7 +1032,7 @@ done
         import tempfile
         import fit_thresholds as ft
         with tempfile.TemporaryDirectory() as tmp:
-            files, _ = ft.rise_file(os.path.join(SOURCE, "sweeps/paper.toml"), tmp)
+            files, _ = ft.rise_file(os.path.join(SOURCE, "sweeps/paper_ramps.toml"), tmp)
             files.update(ft.ramp_files(os.path.join(SOURCE, "sweeps/table1.toml"), 18 * math.pi, tmp)[0])
             docs = {k: ft.load_toml(v, k) for k, v in files.items()}
         t1 = ft.load_toml(os.path.join(SOURCE, "sweeps/table1.toml"), "table1")

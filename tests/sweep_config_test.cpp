@@ -2,6 +2,7 @@
 // parameters, and bad input is rejected before any work with file, key and allowed range.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -179,4 +180,143 @@ TEST(SweepConfig, ProtocolStartsFromASeed) {
   EXPECT_NEAR(w1, w, delta / rho_min * w);
   EXPECT_NEAR(w2, w, delta / rho_min * w);
   EXPECT_NE(error_of({"protocol.start_seed=spinning"}).find("protocol.start_seed"), std::string::npos);
+}
+
+// Chain groups and model variants: each group runs once per variant, its tables and the
+// variant's merged over the file's; the plan places every part's grid on the file's axes.
+namespace {
+const char* kGrouped = R"(
+[model]
+drive_radius = 0.015
+[protocol]
+sample_rate = 40.0
+[[protocol.segment]]
+kind = "ramp"
+from = 0.0
+to = 10.0
+rate = 1.0
+window = 5.0
+[variant.rigid]
+label = "rigid tie"
+[variant.clutch]
+label = "tie clutch"
+layers = { tie = "clutch" }
+model = { tie_static_torque = 1.5e-3, tie_kinetic_torque = 1.35e-3 }
+[[group]]
+name = "rest"
+purpose = "from rest"
+[[group]]
+name = "orbit"
+purpose = "from Table 1's orbit"
+variants = ["clutch"]
+model = { contact_distance = 0.04 }
+[group.protocol]
+start_seed = "circular_high"
+start_omega = 12.0
+[[group.protocol.segment]]
+kind = "steps"
+from = 13.0
+to = 14.0
+num = 2
+settle = 1.0
+measure = 2.0
+[group.grid]
+tie_damping = [1e-6, 2e-6]
+[output]
+path = "out/grouped.h5"
+)";
+std::string grouped_error(const std::string& text, const std::vector<std::string>& overrides = {}) {
+  try {
+    parse_sweep_config(text, "g.toml", overrides);
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
+}
+}  // namespace
+
+TEST(SweepConfig, GroupsRunOncePerVariantWithTheirTablesMerged) {
+  const SweepConfig c = parse_sweep_config(kGrouped, "g.toml");
+  ASSERT_EQ(c.parts.size(), 3u);  // rest × (rigid, clutch), orbit × clutch
+  // Variants in the file's order, not the table's sorted one.
+  EXPECT_EQ(c.parts[0].group, "rest");
+  EXPECT_EQ(c.parts[0].variant, "rigid");
+  EXPECT_EQ(c.parts[1].variant, "clutch");
+  EXPECT_EQ(c.parts[1].variant_label, "tie clutch");
+  EXPECT_FALSE(c.parts[0].model.layers.tie_clutch);
+  EXPECT_TRUE(c.parts[1].model.layers.tie_clutch);
+  EXPECT_DOUBLE_EQ(c.parts[1].model.p.tie_static_torque, 1.5e-3);
+  EXPECT_EQ(c.parts[1].start_seed, "hanging");
+  const SweepConfig& orbit = c.parts[2];
+  EXPECT_EQ(orbit.group, "orbit");
+  EXPECT_EQ(orbit.group_purpose, "from Table 1's orbit");
+  EXPECT_EQ(orbit.start_seed, "circular_high");
+  EXPECT_DOUBLE_EQ(orbit.model.p.contact_distance, 0.04);  // the group's own value
+  EXPECT_DOUBLE_EQ(orbit.model.p.drive_radius, 0.015);     // the file's
+  ASSERT_EQ(orbit.protocol.size(), 1u);                    // the group's segments replace the file's
+  EXPECT_EQ(orbit.protocol[0].kind, ajx::sweep::Segment::Kind::Steps);
+  EXPECT_DOUBLE_EQ(c.sample_rate, 40.0);
+  EXPECT_EQ(c.output_path, "out/grouped.h5");
+
+  const ajx::sweep::SweepPlan plan = ajx::sweep::make_plan(c);
+  ASSERT_EQ(plan.chains(), 4u);  // 1 + 1 + 2 grid points
+  EXPECT_EQ(plan.part, (std::vector<std::size_t>{0, 1, 2, 2}));
+  ASSERT_EQ(plan.axes, (std::vector<std::string>{"tie_damping"}));
+  EXPECT_TRUE(std::isnan(plan.points[0].values[0]));  // a part without the axis
+  EXPECT_DOUBLE_EQ(plan.points[3].values[0], 2e-6);
+  EXPECT_DOUBLE_EQ(plan.setups[3].model.p.tie_damping, 2e-6);
+  EXPECT_EQ(plan.starts[2].seed, "circular_high");
+  EXPECT_DOUBLE_EQ(plan.starts[2].omega, 12.0);
+  EXPECT_EQ(plan.setups[0].protocol.windows.size(), 2u);  // the file's ramp, 10 s in 5 s windows
+}
+
+TEST(SweepConfig, SetReachesEveryPartOrOneVariant) {
+  const SweepConfig all = parse_sweep_config(kGrouped, "g.toml", {"model.contact_distance=0.03"});
+  for (const SweepConfig& p : all.parts) EXPECT_DOUBLE_EQ(p.model.p.contact_distance, 0.03);  // over the group's too
+  const SweepConfig one = parse_sweep_config(kGrouped, "g.toml", {"variant.clutch.model.tie_damping=3e-6"});
+  EXPECT_DOUBLE_EQ(one.parts[0].model.p.tie_damping, ajx::physics::Parameters{}.tie_damping);
+  EXPECT_DOUBLE_EQ(one.parts[1].model.p.tie_damping, 3e-6);
+}
+
+TEST(SweepConfig, BadGroupsAndVariantsNameFileAndKey) {
+  EXPECT_NE(grouped_error(replaced(kGrouped, "purpose = \"from rest\"\n", "")).find("key 'group[0].purpose': missing"),
+            std::string::npos);
+  EXPECT_NE(grouped_error(replaced(kGrouped, "variants = [\"clutch\"]", "variants = [\"slip\"]"))
+                .find("key 'group[1].variants[0]': expected a variant name used once; allowed: rigid, clutch"),
+            std::string::npos);
+  EXPECT_NE(grouped_error(replaced(kGrouped, "name = \"orbit\"", "name = \"rest\"")).find("'rest' names two groups"),
+            std::string::npos);
+  EXPECT_NE(grouped_error(replaced(kGrouped, "name = \"orbit\"", "name = \"or bit\"")).find("is not a name"),
+            std::string::npos);
+  EXPECT_NE(grouped_error(replaced(kGrouped, "label = \"rigid tie\"\n", "")).find("key 'variant.rigid.label': missing"),
+            std::string::npos);
+  EXPECT_NE(grouped_error(replaced(kGrouped, "[group.grid]", "[group.output]")).find("key 'group[1].output': unknown key"),
+            std::string::npos);
+  // A group's own bad value names the file, the group, the variant and the key.
+  const std::string e = grouped_error(replaced(kGrouped, "num = 2\n", "num = 0\n"));
+  EXPECT_NE(e.find("g.toml (group[1] 'orbit', variant 'clutch'): key 'protocol.segment[0].num'"), std::string::npos) << e;
+  EXPECT_NE(grouped_error(kGrouped, {"model.drive_radius=-1"}).find("key 'model.drive_radius'"), std::string::npos);
+  // One sample rate for the file.
+  const std::string rate = grouped_error(replaced(kGrouped, "start_omega = 12.0", "start_omega = 12.0\nsample_rate = 20.0"));
+  EXPECT_NE(rate.find("key 'sample_rate'"), std::string::npos) << rate;
+}
+
+TEST(SweepConfig, TheShippedPaperSweepHasBothVariantsOfEveryGroup) {
+  std::ifstream in(std::string(ASTROJAX_SOURCE_DIR) + "/sweeps/paper.toml");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const SweepConfig c = parse_sweep_config(ss.str(), "sweeps/paper.toml");
+  ASSERT_EQ(c.parts.size(), 6u);
+  for (std::size_t i = 0; i < c.parts.size(); ++i) {
+    EXPECT_EQ(c.parts[i].variant, i % 2 == 0 ? "paper" : "clutch");
+    EXPECT_EQ(c.parts[i].model.layers.tie_clutch, i % 2 == 1);
+    EXPECT_FALSE(c.parts[i].group_purpose.empty());
+  }
+  EXPECT_EQ(c.parts[0].start_seed, "hanging");
+  EXPECT_EQ(c.parts[2].start_seed, "circular_high");
 }

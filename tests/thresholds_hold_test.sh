@@ -53,8 +53,13 @@ expected=$(awk -v pc=$(get pre_class) -v pf=$(get pre_final_class) -v ps=$(get p
   else if (qf != pc) print "bifurcation";
   else print "excursion" }')
 check "verdict '$verdict' follows the rule ('$expected')" "[ \"$expected\" = \"$verdict\" ]"
-check "printed: both sides and the verdict" \
-  "[ \$(grep -c 'hold [0-9]* s at' '$work/hold.out') -eq 2 ] && grep -q \"verdict: $verdict\" '$work/hold.out'"
+check "printed: the verdict in the table and its reason with both sides" \
+  "grep -E '^  ω_rise .* $verdict \\[1\\]' '$work/hold.out' && grep -q \"\\[1\\] ω_rise of chain 0[^:]*: $verdict: held at\" '$work/hold.out'"
+# The holds are the default; --no-hold gives the brackets alone.
+"$bin" thresholds "$work/rise.h5" --csv "$work/default.csv" > "$work/default.out" 2>&1
+check "holds by default: the CSV has the verdict" "head -1 '$work/default.csv' | grep -q ',verdict,' && grep -q ',omega_rise,.*,$verdict,' '$work/default.csv'"
+"$bin" thresholds "$work/rise.h5" --no-hold --csv "$work/nohold.csv" > "$work/nohold.out" 2>&1
+check "--no-hold: no verdict column, 'not judged' printed" "! head -1 '$work/nohold.csv' | grep -q verdict && grep -q 'not judged' '$work/nohold.out'"
 
 "$bin" thresholds "$work/rise.h5" --refine 2 --hold 30 -j 2 --csv "$work/both.csv" > /dev/null 2>&1
 check "--refine with --hold: exit 0" "[ $? -eq 0 ]"

@@ -3,7 +3,7 @@
 #  1. the master's throughput with tasks that take no time (farm_throughput), on 2 to 17 ranks
 #     (oversubscribed), with tiny outputs and with outputs the size of a sweep task's;
 #  2. a sweep task's costs on 1 rank: integration per window (tau_w) and the master's work per
-#     window (classify, journal, HDF5), from sweeps/paper.toml on 4 drive radii;
+#     window (classify, journal, HDF5), from sweeps/paper_ramps.toml on 4 drive radii;
 #  3. parallel efficiency, 1 vs 2 workers, on the quick sweep over 8 drive radii (8 chains);
 #  4. the projection to 64, 512 and 4096 ranks (cluster/bench/project.py).
 # Usage: cluster/bench/scaling.sh [BUILD_DIR]   (MPIRUN_FLAGS=--allow-run-as-root as root)
@@ -17,8 +17,8 @@ trap 'rm -rf "$out"' EXIT
 
 echo "== 1. master throughput, tasks of no duration (64 chains x 300 tasks)"
 for n in 2 3 5 9 17; do "${mpirun[@]}" -n $n "$build/farm_throughput" 64 300 64; done
-echo "== 2. a sweep on 1 rank (sweeps/paper.toml, 4 drive radii)"
-"$build/astrojax" sweep sweeps/paper.toml -o "$out/paper1.h5" -q --set "grid.drive_radius=[0.005,0.01,0.015,0.02]"
+echo "== 2. a sweep on 1 rank (sweeps/paper_ramps.toml, 4 drive radii)"
+"$build/astrojax" sweep sweeps/paper_ramps.toml -o "$out/paper1.h5" -q --set "grid.drive_radius=[0.005,0.01,0.015,0.02]"
 echo "== 3. 1 and 2 workers (sweeps/quick.toml, 8 drive radii)"
 quick=(sweeps/quick.toml -q --set "grid.drive_radius=[0.01,0.011,0.012,0.013,0.015,0.017,0.019,0.02]")
 "${mpirun[@]}" -n 2 "$build/astrojax" sweep "${quick[@]}" -o "$out/w1.h5"

@@ -45,8 +45,11 @@ struct ThresholdsArgs {
   std::string input;  // a sweep's HDF5 file
   std::string csv;    // also write the table as CSV here, when non-empty
   int refine = 0;     // re-run each bracket this many times slower (0: no refinement)
-  int jobs = 1;       // threads for the refinements
-  std::string hold;   // hold both sides of each bracket this long: seconds, or "Ntau" drag times; empty: no hold
+  int jobs = 0;       // threads for the holds and refinements (0: the number of cores)
+  std::string hold = "5tau";  // hold both sides of each bracket this long: seconds, or "Ntau" drag times
+  bool no_hold = false;       // no holds: brackets without verdicts
+  std::string markdown;       // also write the report as Markdown here, when non-empty
+  double onset_span = 3.0;    // the Hopf fit takes levels up to this far above the first flower [π rad/s]
   bool sequence = false;      // print each chain's orbit class sequence against the paper's
   std::string sequence_csv;   // also write the sequence as CSV here, when non-empty
   bool absorb_blips = false;  // the sequence absorbs single not-settled windows between two of one class

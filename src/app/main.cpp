@@ -81,19 +81,28 @@ int main(int argc, char** argv) {
 
   ajx::app::ThresholdsArgs thresholds;
   CLI::App* thresholds_cmd = app.add_subcommand(
-      "thresholds", "ω_rise, ω_fall, ω1, ω2 of every chain of a sweep file, as brackets next to the paper's values");
+      "thresholds", "ω_rise, ω_fall, ω1, ω2 per model variant: brackets with their widths and hold verdicts, "
+                    "next to the paper's values; ω2 also as the lag's Hopf point where held levels allow");
   thresholds_cmd->add_option("file", thresholds.input, "HDF5 file written by astrojax sweep")->required();
   thresholds_cmd->add_option("--csv", thresholds.csv, "Also write the table as CSV");
+  thresholds_cmd->add_option("--markdown", thresholds.markdown, "Also write the report as Markdown");
   thresholds_cmd->add_option("--refine", thresholds.refine,
                              "Re-run each bracket from the stored state before it, this many times slower "
                              "(ramps: rate/F; staircases: F times more levels)")
       ->check(CLI::Range(1, 1000));
-  thresholds_cmd->add_option("-j,--jobs", thresholds.jobs, "Threads for --refine and --hold")->check(CLI::Range(1, 1024));
+  thresholds_cmd->add_option("-j,--jobs", thresholds.jobs, "Threads for the holds and --refine")
+      ->check(CLI::Range(1, 1024))
+      ->default_str("the number of cores");
   thresholds_cmd->add_option("--hold", thresholds.hold,
                              "Hold ω_m at both sides of each bracket for T (seconds, or e.g. 5tau: drag times "
-                             "max(m1,m2)/c_D; alone: 5tau) and judge: bifurcation or time-limited transient")
+                             "max(m1,m2)/c_D) and judge: bifurcation, excursion or time-limited transient")
       ->expected(0, 1)
       ->default_str("5tau");
+  thresholds_cmd->add_flag("--no-hold", thresholds.no_hold, "Brackets only: no holds, no verdicts (fast)");
+  thresholds_cmd->add_option("--onset-span", thresholds.onset_span,
+                             "The Hopf fit of ω2 takes held levels up to this far above the first flower [π rad/s]")
+      ->check(CLI::Range(0.1, 100.0))
+      ->capture_default_str();
   thresholds_cmd->add_flag("--sequence", thresholds.sequence,
                            "Print each chain's orbit class sequence and compare it with the paper's");
   thresholds_cmd->add_option("--sequence-csv", thresholds.sequence_csv, "Also write the class sequence as CSV");

@@ -96,7 +96,7 @@ int sweep_command(const SweepArgs& args) {
   std::vector<std::int32_t> status;
   const auto make_file = [&] {
     file.emplace(io::File::create(part_path), setups.size(), n_windows, cap, n_tasks);
-    file->create(cfg, plan.points, setups, spans);
+    file->create(cfg, plan);
     if (cfg.hold) {  // which ω_m, seed and perturbation each chain holds
       std::vector<double> w;
       std::vector<std::int32_t> seed, pert;

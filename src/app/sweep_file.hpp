@@ -16,6 +16,7 @@
 #include "io/hdf5_file.hpp"
 #include "app/sweep_result.hpp"
 #include "sweep/orbit_classifier.hpp"
+#include "sweep/plan.hpp"
 #include "sweep/task.hpp"
 
 namespace ajx::app {
@@ -46,13 +47,13 @@ class SweepFile {
       : f_(std::move(file)), C_(chains), W_(windows), cap_(cap), T_(tasks) {}
 
   // A new file: the configuration, the layout and the empty result datasets.
-  void create(const config::SweepConfig& cfg, const std::vector<config::GridPoint>& points,
-              const std::vector<sweep::ChainSetup>& setups, const std::vector<std::vector<sweep::TaskSpan>>& spans) {
+  void create(const config::SweepConfig& cfg, const sweep::SweepPlan& plan) {
+    const auto& spans = plan.spans;
     auto config = f_.write_string_dataset("config", cfg.source_text);
     config.set_attribute("source", cfg.source_name);
     config.set_attribute("overrides", joined_overrides(cfg));
-    write_chains(cfg, points);
-    write_window_layout(setups);
+    write_chains(cfg, plan);
+    write_window_layout(plan.setups);
     io::Group wg = f_.open_group("windows");
     const io::Dims dims{C_, W_}, chunk{1, W_};
     auto cls = wg.create_filled("class", dims, io::DType::Int32, -1.0, chunk);
@@ -192,24 +193,60 @@ class SweepFile {
     return fmt::format("{}", fmt::join(cfg.overrides, "\n"));
   }
 
-  void write_chains(const config::SweepConfig& cfg, const std::vector<config::GridPoint>& points) {
+  void write_chains(const config::SweepConfig& cfg, const sweep::SweepPlan& plan) {
     io::Group cg = f_.create_group("chains");
-    std::vector<std::string> names;
-    for (const auto& a : cfg.grid) names.push_back(a.key);
+    const std::vector<std::string>& names = plan.axes;
     cg.set_attribute("axes", fmt::format("{}", fmt::join(names, ",")));
     std::vector<double> values, model;
-    for (const auto& g : points) {
+    for (const auto& g : plan.points) {
       values.insert(values.end(), g.values.begin(), g.values.end());
       const physics::Parameters& p = g.model.p;
       const auto row = model_row(p);
       model.insert(model.end(), row.begin(), row.end());
     }
-    if (!names.empty()) cg.write_dataset("grid_values", std::span<const double>(values), io::Dims{C_, names.size()});
+    if (!names.empty())
+      cg.write_dataset("grid_values", std::span<const double>(values), io::Dims{C_, names.size()})
+          .set_attribute("description", "each chain's value on each grid axis; NaN where its group has no such axis");
     cg.write_dataset("model", std::span<const double>(model), io::Dims{C_, kModelColumns})
         .set_attribute("columns", "string_length [m],bead_mass [kg],ball_mass [kg],drag [kg/s],mu_static,mu_kinetic,"
                                   "gravity [m/s^2],drive_radius [m],contact_distance [m],top_stop [m],"
                                   "tie_static_torque [N m],tie_kinetic_torque [N m],tie_inertia [kg m^2],"
                                   "tie_damping [N m s],couple_torque [N m],couple_slip_rate [rad/s]");
+    if (!cfg.parts.empty()) write_groups(cfg, plan);
+  }
+
+  // A grouped file: each chain's group and model variant, by index into the names (attributes
+  // `names`, and `purposes` or `labels`, one line each), and where it starts.
+  void write_groups(const config::SweepConfig& cfg, const sweep::SweepPlan& plan) {
+    std::vector<std::string> groups, purposes, variants, labels, seeds;
+    const auto index = [](std::vector<std::string>& list, const std::string& name) {
+      auto it = std::find(list.begin(), list.end(), name);
+      if (it == list.end()) it = list.insert(list.end(), name);
+      return std::int32_t(it - list.begin());
+    };
+    std::vector<std::int32_t> group, variant, seed;
+    std::vector<double> omega;
+    for (std::size_t c = 0; c < C_; ++c) {
+      const config::SweepConfig& part = cfg.parts[plan.part[c]];
+      const std::size_t g = groups.size();
+      group.push_back(index(groups, part.group));
+      if (groups.size() > g) purposes.push_back(part.group_purpose);
+      const std::size_t v = variants.size();
+      variant.push_back(index(variants, part.variant));
+      if (variants.size() > v) labels.push_back(part.variant_label);
+      seed.push_back(index(seeds, plan.starts[c].seed));
+      omega.push_back(plan.starts[c].omega);
+    }
+    io::Group cg = f_.open_group("chains");
+    auto gd = cg.write_dataset("group", std::span<const std::int32_t>(group));
+    gd.set_attribute("names", fmt::format("{}", fmt::join(groups, "\n")));
+    gd.set_attribute("purposes", fmt::format("{}", fmt::join(purposes, "\n")));
+    auto vd = cg.write_dataset("variant", std::span<const std::int32_t>(variant));
+    vd.set_attribute("names", fmt::format("{}", fmt::join(variants, "\n")));
+    vd.set_attribute("labels", fmt::format("{}", fmt::join(labels, "\n")));
+    cg.write_dataset("start_seed", std::span<const std::int32_t>(seed))
+        .set_attribute("names", fmt::format("{}", fmt::join(seeds, "\n")));
+    cg.write_dataset("start_omega", std::span<const double>(omega)).set_attribute("units", "rad/s");
   }
 
   void write_window_layout(const std::vector<sweep::ChainSetup>& setups) {

@@ -1,16 +1,20 @@
-// astrojax thresholds: ω_rise, ω_fall, ω1 and ω2 of every chain of a sweep file, as brackets,
-// next to the paper's measured values; with --refine F each bracket is re-run from the stored
-// state before it, F times slower (sweep/refine.hpp), and the narrower bracket printed below;
-// with --hold T both sides of each bracket are held for T and judged a bifurcation or a
-// time-limited transient (sweep/hold_verdict.hpp); with --sequence each chain's orbit class
-// sequence is printed against the paper's (sweep/class_sequence.hpp).
+// astrojax thresholds: ω_rise, ω_fall, ω1 and ω2 of a sweep file, one table per model variant,
+// each threshold a bracket with its width next to the paper's measured value. By default both
+// sides of each bracket are held for 5 drag times and judged a bifurcation, an excursion or a
+// time-limited transient (sweep/hold_verdict.hpp); where a chain holds levels up through the
+// flower's onset and back down, ω2 is also fitted as the lag's Hopf point (sweep/flower_onset.hpp).
+// With --refine F each bracket is re-run from the stored state before it, F times slower
+// (sweep/refine.hpp); with --sequence each chain's class sequence is printed against the paper's.
+// Stages: read the file, find the brackets, judge them (holds, refinements, onsets), report.
 #include <atomic>
 #include <charconv>
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <cstdio>
 #include <fmt/format.h>
 #include <fstream>
+#include <map>
 #include <numbers>
 #include <optional>
 #include <sstream>
@@ -22,6 +26,7 @@
 #include "config/config.hpp"
 #include "io/hdf5_file.hpp"
 #include "sweep/class_sequence.hpp"
+#include "sweep/flower_onset.hpp"
 #include "sweep/hold_verdict.hpp"
 #include "sweep/plan.hpp"
 #include "sweep/refine.hpp"
@@ -130,16 +135,6 @@ struct HoldPair {
   sweep::Judgement judgement;
 };
 
-std::string side_line(const sweep::HoldSide& s) {
-  if (!s.ok || s.final_class == sweep::OrbitClass::Failed)
-    return fmt::format("hold {:.0f} s at {:.3f}π: failed: {}", s.hold, s.omega / pi, s.failure);
-  return fmt::format("hold {:.0f} s at {:.3f}π: {} -> {}  P_motor {:.3e} W  P_drag {:.3e} W  dE/dt {:+.2e} W  "
-                     "r = dE/dt / P_drag {:+.3f} (sustained if |r| <= {:.3f}): {}",
-                     s.hold, s.omega / pi, sweep::to_string(s.reference), sweep::to_string(s.final_class), s.mean.motor,
-                     s.mean.drag, s.mean.energy_rate, s.ratio, s.tolerance,
-                     !s.determined ? "undetermined" : s.sustained ? "sustained" : "not sustained");
-}
-
 std::string side_csv(const sweep::HoldSide& s) {
   const auto num = [](double v) { return std::isfinite(v) ? fmt::format("{:.9g}", v) : std::string(); };
   return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{}", num(s.hold), num(s.omega), sweep::to_string(s.reference),
@@ -164,149 +159,372 @@ std::string side_header(const char* prefix) {
   return out;
 }
 
-}  // namespace
 
-int thresholds_command(const ThresholdsArgs& args) {
-  std::optional<HoldTime> hold;
-  if (!args.hold.empty()) {
-    hold = parse_hold(args.hold);
-    if (!hold) {
-      std::fprintf(stderr,
-                   "error: --hold %s: give the hold time in seconds (0 < T <= 1e5) or in drag times, e.g. 5tau\n",
-                   args.hold.c_str());
-      return kExitBadInput;
-    }
-  }
-  std::vector<std::vector<sweep::ClassedWindow>> chains;
-  std::vector<std::vector<double>> omega_ball;  // per chain, per window in `chains`
-  const bool want_sequence = args.sequence || !args.sequence_csv.empty();
-  std::string axes;
-  io::Array<double> grid;
+// ---- what the file says --------------------------------------------------------------------
+
+struct Variant {
+  std::string name, label;  // both "" for a plain file: one table of every chain
+};
+
+struct SweepWindows {
+  std::vector<std::vector<sweep::ClassedWindow>> chains;  // classified windows, in protocol order
+  std::vector<std::vector<double>> omega_ball;            // per chain, per window in `chains` [rad/s]
+  std::vector<std::string> params;                        // per chain: its grid point, "a=1 b=2"
+  std::vector<std::string> group;                         // per chain: its group ("" for a plain file)
+  std::vector<std::size_t> variant;                       // per chain: index into `variants`
+  std::vector<Variant> variants;
+  io::Array<double> radius_bottom_mean, radius_bottom_std;  // chains × windows [m]
   std::size_t n_windows = 0;
-  try {
-    const io::File f = io::File::open_read(args.input);
-    const auto cls = f.read_int32s("windows/class"), dir = f.read_int32s("windows/direction");
-    const auto wb = f.read_doubles("windows/omega_m_begin"), we = f.read_doubles("windows/omega_m_end");
-    io::Array<double> ob;
-    if (want_sequence) ob = f.read_doubles("windows/omega_ball");
-    const std::size_t C = cls.rows(), W = cls.cols();
-    n_windows = W;
-    for (std::size_t c = 0; c < C; ++c) {
-      std::vector<sweep::ClassedWindow> w;
-      std::vector<double> o;
-      for (std::size_t k = 0; k < W; ++k)
-        if (cls(c, k) >= 0 && std::isfinite(wb(c, k))) {
-          w.push_back({wb(c, k), we(c, k), dir(c, k), static_cast<sweep::OrbitClass>(cls(c, k)), int(k)});
-          if (want_sequence) o.push_back(ob(c, k));
-        }
-      chains.push_back(std::move(w));
-      omega_ball.push_back(std::move(o));
-    }
-    const io::Group cg = f.open_group("chains");
-    axes = cg.read_string_attribute("axes");
-    if (cg.exists("grid_values")) grid = f.read_doubles("chains/grid_values");
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s: cannot read a sweep file: %s\n", args.input.c_str(), e.what());
-    return kExitBadInput;
+};
+
+std::vector<std::string> split_lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::size_t a = 0;
+  for (std::size_t b; (b = text.find('\n', a)) != std::string::npos; a = b + 1) out.push_back(text.substr(a, b - a));
+  out.push_back(text.substr(a));
+  return out;
+}
+
+SweepWindows read_sweep_windows(const io::File& f) {
+  SweepWindows s;
+  const auto cls = f.read_int32s("windows/class"), dir = f.read_int32s("windows/direction");
+  const auto wb = f.read_doubles("windows/omega_m_begin"), we = f.read_doubles("windows/omega_m_end");
+  const auto ob = f.read_doubles("windows/omega_ball");
+  s.radius_bottom_mean = f.read_doubles("windows/radius_bottom_mean");
+  s.radius_bottom_std = f.read_doubles("windows/radius_bottom_std");
+  const std::size_t C = cls.rows(), W = cls.cols();
+  s.n_windows = W;
+  for (std::size_t c = 0; c < C; ++c) {
+    std::vector<sweep::ClassedWindow> w;
+    std::vector<double> o;
+    for (std::size_t k = 0; k < W; ++k)
+      if (cls(c, k) >= 0 && std::isfinite(wb(c, k))) {
+        w.push_back({wb(c, k), we(c, k), dir(c, k), static_cast<sweep::OrbitClass>(cls(c, k)), int(k)});
+        o.push_back(ob(c, k));
+      }
+    s.chains.push_back(std::move(w));
+    s.omega_ball.push_back(std::move(o));
   }
-
-  // Every bracket found, in print order.
-  struct Row {
-    std::size_t chain;
-    sweep::Threshold threshold;
-    std::optional<sweep::Bracket> bracket;
-    std::optional<sweep::Refinement> refined;
-    std::optional<HoldPair> held;
-  };
-  std::vector<Row> rows;
-  for (std::size_t c = 0; c < chains.size(); ++c)
-    for (sweep::Threshold t : sweep::kThresholds) rows.push_back({c, t, sweep::find_threshold(t, chains[c]), {}, {}});
-
-  if (args.refine > 0 || hold) {
-    RefineSource src;
-    try {
-      src = open_refine_source(args.input, chains.size(), n_windows);
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "error: %s: cannot rebuild the sweep to %s it: %s\n", args.input.c_str(),
-                   args.refine > 0 ? "refine" : "hold", e.what());
-      return kExitBadInput;
+  const io::Group cg = f.open_group("chains");
+  const std::string axes = cg.read_string_attribute("axes");
+  io::Array<double> grid;
+  if (cg.exists("grid_values")) grid = f.read_doubles("chains/grid_values");
+  for (std::size_t c = 0; c < C; ++c) s.params.push_back(parameters_of(axes, grid, c));
+  if (cg.exists("variant")) {
+    const io::Dataset vd = f.open_dataset("chains/variant"), gd = f.open_dataset("chains/group");
+    const auto names = split_lines(vd.read_string_attribute("names")), labels = split_lines(vd.read_string_attribute("labels"));
+    for (std::size_t i = 0; i < names.size(); ++i) s.variants.push_back({names[i], i < labels.size() ? labels[i] : ""});
+    const auto groups = split_lines(gd.read_string_attribute("names"));
+    const auto v = vd.read_int32s(), g = gd.read_int32s();
+    for (std::size_t c = 0; c < C; ++c) {
+      s.variant.push_back(std::size_t(v.data[c]));
+      s.group.push_back(groups.at(std::size_t(g.data[c])));
     }
-    if (hold && hold->in_drag_times)
-      for (std::size_t c = 0; c < chains.size(); ++c)
-        if (!(src.plan.setups[c].model.p.drag > 0.0)) {
-          std::fprintf(stderr, "error: --hold %s: chain %zu has no drag (c_D = 0), so no drag time: give seconds\n",
-                       args.hold.c_str(), c);
-          return kExitBadInput;
-        }
-    // The sweep's class of a chain's window, by its index.
-    const auto class_of = [&](std::size_t c, int index) {
-      for (const sweep::ClassedWindow& w : chains[c])
-        if (w.index == index) return w.cls;
-      return sweep::OrbitClass::Failed;
+  } else {
+    s.variants.push_back({});
+    s.variant.assign(C, 0);
+    s.group.assign(C, "");
+  }
+  return s;
+}
+
+// ---- the brackets and their judgement --------------------------------------------------------
+
+struct Row {
+  std::size_t chain;
+  sweep::Threshold threshold;
+  std::optional<sweep::Bracket> bracket;
+  std::optional<sweep::Refinement> refined;
+  std::optional<HoldPair> held;
+};
+
+// The Hopf point of a chain's lag, fitted over its held levels (sweep/flower_onset.hpp).
+struct Onset {
+  double last_lag = 0.0, first_flower = 0.0;  // the classifier's bracket on the way up [rad/s]
+  std::optional<sweep::HopfFit> fit;          // ω_H in rad/s
+  int levels = 0;                             // levels with both legs in the fit's span
+};
+
+sweep::OrbitClass class_at(const std::vector<sweep::ClassedWindow>& windows, int index) {
+  for (const sweep::ClassedWindow& w : windows)
+    if (w.index == index) return w.cls;
+  return sweep::OrbitClass::Failed;
+}
+
+// Holds (and refinements) of every bracket, spread over threads: each is an independent
+// integration from the file's stored state before it. Returns an error message, or "".
+std::string judge_rows(const ThresholdsArgs& args, const std::optional<HoldTime>& hold, const SweepWindows& sw,
+                       std::vector<Row>& rows) {
+  RefineSource src;
+  try {
+    src = open_refine_source(args.input, sw.chains.size(), sw.n_windows);
+  } catch (const std::exception& e) {
+    return fmt::format("{}: cannot rebuild the sweep to {} it: {}", args.input, args.refine > 0 ? "refine" : "hold",
+                       e.what());
+  }
+  if (hold && hold->in_drag_times)
+    for (std::size_t c = 0; c < sw.chains.size(); ++c)
+      if (!(src.plan.setups[c].model.p.drag > 0.0))
+        return fmt::format("--hold {}: chain {} has no drag (c_D = 0), so no drag time: give seconds", args.hold, c);
+  // The start states are read from the file here, in this thread: a site's HDF5 need not be
+  // built thread-safe (Debian's serial one is, its MPI one is not).
+  std::vector<std::function<void()>> jobs;
+  const auto guarded = [](auto&& work, auto&& on_error) {
+    return [work, on_error]() mutable {
+      try {
+        work();
+      } catch (const std::exception& e) {
+        on_error(e.what());
+      }
     };
-    // Each refinement and each hold is an independent integration: spread them over threads.
-    // Their start states are read from the file here, in this thread: a site's HDF5 need not be
-    // built thread-safe (Debian's serial one is, its MPI one is not).
-    std::vector<std::function<void()>> jobs;
-    for (Row& r : rows) {
-      if (!r.bracket) continue;
-      const sweep::ChainSetup* setup = &src.plan.setups[r.chain];
-      if (args.refine > 0) {
-        const double t_begin = setup->protocol.windows[std::size_t(r.bracket->window_before)].t_begin;
-        r.refined.emplace();
-        try {
-          jobs.push_back([&, setup, start = src.state_before(r.chain, t_begin)] {
-            try {
+  };
+  for (Row& r : rows) {
+    if (!r.bracket) continue;
+    const sweep::ChainSetup* setup = &src.plan.setups[r.chain];
+    if (args.refine > 0) {
+      const double t_begin = setup->protocol.windows[std::size_t(r.bracket->window_before)].t_begin;
+      r.refined.emplace();
+      const auto fail = [&r](const std::string& why) { r.refined->ok = false, r.refined->failure = why; };
+      try {
+        jobs.push_back(guarded(
+            [&, setup, start = src.state_before(r.chain, t_begin)] {
               r.refined = sweep::refine_threshold(r.threshold, *setup, src.plan.points[r.chain].protocol, *r.bracket,
                                                   args.refine, start, src.settings);
-            } catch (const std::exception& e) {
-              r.refined->ok = false;
-              r.refined->failure = e.what();
-            }
-          });
-        } catch (const std::exception& e) {
-          r.refined->ok = false;
-          r.refined->failure = e.what();
-        }
-      }
-      if (hold) {
-        r.held.emplace();
-        for (const bool pre : {true, false}) {
-          // Hold at the middle of the bracket's window (ω_m there is the bracket's value), from
-          // the last stored state before it, along the chain's own schedule.
-          const int index = pre ? r.bracket->window_before : r.bracket->window_after;
-          const sweep::Window& w = setup->protocol.windows[std::size_t(index)];
-          const double t_cut = 0.5 * (w.t_begin + w.t_end);
-          sweep::HoldSide& side = pre ? r.held->pre : r.held->post;
-          try {
-            jobs.push_back([&, setup, t_cut, window = w.t_end - w.t_begin, reference = class_of(r.chain, index),
-                            start = src.state_before(r.chain, t_cut)] {
-              try {
-                side = sweep::hold_side(*setup, t_cut, hold->seconds(setup->model.p), window, start, reference,
-                                        src.settings);
-              } catch (const std::exception& e) {
-                side.ok = false;
-                side.failure = e.what();
-              }
-            });
-          } catch (const std::exception& e) {
-            side.ok = false;
-            side.failure = e.what();
-          }
-        }
+            },
+            fail));
+      } catch (const std::exception& e) {
+        fail(e.what());
       }
     }
-    std::atomic<std::size_t> next{0};
-    const auto worker = [&] {
-      for (std::size_t i; (i = next++) < jobs.size();) jobs[i]();
-    };
-    std::vector<std::thread> pool;
-    for (int k = 0; k < std::max(1, args.jobs); ++k) pool.emplace_back(worker);
-    for (auto& th : pool) th.join();
-    for (Row& r : rows)
-      if (r.held) r.held->judgement = sweep::judge(r.held->pre, r.held->post);
+    if (!hold) continue;
+    r.held.emplace();
+    for (const bool pre : {true, false}) {
+      // Held at the middle of the bracket's window (ω_m there is the bracket's value), from the
+      // last stored state before it, along the chain's own schedule.
+      const int index = pre ? r.bracket->window_before : r.bracket->window_after;
+      const sweep::Window& w = setup->protocol.windows[std::size_t(index)];
+      const double t_cut = 0.5 * (w.t_begin + w.t_end);
+      sweep::HoldSide& side = pre ? r.held->pre : r.held->post;
+      const auto fail = [&side](const std::string& why) { side.ok = false, side.failure = why; };
+      try {
+        jobs.push_back(guarded(
+            [&, setup, t_cut, window = w.t_end - w.t_begin, reference = class_at(sw.chains[r.chain], index),
+             start = src.state_before(r.chain, t_cut)] {
+              side = sweep::hold_side(*setup, t_cut, hold->seconds(setup->model.p), window, start, reference,
+                                      src.settings);
+            },
+            fail));
+      } catch (const std::exception& e) {
+        fail(e.what());
+      }
+    }
   }
+  std::atomic<std::size_t> next{0};
+  const auto worker = [&] {
+    for (std::size_t i; (i = next++) < jobs.size();) jobs[i]();
+  };
+  const int threads = args.jobs > 0 ? args.jobs : int(std::max(1u, std::thread::hardware_concurrency()));
+  std::vector<std::thread> pool;
+  for (int k = 0; k < std::min<int>(threads, int(std::max<std::size_t>(jobs.size(), 1))); ++k) pool.emplace_back(worker);
+  for (auto& th : pool) th.join();
+  for (Row& r : rows)
+    if (r.held) r.held->judgement = sweep::judge(r.held->pre, r.held->post);
+  return "";
+}
 
+// The chain's held levels (windows at one ω_m on a rising or falling staircase), keyed by ω_m
+// rounded to 1e-6 π: {ω: (up window, down window)}, -1 where a leg has none.
+std::map<long long, std::pair<int, int>> held_levels(const std::vector<sweep::ClassedWindow>& windows) {
+  std::map<long long, std::pair<int, int>> out;
+  for (const sweep::ClassedWindow& w : windows) {
+    if (w.direction == 0 || w.omega_begin != w.omega_end) continue;
+    auto [it, fresh] = out.try_emplace(std::llround(w.omega_begin / pi * 1e6), -1, -1);
+    (w.direction > 0 ? it->second.first : it->second.second) = w.index;
+  }
+  return out;
+}
+
+// The lag's Hopf point from a chain that holds levels up through the flower's onset and back
+// down over them; none without a flower that lasts to the top of the way up.
+std::optional<Onset> flower_onset(const io::File& f, const SweepWindows& sw, std::size_t c, double span) {
+  using sweep::OrbitClass;
+  const auto levels = held_levels(sw.chains[c]);
+  std::vector<std::pair<double, int>> ups;  // (ω_m, window) on the way up
+  for (const auto& [key, legs] : levels)
+    if (legs.first >= 0) ups.push_back({double(key) * 1e-6 * pi, legs.first});
+  // The flower that lasts to the top of the way up: a flower window that gives way to a circle
+  // further up (a transient at the lock's loss) is not the onset.
+  std::optional<double> first_flower;
+  for (auto it = ups.rbegin(); it != ups.rend() && class_at(sw.chains[c], it->second) == OrbitClass::Flower; ++it)
+    first_flower = it->first;
+  if (!first_flower) return std::nullopt;
+  Onset on;
+  on.first_flower = *first_flower;
+  on.last_lag = std::numeric_limits<double>::quiet_NaN();
+  for (const auto& [w, index] : ups)
+    if (w < *first_flower && class_at(sw.chains[c], index) == OrbitClass::LaggingCircular) on.last_lag = w;
+  const auto& count = f.read_int32s("samples/count");
+  const io::Array<double> r2 = f.read_doubles("samples/r2");  // chains × windows × samples × 3
+  const std::size_t cap = r2.dims[2];
+  const auto a2 = [&](int w) {
+    const double r = sw.radius_bottom_std(c, std::size_t(w)) / sw.radius_bottom_mean(c, std::size_t(w));
+    return r * r;
+  };
+  const auto sampling = [&](int w) {  // a²'s error from the window's length (its two halves)
+    std::vector<double> rho;
+    const std::size_t n = std::size_t(count(c, std::size_t(w)));
+    for (std::size_t i = 0; i < n; ++i) {
+      const double* p = &r2.data[((c * sw.n_windows + std::size_t(w)) * cap + i) * 3];
+      rho.push_back(std::hypot(p[0], p[1]));
+    }
+    return sweep::half_window_sigma(rho);
+  };
+  std::vector<sweep::OnsetLevel> fit_levels;
+  for (const auto& [key, legs] : levels) {
+    const double w = double(key) * 1e-6 * pi;
+    if (w > *first_flower + span * pi || legs.first < 0 || legs.second < 0) continue;
+    const double up = a2(legs.first), down = a2(legs.second);
+    if (!std::isfinite(up) || !std::isfinite(down)) continue;
+    // Half the legs' difference and each window's sampling error; never below a²'s rounding.
+    const double s_legs = 0.5 * std::abs(up - down), s_win = std::max(sampling(legs.first), sampling(legs.second));
+    const double sigma = std::max({std::hypot(s_legs, std::isfinite(s_win) ? s_win : 0.0),
+                                   4 * std::numeric_limits<double>::epsilon() * std::max(up, down), 1e-300});
+    fit_levels.push_back({w, 0.5 * (up + down), sigma});
+  }
+  on.levels = int(fit_levels.size());
+  on.fit = sweep::fit_hopf(fit_levels, *first_flower);
+  return on;
+}
+
+// ---- the report ---------------------------------------------------------------------------
+
+std::string_view symbol(sweep::Threshold t) {
+  switch (t) {
+    case sweep::Threshold::Rise: return "ω_rise";
+    case sweep::Threshold::Fall: return "ω_fall";
+    case sweep::Threshold::Omega1: return "ω1";
+    case sweep::Threshold::Omega2: return "ω2";
+  }
+  return "?";
+}
+
+// How the bracket [a, b] stands to the paper's value p: "contains it", or the range of (ω − p)/p.
+std::string against_paper(double a, double b, double p) {
+  const double lo = std::min(a, b), hi = std::max(a, b);
+  if (lo <= p && p <= hi) return "contains it";
+  return fmt::format("{:+.1f} .. {:+.1f} %", 100 * (lo - p) / p, 100 * (hi - p) / p);
+}
+
+std::string chain_name(const SweepWindows& sw, std::size_t c) {
+  std::string name = fmt::format("{}", c);
+  if (!sw.group[c].empty()) name += " " + sw.group[c];
+  if (!sw.params[c].empty()) name += " " + sw.params[c];
+  return name;
+}
+
+// One report, as text or as Markdown: per variant, a table of its brackets, the Hopf fits,
+// and the verdicts' reasons.
+std::string report(const ThresholdsArgs& args, const SweepWindows& sw, const std::vector<Row>& rows,
+                   const std::vector<std::optional<Onset>>& onsets, bool markdown, const std::string& hold_text) {
+  std::string out;
+  const auto line = [&](const std::vector<std::string>& cells, const std::vector<int>& widths) {
+    if (markdown) {
+      out += "| " + fmt::format("{}", fmt::join(cells, " | ")) + " |\n";
+      return;
+    }
+    std::string l = " ";
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+      l += " " + cells[i];
+      // Pad by characters shown, not bytes (π and arrows are several bytes in UTF-8).
+      const long shown = long(std::count_if(cells[i].begin(), cells[i].end(), [](char ch) { return (ch & 0xC0) != 0x80; }));
+      if (i + 1 < cells.size()) l += std::string(std::size_t(std::max(0L, widths[i] - shown)), ' ');
+    }
+    out += l + "\n";
+  };
+  const std::vector<std::string> head{"threshold", "chain", "bracket [π rad/s]", "width [π]", "classes", "paper [π]",
+                                      "bracket vs paper", "verdict"};
+  const std::vector<int> widths{10, 20, 18, 10, 34, 10, 18, 0};
+  if (markdown)
+    out += fmt::format("# Thresholds of `{}`\n\n", args.input);
+  out += fmt::format("{}Brackets: the mean ω_m of the last window before the class changed and of the first after.{}\n",
+                     markdown ? "" : "", hold_text.empty() ? "" : " " + hold_text);
+  for (std::size_t v = 0; v < sw.variants.size(); ++v) {
+    const Variant& var = sw.variants[v];
+    out += markdown ? fmt::format("\n## {}\n\n", var.name.empty() ? "Every chain" : var.name + ": " + var.label)
+                    : fmt::format("\n{}\n", var.name.empty() ? "every chain" : "variant " + var.name + ": " + var.label);
+    line(head, widths);
+    if (markdown) out += "|---|---|---|---|---|---|---|---|\n";
+    std::vector<std::string> reasons;
+    for (sweep::Threshold t : sweep::kThresholds) {
+      const double paper = sweep::paper_value(t);
+      bool any = false;
+      for (const Row& r : rows) {
+        if (r.threshold != t || sw.variant[r.chain] != v || !r.bracket) continue;
+        any = true;
+        const sweep::Bracket& b = *r.bracket;
+        const auto& ws = sw.chains[r.chain];
+        std::string verdict = "not judged";
+        if (r.held) {
+          verdict = std::string(sweep::to_string(r.held->judgement.verdict));
+          reasons.push_back(fmt::format("{} of chain {}: {}: {}", symbol(t), chain_name(sw, r.chain), verdict,
+                                        r.held->judgement.reason));
+          verdict += fmt::format(" [{}]", reasons.size());
+        }
+        line({std::string(symbol(t)), chain_name(sw, r.chain), fmt::format("{:.3f} → {:.3f}", b.before / pi, b.after / pi),
+              fmt::format("{:.3f}", std::abs(b.after - b.before) / pi),
+              fmt::format("{} → {}", sweep::to_string(class_at(ws, b.window_before)), sweep::to_string(class_at(ws, b.window_after))),
+              fmt::format("{:.2f}", paper / pi), against_paper(b.before, b.after, paper), verdict},
+             widths);
+        if (r.refined) {
+          const std::string cell =
+              r.refined->bracket
+                  ? fmt::format("{:.3f} → {:.3f}", r.refined->bracket->before / pi, r.refined->bracket->after / pi)
+                  : (r.refined->ok ? "lost: the change moves with the ramp" : "failed: " + r.refined->failure);
+          line({"", fmt::format("{}× slower", r.refined->factor), cell,
+                r.refined->bracket ? fmt::format("{:.3f}", std::abs(r.refined->bracket->after - r.refined->bracket->before) / pi) : "",
+                "", "", r.refined->bracket ? against_paper(r.refined->bracket->before, r.refined->bracket->after, paper) : "", ""},
+               widths);
+        }
+      }
+      if (t == sweep::Threshold::Omega2)
+        for (std::size_t c = 0; c < sw.chains.size(); ++c) {
+          if (sw.variant[c] != v || !onsets[c]) continue;
+          any = true;
+          if (!onsets[c]->fit) {
+            line({"ω2 (Hopf)", chain_name(sw, c), "not fitted", "",
+                  fmt::format("{} levels with both legs", onsets[c]->levels), fmt::format("{:.2f}", paper / pi),
+                  "", "needs 3 above the first flower"},
+                 widths);
+            continue;
+          }
+          const sweep::HopfFit& h = *onsets[c]->fit;
+          line({"ω2 (Hopf)", chain_name(sw, c), fmt::format("{:.2f} ± {:.2f}", h.omega_h / pi, h.sigma / pi),
+                fmt::format("{:.3f}", 2 * h.sigma / pi), fmt::format("lag's Hopf point, {} levels", h.levels),
+                fmt::format("{:.2f}", paper / pi), against_paper(h.omega_h - h.sigma, h.omega_h + h.sigma, paper),
+                fmt::format("fit χ²/dof {:.2g}", h.reduced_chi2)},
+               widths);
+        }
+      if (!any) line({std::string(symbol(t)), "", "not reached", "", "", fmt::format("{:.2f}", paper / pi), "", ""}, widths);
+    }
+    if (!reasons.empty()) {
+      out += markdown ? "\nVerdicts:\n\n" : "  verdicts:\n";
+      for (std::size_t i = 0; i < reasons.size(); ++i)
+        out += markdown ? fmt::format("{}. {}\n", i + 1, reasons[i]) : fmt::format("  [{}] {}\n", i + 1, reasons[i]);
+    }
+  }
+  bool any_fit = false;
+  for (const auto& o : onsets) any_fit = any_fit || (o && o->fit);
+  if (any_fit)
+    out += fmt::format(
+        "\n{}ω2 (Hopf): where the lag turns into a flower, fitted over the held levels with both an up and a down leg up "
+        "to {:g}π above the first flower: a² = μ (k + q μ), μ = max(ω_m − ω_H, 0), a = std/mean of the bottom ball's "
+        "radius; ± one standard error (χ² + max(1, χ²/dof)). The classifier's ω2 bracket lies above it: it names a "
+        "flower only once the oscillation is large enough to see.\n",
+        markdown ? "" : "  ", args.onset_span);
+  return out;
+}
+
+std::string csv_table(const ThresholdsArgs& args, const SweepWindows& sw, const std::vector<Row>& rows, bool hold) {
   std::string csv = "chain,parameters,threshold,before_rad_s,after_rad_s,mid_rad_s,paper_rad_s,relative_difference";
   if (args.refine > 0) csv += ",refine_factor,refined_before_rad_s,refined_after_rad_s,refined_mid_rad_s,"
                               "refined_relative_difference,refine_note";
@@ -315,25 +533,15 @@ int thresholds_command(const ThresholdsArgs& args) {
     if (args.refine > 0) csv += ",rate_dependent";
   }
   csv += "\n";
-  std::printf("%-6s %-28s %-11s %-22s %-10s %-10s %s\n", "chain", "parameters", "threshold", "bracket [π rad/s]",
-              "mid [π]", "paper [π]", "relative difference");
   for (const Row& row : rows) {
     const std::size_t c = row.chain;
-    const std::string params = parameters_of(axes, grid, c);
     const sweep::Threshold t = row.threshold;
     const double paper = sweep::paper_value(t);
-    if (const auto& b = row.bracket) {
-      const double rel = (b->mid() - paper) / paper;
-      std::printf("%-6zu %-28s %-11s %8.3f .. %-10.3f %-10.3f %-10.2f %+.1f %%\n", c, params.c_str(),
-                  std::string(sweep::to_string(t)).c_str(), b->before / pi, b->after / pi, b->mid() / pi, paper / pi,
-                  100 * rel);
-      csv += fmt::format("{},{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.6g}", c, params, sweep::to_string(t), b->before,
-                         b->after, b->mid(), paper, rel);
-    } else {
-      std::printf("%-6zu %-28s %-11s %-22s %-10s %-10.2f\n", c, params.c_str(), std::string(sweep::to_string(t)).c_str(),
-                  "not reached", "", paper / pi);
-      csv += fmt::format("{},{},{},,,,{:.9g},", c, params, sweep::to_string(t), paper);
-    }
+    if (const auto& b = row.bracket)
+      csv += fmt::format("{},{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.6g}", c, sw.params[c], sweep::to_string(t), b->before,
+                         b->after, b->mid(), paper, (b->mid() - paper) / paper);
+    else
+      csv += fmt::format("{},{},{},,,,{:.9g},", c, sw.params[c], sweep::to_string(t), paper);
     std::string rate_dependent;  // with --refine: "yes" when the slower ramp lost the change
     if (args.refine > 0) {
       const auto& r = row.refined;
@@ -341,93 +549,121 @@ int thresholds_command(const ThresholdsArgs& args) {
         csv += fmt::format(",{},,,,,", args.refine);
       } else if (r->bracket) {
         const sweep::Bracket& b = *r->bracket;
-        const double rel = (b.mid() - paper) / paper;
-        std::printf("%-6s %-28s %-11s %8.3f .. %-10.3f %-10.3f %-10s %+.1f %%  (refined, %d× slower)\n", "", "", "",
-                    b.before / pi, b.after / pi, b.mid() / pi, "", 100 * rel, r->factor);
-        csv += fmt::format(",{},{:.9g},{:.9g},{:.9g},{:.6g},", r->factor, b.before, b.after, b.mid(), rel);
+        csv += fmt::format(",{},{:.9g},{:.9g},{:.9g},{:.6g},", r->factor, b.before, b.after, b.mid(), (b.mid() - paper) / paper);
         rate_dependent = "no";
       } else {
         const std::string note =
             r->ok ? fmt::format("no change within the old bracket at {}x slower: the threshold depends on the ramp",
                                 r->factor)
                   : "refinement failed: " + r->failure;
-        std::printf("%-6s %-28s %-11s %s\n", "", "", "", note.c_str());
         csv += fmt::format(",{},,,,,\"{}\"", r->factor, note);
         if (r->ok) rate_dependent = "yes";
       }
     }
     if (hold) {
-      if (const auto& h = row.held) {
-        std::printf("%-6s %-28s %-11s %s\n", "", "", "", side_line(h->pre).c_str());
-        std::printf("%-6s %-28s %-11s %s\n", "", "", "", side_line(h->post).c_str());
-        std::string flag;
-        if (rate_dependent == "no")
-          flag = fmt::format("; the {}x slower ramp finds the change inside the bracket", args.refine);
-        if (rate_dependent == "yes")
-          flag = h->judgement.verdict == sweep::Verdict::Bifurcation
-                     ? "; but rate-dependent: the slower ramp lost the change (conflict, look closer)"
-                     : "; rate-dependent too: the slower ramp lost the change";
-        std::printf("%-6s %-28s %-11s verdict: %s: %s%s\n", "", "", "",
-                    std::string(sweep::to_string(h->judgement.verdict)).c_str(), h->judgement.reason.c_str(),
-                    flag.c_str());
-        csv += fmt::format(",{},{},{},{}", side_csv(h->pre), side_csv(h->post),
-                           sweep::to_string(h->judgement.verdict), csv_quoted(h->judgement.reason));
-      } else {
+      if (const auto& h = row.held)
+        csv += fmt::format(",{},{},{},{}", side_csv(h->pre), side_csv(h->post), sweep::to_string(h->judgement.verdict),
+                           csv_quoted(h->judgement.reason));
+      else
         csv += std::string(2 * kSideFields + 2, ',');  // two sides, verdict, reason: empty
-      }
       if (args.refine > 0) csv += "," + rate_dependent;
     }
     csv += "\n";
   }
-  if (!args.csv.empty() && !write_csv(args.csv, csv)) return kExitBadInput;
+  return csv;
+}
 
-  if (want_sequence) {
-    std::string seq = "chain,parameters,kind,leg,direction,class,omega_from_rad_s,omega_to_rad_s,windows,blips,"
-                      "omega_ball_mean_rad_s,omega_ball_slope,step,status,step_description\n";
-    const auto num = [](double v) { return std::isfinite(v) ? fmt::format("{:.9g}", v) : std::string(); };
-    const auto dir_name = [](int d) { return d > 0 ? "up" : (d < 0 ? "down" : "held"); };
-    if (args.sequence)
-      std::printf("\nclass sequence%s\n"
-                  "%-6s %-28s %-4s %-5s %-17s %-22s %-8s %-6s %-11s %s\n",
-                  args.absorb_blips ? " (one not-settled window between two of one class is absorbed as a blip)" : "",
-                  "chain", "parameters", "leg", "dir", "class", "ω_m [π rad/s]", "windows", "blips", "ω_ball [π]",
-                  "dω_ball/dω_m");
-    std::vector<std::vector<sweep::StepMatch>> matches;
-    for (std::size_t c = 0; c < chains.size(); ++c) {
-      const std::string params = parameters_of(axes, grid, c);
-      const std::vector<sweep::ClassRun> runs = sweep::class_runs(chains[c], omega_ball[c], args.absorb_blips);
-      for (const sweep::ClassRun& r : runs) {
-        if (args.sequence)
-          std::printf("%-6zu %-28s %-4d %-5s %-17s %8.3f .. %-10.3f %-8d %-6d %-11s %s\n", c, params.c_str(), r.leg,
-                      dir_name(r.direction), std::string(sweep::to_string(r.cls)).c_str(), r.omega_from / pi,
-                      r.omega_to / pi, r.windows, r.blips,
-                      std::isfinite(r.omega_ball_mean) ? fmt::format("{:.3f}", r.omega_ball_mean / pi).c_str() : "",
-                      std::isfinite(r.omega_ball_slope) ? fmt::format("{:+.3f}", r.omega_ball_slope).c_str() : "");
-        seq += fmt::format("{},{},run,{},{},{},{},{},{},{},{},{},,,\n", c, params, r.leg, r.direction,
-                           sweep::to_string(r.cls), num(r.omega_from), num(r.omega_to), r.windows, r.blips,
-                           num(r.omega_ball_mean), num(r.omega_ball_slope));
-      }
-      matches.push_back(sweep::compare_with_paper(runs));
-      for (const sweep::StepMatch& m : matches.back()) {
-        const sweep::ClassRun* r = m.run >= 0 ? &runs[std::size_t(m.run)] : nullptr;
-        seq += fmt::format("{},{},step,{},{},{},{},,,,{},{},{},{},{}\n", c, params, r ? std::to_string(r->leg) : "",
-                           r ? std::to_string(r->direction) : "", r ? std::string(sweep::to_string(r->cls)) : "",
-                           num(m.omega), r ? num(r->omega_ball_mean) : "", r ? num(r->omega_ball_slope) : "",
-                           sweep::to_string(m.step), sweep::to_string(m.status), csv_quoted(std::string(describe(m.step))));
-      }
+// --sequence: each chain's runs of one class, and the paper's steps found in them.
+std::string sequence_report(const ThresholdsArgs& args, const SweepWindows& sw, std::string& seq) {
+  std::string out;
+  seq = "chain,parameters,kind,leg,direction,class,omega_from_rad_s,omega_to_rad_s,windows,blips,"
+        "omega_ball_mean_rad_s,omega_ball_slope,step,status,step_description\n";
+  const auto num = [](double v) { return std::isfinite(v) ? fmt::format("{:.9g}", v) : std::string(); };
+  const auto dir_name = [](int d) { return d > 0 ? "up" : (d < 0 ? "down" : "held"); };
+  out += fmt::format("\nclass sequence{}\n{:<6} {:<28} {:<4} {:<5} {:<17} {:<22} {:<8} {:<6} {:<11} {}\n",
+                     args.absorb_blips ? " (one not-settled window between two of one class is absorbed as a blip)" : "",
+                     "chain", "parameters", "leg", "dir", "class", "ω_m [π rad/s]", "windows", "blips", "ω_ball [π]",
+                     "dω_ball/dω_m");
+  std::vector<std::vector<sweep::StepMatch>> matches;
+  for (std::size_t c = 0; c < sw.chains.size(); ++c) {
+    const std::string params = chain_name(sw, c).substr(std::to_string(c).size() + (sw.group[c].empty() && sw.params[c].empty() ? 0 : 1));
+    const std::vector<sweep::ClassRun> runs = sweep::class_runs(sw.chains[c], sw.omega_ball[c], args.absorb_blips);
+    for (const sweep::ClassRun& r : runs) {
+      out += fmt::format("{:<6} {:<28} {:<4} {:<5} {:<17} {:8.3f} .. {:<10.3f} {:<8} {:<6} {:<11} {}\n", c, params, r.leg,
+                         dir_name(r.direction), sweep::to_string(r.cls), r.omega_from / pi, r.omega_to / pi, r.windows,
+                         r.blips, std::isfinite(r.omega_ball_mean) ? fmt::format("{:.3f}", r.omega_ball_mean / pi) : "",
+                         std::isfinite(r.omega_ball_slope) ? fmt::format("{:+.3f}", r.omega_ball_slope) : "");
+      seq += fmt::format("{},{},run,{},{},{},{},{},{},{},{},{},,,\n", c, sw.params[c], r.leg, r.direction,
+                         sweep::to_string(r.cls), num(r.omega_from), num(r.omega_to), r.windows, r.blips,
+                         num(r.omega_ball_mean), num(r.omega_ball_slope));
     }
-    if (args.sequence) {
-      std::printf("\nagainst the paper's sequence (each step looked for after the last one found)\n");
-      for (std::size_t c = 0; c < chains.size(); ++c) {
-        std::printf("chain %zu %s\n", c, parameters_of(axes, grid, c).c_str());
-        for (const sweep::StepMatch& m : matches[c]) {
-          const std::string at = m.run >= 0 ? fmt::format("at {:.3f}π", m.omega / pi) : "";
-          std::printf("  %-9s %-13s %-13s %s\n", std::string(sweep::to_string(m.step)).c_str(),
-                      std::string(sweep::to_string(m.status)).c_str(), at.c_str(),
-                      std::string(sweep::describe(m.step)).c_str());
-        }
-      }
+    matches.push_back(sweep::compare_with_paper(runs));
+    for (const sweep::StepMatch& m : matches.back()) {
+      const sweep::ClassRun* r = m.run >= 0 ? &runs[std::size_t(m.run)] : nullptr;
+      seq += fmt::format("{},{},step,{},{},{},{},,,,{},{},{},{},{}\n", c, sw.params[c], r ? std::to_string(r->leg) : "",
+                         r ? std::to_string(r->direction) : "", r ? std::string(sweep::to_string(r->cls)) : "",
+                         num(m.omega), r ? num(r->omega_ball_mean) : "", r ? num(r->omega_ball_slope) : "",
+                         sweep::to_string(m.step), sweep::to_string(m.status), csv_quoted(std::string(describe(m.step))));
     }
+  }
+  out += "\nagainst the paper's sequence (each step looked for after the last one found)\n";
+  for (std::size_t c = 0; c < sw.chains.size(); ++c) {
+    out += fmt::format("chain {}\n", chain_name(sw, c));
+    for (const sweep::StepMatch& m : matches[c])
+      out += fmt::format("  {:<9} {:<13} {:<13} {}\n", sweep::to_string(m.step), sweep::to_string(m.status),
+                         m.run >= 0 ? fmt::format("at {:.3f}π", m.omega / pi) : "", sweep::describe(m.step));
+  }
+  return out;
+}
+
+bool write_text(const std::string& path, const std::string& text) { return write_csv(path, text); }
+
+}  // namespace
+
+int thresholds_command(const ThresholdsArgs& args) {
+  std::optional<HoldTime> hold;
+  if (!args.no_hold) {
+    hold = parse_hold(args.hold);
+    if (!hold) {
+      std::fprintf(stderr,
+                   "error: --hold %s: give the hold time in seconds (0 < T <= 1e5) or in drag times, e.g. 5tau\n",
+                   args.hold.c_str());
+      return kExitBadInput;
+    }
+  }
+  SweepWindows sw;
+  std::vector<std::optional<Onset>> onsets;
+  try {
+    const io::File f = io::File::open_read(args.input);
+    sw = read_sweep_windows(f);
+    for (std::size_t c = 0; c < sw.chains.size(); ++c) onsets.push_back(flower_onset(f, sw, c, args.onset_span));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s: cannot read a sweep file: %s\n", args.input.c_str(), e.what());
+    return kExitBadInput;
+  }
+  std::vector<Row> rows;
+  for (std::size_t c = 0; c < sw.chains.size(); ++c)
+    for (sweep::Threshold t : sweep::kThresholds) rows.push_back({c, t, sweep::find_threshold(t, sw.chains[c]), {}, {}});
+  if (args.refine > 0 || hold)
+    if (const std::string error = judge_rows(args, hold, sw, rows); !error.empty()) {
+      std::fprintf(stderr, "error: %s\n", error.c_str());
+      return kExitBadInput;
+    }
+  const std::string hold_text =
+      hold ? fmt::format("Verdicts: each side held {} from the file's state and judged by its energy balance "
+                         "(bifurcation: the new orbit persists; excursion: held past the change the old orbit "
+                         "returns; time-limited transient: the old orbit was not sustained).",
+                         hold->in_drag_times ? fmt::format("{:g} drag times m/c_D", hold->value)
+                                             : fmt::format("{:g} s", hold->value))
+           : "";
+  std::fputs(report(args, sw, rows, onsets, false, hold_text).c_str(), stdout);
+  if (!args.markdown.empty() && !write_text(args.markdown, report(args, sw, rows, onsets, true, hold_text)))
+    return kExitBadInput;
+  if (!args.csv.empty() && !write_csv(args.csv, csv_table(args, sw, rows, bool(hold)))) return kExitBadInput;
+  if (args.sequence || !args.sequence_csv.empty()) {
+    std::string seq;
+    const std::string text = sequence_report(args, sw, seq);
+    if (args.sequence) std::fputs(text.c_str(), stdout);
     if (!args.sequence_csv.empty() && !write_csv(args.sequence_csv, seq)) return kExitBadInput;
   }
   return 0;

@@ -1,6 +1,7 @@
 #include "config/config.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -30,6 +31,7 @@ class Reader {
   }
   std::string full(std::string_view key) const { return prefix_.empty() ? std::string(key) : prefix_ + "." + std::string(key); }
   bool has(std::string_view key) const { return t_.contains(key); }
+  const toml::table& table() const { return t_; }
   // A key read elsewhere, not to be reported as unknown.
   void known(std::string_view key) { used_.insert(std::string(key)); }
 
@@ -348,16 +350,20 @@ void parse_common(const toml::table& root, std::string_view file, CommonConfig& 
   }
 }
 
-// The file parsed, the overrides applied, and the top-level tables checked against `known`.
-toml::table parse_root(std::string_view text, std::string_view file, const std::vector<std::string>& overrides,
-                       const std::set<std::string>& known) {
-  toml::table root;
+// The file parsed, syntax errors with their line and column.
+toml::table parse_text(std::string_view text, std::string_view file) {
   try {
-    root = toml::parse(text, file);
+    return toml::parse(text, file);
   } catch (const toml::parse_error& e) {
     throw ConfigError(fmt::format("{}:{}:{}: {}", file, e.source().begin.line, e.source().begin.column,
                                   e.description()));
   }
+}
+
+// The file parsed, the overrides applied, and the top-level tables checked against `known`.
+toml::table parse_root(std::string_view text, std::string_view file, const std::vector<std::string>& overrides,
+                       const std::set<std::string>& known) {
+  toml::table root = parse_text(text, file);
   for (const auto& o : overrides) apply_override(root, o, file);
   for (const auto& [k, v] : root)
     if (!known.count(std::string(k.str())))
@@ -534,13 +540,10 @@ void check_chain_count(const SweepConfig& c) {
                                   c.grid.empty() ? "hold" : "grid", chains, fmt::join(factors, ", "), kMaxChains));
 }
 
-}  // namespace
 
-SweepConfig parse_sweep_config(std::string_view text, std::string_view source_name,
-                               const std::vector<std::string>& overrides) {
-  SweepConfig c;
-  const toml::table root = begin(c, text, source_name, overrides,
-                                 {"model", "layers", "integrator", "initial", "protocol", "grid", "hold", "output"});
+// The tables of one sweep (a plain file, or one part of a grouped one) after [model],
+// [layers], [integrator] and [initial]: [protocol] or [hold], [grid], [output].
+void read_sweep_tables(const toml::table& root, SweepConfig& c) {
   const std::string_view file = c.source_name;
   if (root.contains("hold")) {
     if (root.contains("protocol"))
@@ -596,12 +599,213 @@ SweepConfig parse_sweep_config(std::string_view text, std::string_view source_na
   }
   check_chain_count(c);  // before the grid is expanded: a sweep too large to hold is refused, not run out of memory
   expand_grid(c);  // every grid point is checked before any work
-  if (c.hold) return c;
+  if (c.hold) return;
   try {
     sweep::compile(c.protocol, c.start_omega);
   } catch (const std::invalid_argument& e) {
     throw ConfigError(fmt::format("{}: key 'protocol': {}", file, e.what()));
   }
+}
+
+
+const std::set<std::string> kSweepTables{"model", "layers", "integrator", "initial", "protocol", "grid", "hold", "output"};
+// The tables a variant or a group may set over the file's.
+const std::set<std::string> kVariantTables{"model", "layers", "integrator", "initial"};
+const std::set<std::string> kGroupTables{"model", "layers", "integrator", "initial", "protocol", "hold", "grid"};
+
+// src's keys over dst's, table by table; anything else (numbers, arrays such as the segments
+// of a protocol or a grid axis) replaces what dst had.
+void merge_into(toml::table& dst, const toml::table& src) {
+  for (const auto& [k, v] : src) {
+    toml::table* d = dst.get_as<toml::table>(k.str());
+    if (d && v.is_table())
+      merge_into(*d, *v.as_table());
+    else
+      dst.insert_or_assign(k.str(), v);
+  }
+}
+
+// A name of a group or a variant: it labels chains in files, tables and figures.
+void check_name(const std::string& name, const std::string& key, std::string_view file) {
+  const bool ok = !name.empty() && name.size() <= 40 &&
+                  std::all_of(name.begin(), name.end(), [](char ch) { return std::isalnum((unsigned char)ch) || ch == '_' || ch == '-'; });
+  if (!ok)
+    throw ConfigError(fmt::format("{}: key '{}': '{}' is not a name; allowed: 1 to 40 letters, digits, '_' or '-'",
+                                  file, key, name));
+}
+
+struct VariantSpec {
+  std::string name, label;
+  toml::table tables;  // its model, layers, integrator, initial
+};
+struct GroupSpec {
+  std::string name, purpose;
+  std::vector<std::string> variants;
+  toml::table tables;  // its model, layers, integrator, initial, protocol or hold, grid
+};
+
+// [variant.NAME] tables: label and the tables they set. None: one unnamed variant.
+std::vector<VariantSpec> read_variants(const toml::table& root, std::string_view file) {
+  std::vector<VariantSpec> out;
+  const toml::node* n = root.get("variant");
+  if (!n) return {VariantSpec{}};
+  if (!n->is_table()) throw ConfigError(fmt::format("{}: key 'variant': expected tables [variant.NAME]", file));
+  for (const auto& [k, v] : *n->as_table()) {
+    const std::string key = fmt::format("variant.{}", k.str());
+    VariantSpec spec{std::string(k.str()), "", {}};
+    check_name(spec.name, key, file);
+    const toml::table* t = v.as_table();
+    if (!t) throw ConfigError(fmt::format("{}: key '{}': expected a table", file, key));
+    Reader r(*t, key, file);
+    spec.label = r.text("label", "");
+    if (spec.label.empty()) r.fail("label", "missing: say what the variant is, e.g. \"the paper's physics (rigid tie)\"");
+    for (const auto& [tk, tv] : *t) {
+      if (!kVariantTables.count(std::string(tk.str()))) continue;
+      if (!tv.is_table()) r.fail(tk.str(), "expected a table");
+      r.known(tk.str());
+      spec.tables.insert(tk.str(), tv);
+    }
+    r.reject_unknown();
+    out.push_back(std::move(spec));
+  }
+  if (out.empty()) throw ConfigError(fmt::format("{}: key 'variant': no [variant.NAME] table", file));
+  // In the order the file gives them (a TOML table's keys come sorted).
+  const toml::table& vt = *n->as_table();
+  const auto line = [&](const VariantSpec& v) { return vt.get(v.name)->source().begin.line; };
+  std::stable_sort(out.begin(), out.end(), [&](const VariantSpec& a, const VariantSpec& b) { return line(a) < line(b); });
+  return out;
+}
+
+// [[group]] tables. None: one unnamed group of the file's own tables, run for every variant.
+std::vector<GroupSpec> read_groups(const toml::table& root, const std::vector<VariantSpec>& variants,
+                                   std::string_view file) {
+  std::vector<std::string> all;
+  for (const VariantSpec& v : variants) all.push_back(v.name);
+  const toml::node* n = root.get("group");
+  if (!n) return {GroupSpec{"", "", all, {}}};
+  const toml::array* arr = n->as_array();
+  if (!arr || arr->empty())
+    throw ConfigError(fmt::format("{}: key 'group': expected one or more [[group]] tables", file));
+  std::vector<GroupSpec> out;
+  each_table(*arr, "group", file, [&](Reader& r) {
+    GroupSpec g;
+    const std::string prefix = fmt::format("group[{}]", out.size());
+    g.name = r.text("name", "");
+    if (g.name.empty()) r.fail("name", "missing: a short name for the group's chains");
+    check_name(g.name, prefix + ".name", file);
+    for (const GroupSpec& o : out)
+      if (o.name == g.name) r.fail("name", fmt::format("'{}' names two groups; allowed: a name used once", g.name));
+    g.purpose = r.text("purpose", "");
+    if (g.purpose.empty()) r.fail("purpose", "missing: say why these chains are there");
+    g.variants = all;
+    if (r.has("variants")) {
+      r.known("variants");
+      const toml::array* va = r.table().get_as<toml::array>("variants");
+      if (!va || va->empty()) r.fail("variants", fmt::format("expected a list of variant names from: {}", fmt::join(all, ", ")));
+      g.variants.clear();
+      for (std::size_t i = 0; i < va->size(); ++i) {
+        const auto name = (*va)[i].value<std::string>();
+        if (!name || std::find(all.begin(), all.end(), *name) == all.end() ||
+            std::find(g.variants.begin(), g.variants.end(), *name) != g.variants.end())
+          throw ConfigError(fmt::format("{}: key '{}.variants[{}]': expected a variant name used once; allowed: {}",
+                                        file, prefix, i, fmt::join(all, ", ")));
+        g.variants.push_back(*name);
+      }
+    }
+    for (const auto& [tk, tv] : r.table()) {
+      if (!kGroupTables.count(std::string(tk.str()))) continue;
+      if (!tv.is_table()) r.fail(tk.str(), "expected a table");
+      r.known(tk.str());
+      g.tables.insert(tk.str(), tv);
+    }
+    if (g.tables.contains("protocol") && g.tables.contains("hold"))
+      r.fail("hold", "a group has either [group.protocol] (ramps, steps) or [group.hold], not both");
+    out.push_back(std::move(g));
+  });
+  return out;
+}
+
+// The root of one part: the file's tables, the variant's and the group's merged over them.
+toml::table part_root(const toml::table& base, const VariantSpec& v, const GroupSpec& g) {
+  toml::table root = base;
+  merge_into(root, v.tables);
+  // A group's [hold] replaces the file's [protocol] and the other way round.
+  if (g.tables.contains("hold")) root.erase("protocol");
+  if (g.tables.contains("protocol")) root.erase("hold");
+  merge_into(root, g.tables);
+  return root;
+}
+
+SweepConfig parse_grouped_sweep(toml::table root, std::string_view text, std::string_view source_name,
+                                const std::vector<std::string>& overrides) {
+  SweepConfig top;
+  top.source_name = source_name;
+  top.source_text = text;
+  top.overrides = overrides;
+  const std::string_view file = top.source_name;
+  // --set variant.NAME.KEY=VALUE sets a key of one variant; any other key is set in every part,
+  // over what its variant and group say.
+  std::vector<std::string> part_overrides;
+  for (const std::string& o : overrides)
+    if (o.rfind("variant.", 0) == 0)
+      apply_override(root, o, file);
+    else
+      part_overrides.push_back(o);
+  for (const auto& [k, v] : root)
+    if (!kSweepTables.count(std::string(k.str())) && k.str() != "variant" && k.str() != "group")
+      throw ConfigError(fmt::format("{}: key '{}': unknown key; allowed tables: {}, variant, group", file, k.str(),
+                                    fmt::join(kSweepTables, ", ")));
+  const std::vector<VariantSpec> variants = read_variants(root, file);
+  const std::vector<GroupSpec> groups = read_groups(root, variants, file);
+  toml::table base = root;
+  base.erase("variant");
+  base.erase("group");
+  for (std::size_t gi = 0; gi < groups.size(); ++gi)
+    for (const std::string& vname : groups[gi].variants) {
+      const VariantSpec& v = *std::find_if(variants.begin(), variants.end(), [&](const VariantSpec& x) { return x.name == vname; });
+      const GroupSpec& g = groups[gi];
+      toml::table proot = part_root(base, v, g);
+      for (const std::string& o : part_overrides) apply_override(proot, o, file);
+      SweepConfig part;
+      part.source_name = fmt::format("{} (group{} '{}', variant '{}')", file, g.name.empty() ? "" : fmt::format("[{}]", gi),
+                                     g.name, v.name);
+      part.source_text = text;
+      part.overrides = overrides;
+      parse_common(proot, part.source_name, part);
+      read_sweep_tables(proot, part);
+      part.group = g.name;
+      part.group_purpose = g.purpose;
+      part.variant = v.name;
+      part.variant_label = v.label;
+      top.parts.push_back(std::move(part));
+    }
+  // What the file shares: its output, the stored sample rate, the initial state.
+  const SweepConfig& first = top.parts.front();
+  for (const SweepConfig& p : top.parts)
+    if (p.sample_rate != first.sample_rate)
+      throw ConfigError(fmt::format("{}: key 'sample_rate': {} in {} but {} in {}; allowed: one sample rate for the "
+                                    "whole file (set it in the file's [protocol])",
+                                    file, p.sample_rate, p.source_name, first.sample_rate, first.source_name));
+  top.model = first.model;
+  top.run = first.run;
+  top.initial = first.initial;
+  top.sample_rate = first.sample_rate;
+  top.output_path = first.output_path;
+  return top;
+}
+
+}  // namespace
+
+SweepConfig parse_sweep_config(std::string_view text, std::string_view source_name,
+                               const std::vector<std::string>& overrides) {
+  {
+    toml::table raw = parse_text(text, source_name);
+    if (raw.contains("group") || raw.contains("variant"))
+      return parse_grouped_sweep(std::move(raw), text, source_name, overrides);
+  }
+  SweepConfig c;
+  const toml::table root = begin(c, text, source_name, overrides, kSweepTables);
+  read_sweep_tables(root, c);
   return c;
 }
 

@@ -76,6 +76,16 @@ struct HoldSpec {
 };
 
 struct SweepConfig : CommonConfig {
+  // A file with [[group]] tables (chain groups) or [variant.NAME] tables (model variants) is
+  // one sweep made of parts: each group runs once per variant it names, each (group, variant)
+  // read as a sweep of its own from the file's tables with the variant's and the group's
+  // merged over them. `parts` is empty for a plain file; then this config is the only part.
+  std::vector<SweepConfig> parts;
+  std::string group;            // a part's group name ("" for a plain file)
+  std::string group_purpose;    // why its chains are there (the group's `purpose`)
+  std::string variant;          // a part's model variant ("" for a plain file)
+  std::string variant_label;    // what the variant is, e.g. "the paper's physics (rigid tie)"
+
   std::vector<sweep::Segment> protocol;
   double start_omega = 0.0;   // ω_m at t = 0 [rad/s]
   std::string start_seed = "hanging";  // the state at t = 0: a seed of sweep/seeds.hpp at start_omega

@@ -2,38 +2,69 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "physics/drive.hpp"
 #include "sweep/seeds.hpp"
 
 namespace ajx::sweep {
 
-SweepPlan make_plan(const config::SweepConfig& cfg) {
-  SweepPlan plan;
+namespace {
+
+// The chains of one sweep (a plain file, or one part of a grouped file), appended to the plan.
+void add_chains(SweepPlan& plan, const config::SweepConfig& cfg, std::size_t part) {
   for (const config::GridPoint& g : config::expand_grid(cfg)) {
     if (!cfg.hold) {
-      plan.starts.push_back({cfg.start_seed, cfg.start_omega, 0});
+      plan.starts.push_back({cfg.start_seed, cfg.start_omega, 0, 0.0});
       plan.points.push_back(g);
+      plan.part.push_back(part);
       continue;
     }
     // The hold mode: one staircase of a single level, settle then measure.
     for (double w : cfg.hold->omega)
       for (const std::string& seed : cfg.hold->seeds)
         for (int k = 0; k <= cfg.hold->perturbations; ++k) {
-          plan.starts.push_back({seed, w, k});
+          plan.starts.push_back({seed, w, k, cfg.hold->perturbation});
           config::GridPoint held = g;
           held.protocol = {Segment{Segment::Kind::Steps, {}, {w, w, 1, cfg.hold->settle, cfg.hold->measure, 1.0}}};
           plan.points.push_back(std::move(held));
+          plan.part.push_back(part);
         }
   }
-  plan.kick = cfg.hold ? cfg.hold->perturbation : 0.0;
+}
+
+}  // namespace
+
+SweepPlan make_plan(const config::SweepConfig& cfg) {
+  SweepPlan plan;
+  const bool grouped = !cfg.parts.empty();
+  const auto part_of = [&](std::size_t i) -> const config::SweepConfig& { return grouped ? cfg.parts[i] : cfg; };
+  const std::size_t n_parts = grouped ? cfg.parts.size() : 1;
+  for (std::size_t i = 0; i < n_parts; ++i) {
+    const std::size_t first = plan.points.size();
+    add_chains(plan, part_of(i), i);
+    // The part's grid values, placed on the file's axes.
+    std::vector<std::size_t> at;
+    for (const config::GridAxis& a : part_of(i).grid) {
+      auto it = std::find(plan.axes.begin(), plan.axes.end(), a.key);
+      if (it == plan.axes.end()) it = plan.axes.insert(plan.axes.end(), a.key);
+      at.push_back(std::size_t(it - plan.axes.begin()));
+    }
+    for (std::size_t c = first; c < plan.points.size(); ++c) {
+      std::vector<double> v(plan.axes.size(), std::numeric_limits<double>::quiet_NaN());
+      for (std::size_t a = 0; a < at.size(); ++a) v[at[a]] = plan.points[c].values[a];
+      plan.points[c].values = std::move(v);
+    }
+  }
+  for (auto& p : plan.points) p.values.resize(plan.axes.size(), std::numeric_limits<double>::quiet_NaN());
   for (std::size_t i = 0; i < plan.points.size(); ++i) {
+    const config::SweepConfig& part = part_of(plan.part[i]);
     ChainSetup c;
     c.model = plan.points[i].model;
     c.protocol = compile(plan.points[i].protocol, plan.starts[i].omega);
-    c.run = cfg.run;
-    c.sample_rate = cfg.sample_rate;
-    plan.spans.push_back(split(c.protocol, cfg.windows_per_task));
+    c.run = part.run;
+    c.sample_rate = part.sample_rate;
+    plan.spans.push_back(split(c.protocol, part.windows_per_task));
     plan.first_task.push_back(plan.n_tasks);
     plan.n_tasks += plan.spans.back().size();
     plan.max_windows = std::max(plan.max_windows, c.protocol.windows.size());
@@ -47,7 +78,7 @@ SweepPlan make_plan(const config::SweepConfig& cfg) {
 
 physics::State SweepPlan::start_state(std::size_t c) const {
   const physics::MotorSchedule schedule(setups[c].protocol.schedule);
-  return seed_state(setups[c].model, schedule, starts[c].seed, starts[c].omega, starts[c].perturbation, kick);
+  return seed_state(setups[c].model, schedule, starts[c].seed, starts[c].omega, starts[c].perturbation, starts[c].kick);
 }
 
 }  // namespace ajx::sweep

@@ -19,9 +19,14 @@ struct ChainStart {
   std::string seed = "hanging";
   double omega = 0.0;     // [rad/s]
   int perturbation = 0;   // 0: the seed itself; k >= 1: the seed with velocity kick k
+  double kick = 0.0;      // rms of a perturbation's velocity kick [m/s]
 };
 
 struct SweepPlan {
+  // Every grid axis of the file (of any part), in order of first appearance; a chain's
+  // points[c].values has one value per axis, NaN where its part has no such axis.
+  std::vector<std::string> axes;
+  std::vector<std::size_t> part;          // per chain: its part of SweepConfig::parts (0 for a plain file)
   std::vector<config::GridPoint> points;  // per chain: parameters and protocol segments
   std::vector<ChainStart> starts;         // per chain
   std::vector<ChainSetup> setups;         // per chain
@@ -31,7 +36,6 @@ struct SweepPlan {
   std::size_t max_windows = 0;            // the most windows of any chain
   std::size_t max_samples = 0;            // the most samples of any window
   double total_duration = 0.0;            // simulated seconds of all chains [s]
-  double kick = 0.0;                      // size of a perturbation's velocity kick [m/s]
 
   std::size_t chains() const { return setups.size(); }
   // The state chain c starts from at t = 0.
