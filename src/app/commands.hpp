@@ -17,6 +17,7 @@ struct RunArgs {
   std::vector<std::string> overrides;  // "key=value"
   std::string output;                  // overrides output.path when non-empty
   bool quiet = false;
+  double max_memory = 0;               // [MB] memory budget; 0: half the machine's
   std::string command_line;            // stored in the file for provenance
 };
 int run_command(const RunArgs& args);
@@ -36,6 +37,7 @@ struct SweepArgs {
   long max_tasks = 0;   // stop (resumably) after this many task results; 0: no limit
   double task_timeout = 0;  // [s] a task not back within it runs elsewhere, its rank given up; 0: automatic
   double min_task_timeout = 60;  // [s] the least automatic bound (20 times the slowest finished task)
+  double max_memory = 0;  // [MB] memory budget of one rank; 0: half the machine's
   std::string command_line;
 };
 // Collective: every rank of MPI_COMM_WORLD calls it (rank 0 is the master).

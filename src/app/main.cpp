@@ -51,6 +51,10 @@ int main(int argc, char** argv) {
   run_cmd->add_option("-s,--set", run.overrides, "Override a key, e.g. --set model.drive_radius=0.005 (repeatable)");
   run_cmd->add_option("-o,--output", run.output, "HDF5 output path (overrides output.path)")->check(non_empty);
   run_cmd->add_flag("-q,--quiet", run.quiet, "Print only errors");
+  run_cmd->add_option("--max-memory", run.max_memory,
+                      "Memory the run may plan for [MB]; a run whose samples need more is refused before it starts "
+                      "(default: half the machine's memory)")
+      ->check(CLI::NonNegativeNumber);
 
   ajx::app::SweepArgs sweep;
   sweep.command_line = command_line;
@@ -74,6 +78,10 @@ int main(int argc, char** argv) {
                         "rank given up (after 3 such timeouts the task fails), and the job ended once the rest is "
                         "done (default 0: automatic, 20 times the slowest finished task, at least --min-task-timeout)")
       ->check(CLI::Range(0.0, 1e7));
+  sweep_cmd->add_option("--max-memory", sweep.max_memory,
+                        "Memory one rank may plan for [MB]; a sweep whose tasks or plan need more is refused before it "
+                        "starts (default: half the machine's memory)")
+      ->check(CLI::NonNegativeNumber);
   sweep_cmd->add_option("--min-task-timeout", sweep.min_task_timeout,
                         "The least automatic task bound [s] (see --task-timeout)")
       ->check(CLI::Range(0.1, 1e7))

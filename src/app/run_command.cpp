@@ -1,6 +1,7 @@
 // astrojax run: one trajectory, sampled on a fixed grid, into HDF5 with units as attributes
 // and the configuration stored verbatim.
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fmt/format.h>
@@ -10,6 +11,7 @@
 
 #include "app/commands.hpp"
 #include "app/output_paths.hpp"
+#include "app/resource_budget.hpp"
 #include "app/provenance.hpp"
 #include "config/config.hpp"
 #include "io/hdf5_file.hpp"
@@ -95,6 +97,22 @@ physics::State initial_state(const config::RunConfig& c, const physics::MotorSch
                              c.initial.mode, 0.0, c.initial.length_tolerance, c.initial.tie_slip_rate);
 }
 
+// The samples of a run, held in memory until it ends and then written uncompressed: refused
+// before any work when they cannot fit (Trajectory's 25 doubles and one int a sample; its
+// vectors grow by doubling, so up to 3 times that while one is reallocated).
+void check_run_size(const config::RunConfig& cfg, double duration, double max_memory_mb) {
+  constexpr double kBytesPerSample = 25 * sizeof(double) + sizeof(std::int32_t);
+  const double samples = std::floor(duration / cfg.output.sample_interval) + 2;
+  const std::string what = fmt::format("{:.4g} samples ({:.6g} s every {:.3g} s)", samples, duration,
+                                       cfg.output.sample_interval);
+  check_memory(cfg.source_name, "output.sample_interval", what, 3 * kBytesPerSample * samples,
+               memory_budget(max_memory_mb), max_memory_mb);
+  const double need = kBytesPerSample * samples, free = free_bytes_for(cfg.output.path);
+  if (need > free)
+    throw config::ConfigError(fmt::format("{}: key 'output.path': {} make {:.4g} MB of output, but only {:.4g} MB are "
+                                          "free there", cfg.source_name, what, need / 1e6, free / 1e6));
+}
+
 // The trajectory, the summary and the provenance into the run's file, then committed.
 void write_run(io::File& f, const std::string& command_line, const config::RunConfig& cfg, const Trajectory& traj,
                const sim::RunSummary& sum, const physics::State& state, double wall) {
@@ -152,6 +170,7 @@ int run_command(const RunArgs& args) {
     check_output_path(cfg.source_name, "output.path", cfg.output.path,
                       {args.config_path}, {".part"});
     schedule = physics::MotorSchedule(cfg.schedule);
+    check_run_size(cfg, schedule.duration(), args.max_memory);
     try {
       state = initial_state(cfg, schedule);
     } catch (const std::invalid_argument& e) {

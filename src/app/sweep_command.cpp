@@ -75,6 +75,7 @@ int sweep_command(const SweepArgs& args) {
       throw config::ConfigError(fmt::format("{}: key 'initial.preset': sweeps start every chain from 'hanging'",
                                             cfg.source_name));
     plan = sweep::make_plan(cfg);  // chains, each split into tasks on window boundaries
+    check_sweep_memory(cfg, plan, args.max_memory);
   } catch (const config::ConfigError& e) {
     error = e.what();
   }
