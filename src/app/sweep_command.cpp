@@ -126,41 +126,30 @@ int sweep_command(const SweepArgs& args) {
               "{}: key 'output.path': nothing to resume: {} does not exist{}", cfg.source_name, part_path.string(),
               std::filesystem::exists(final_path) ? fmt::format(" ({} is complete)", final_path.string()) : ""));
         }
-        if (std::filesystem::exists(journal_path)) {
-          journal.emplace(io::Journal::open_append(journal_path));  // locked: no other sweep writes it
-          replay = io::Journal::read(journal_path);
-          if (replay.records.empty())  // killed before its first record
-            journal->append(kJournalIdentity, journal_identity(cfg));
-          else if (replay.records.front().key != kJournalIdentity || replay.records.front().payload != journal_identity(cfg))
-            throw config::ConfigError(fmt::format(
-                "{}: key 'output.path': {} was written by a different sweep file or overrides; resume it with the "
-                "same ones, or remove {} and {} to start afresh",
-                cfg.source_name, journal_path.string(), part_path.string(), journal_path.string()));
-        }
-        try {
-          file.emplace(io::File::open_rw(part_path), setups.size(), n_windows, cap, n_tasks);
-          file->check_same(cfg);
-          if (file->status().size() != n_tasks)
-            throw config::ConfigError(fmt::format("{}: key 'output.path': {} has {} tasks, the sweep {}",
-                                                  cfg.source_name, part_path.string(), file->status().size(), n_tasks));
-        } catch (const io::Hdf5Error& e) {
-          if (!journal) throw;
-          // Killed while writing: the journal holds every committed result; start the file anew.
-          std::fprintf(stderr, "warning: %s cannot be used (%s); rebuilding it from %s (%zu results)\n",
-                       part_path.c_str(), e.what(), journal_path.c_str(), replay.records.empty() ? 0 : replay.records.size() - 1);
-          file.reset();
-          std::filesystem::remove(part_path);
-          make_file();
-        }
-        if (journal && journal->cut_torn_tail())
-          std::fprintf(stderr, "warning: %s ended in a result cut short; that task runs again\n", journal_path.c_str());
-        if (!journal) {  // a .part from before journals: it alone says what is done
-          journal.emplace(io::Journal::create(journal_path));
+        // Only the journal is trusted: its records carry CRC-32s, while a byte of the .part may have
+        // flipped anywhere (a carried state, /chains, a sample chunk) without HDF5 noticing.
+        if (!std::filesystem::exists(journal_path))
+          throw config::ConfigError(fmt::format(
+              "{}: key 'output.path': {} has no journal {}, so what it holds cannot be checked; start afresh with "
+              "--force", cfg.source_name, part_path.string(), journal_path.string()));
+        journal.emplace(io::Journal::open_append(journal_path));  // locked: no other sweep writes it
+        replay = io::Journal::read(journal_path);
+        if (replay.records.empty())  // killed before its first record
           journal->append(kJournalIdentity, journal_identity(cfg));
-          status = file->status();
-        } else {
-          status.assign(n_tasks, 0);  // the journal's replay below says what is done
-        }
+        else if (replay.records.front().key != kJournalIdentity || replay.records.front().payload != journal_identity(cfg))
+          throw config::ConfigError(fmt::format(
+              "{}: key 'output.path': {} was written by a different sweep file or overrides; resume it with the "
+              "same ones, or start afresh with --force",
+              cfg.source_name, journal_path.string()));
+        if (journal->cut_torn_tail())
+          std::fprintf(stderr, "warning: %s ended in a result cut short or damaged; that task runs again\n",
+                       journal_path.c_str());
+        // Every dataset made again from the sweep file, and every result from the journal (below).
+        std::printf("%s rebuilt from the sweep file and %s (%zu checksummed results)\n", part_path.c_str(),
+                    journal_path.c_str(), replay.records.empty() ? 0 : replay.records.size() - 1);
+        std::filesystem::remove(part_path);
+        make_file();
+        status.assign(n_tasks, 0);  // the journal's replay below says what is done
       } else {
         check_space(cfg, final_path, setups, cap);
         std::error_code ec;
