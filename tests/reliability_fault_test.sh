@@ -2,6 +2,7 @@
 # Verified resumes, exit codes that mean one thing, liveness, finished work never discarded:
 # - a .part damaged in /chains, in a carried state or in a sample chunk, and a journal with a
 #   flipped byte, resume into the uninterrupted file; a .part without its journal is refused;
+#   astrojax verify names the damage and passes the resumed file;
 # - a rerun without --resume over an interrupted sweep is refused (exit 2), its files untouched;
 #   --force starts afresh;
 # - a sweep whose tasks all failed prints a summary starting with FAILED and exits 3;
@@ -65,9 +66,14 @@ with h5py.File(sys.argv[1], "r+") as f:
     s = f["tasks/final_state"][...]; s[np.isfinite(s[:, 0]), 8] += 1.4; f["tasks/final_state"][...] = s
     f["samples/t"].id.write_direct_chunk((0, 0, 0), b"\x00" * 64, 1)  # a chunk deflate cannot read
 PY
+"$bin" verify damaged.h5.part > verify.out 2>&1
+check "astrojax verify of the damaged .part: exit 2, names /chains/grid_values and /samples/t" \
+  "[ $? -eq 2 ] && grep -q 'DAMAGED: /chains/grid_values differs' verify.out && grep -q 'DAMAGED: /samples/t cannot be read' verify.out"
 "$bin" sweep "${sweep[@]}" -o damaged.h5 --resume > damaged.out 2>&1
 check "damaged .part: resume exit 0, rebuilt from the journal" "[ $? -eq 0 ] && grep -q 'rebuilt from' damaged.out"
 check "damaged .part: the resumed file equals the uninterrupted one" "same damaged.h5 straight.h5"
+"$bin" verify damaged.h5 > verify.out 2>&1
+check "astrojax verify of the resumed file: exit 0, ok" "[ $? -eq 0 ] && tail -1 verify.out | grep -q '^ok '"
 # A byte flipped inside the journal: its CRC ends the journal there; those tasks run again.
 "$bin" sweep "${sweep[@]}" -o flip.h5 --max-tasks 20 > /dev/null 2>&1
 at=$(($(size flip.h5.journal) / 2))

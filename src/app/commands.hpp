@@ -43,6 +43,13 @@ struct SweepArgs {
 // Collective: every rank of MPI_COMM_WORLD calls it (rank 0 is the master).
 int sweep_command(const SweepArgs& args);
 
+// astrojax verify: a sweep's file (finished or .part) checked against its own /config and its
+// journal; 0 intact, 2 damaged (each damage reported).
+struct VerifyArgs {
+  std::string input;
+};
+int verify_command(const VerifyArgs& args);
+
 struct ThresholdsArgs {
   std::string input;  // a sweep's HDF5 file
   std::string csv;    // also write the table as CSV here, when non-empty

@@ -87,6 +87,12 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.1, 1e7))
       ->capture_default_str();
 
+  ajx::app::VerifyArgs verify;
+  CLI::App* verify_cmd = app.add_subcommand(
+      "verify", "Check a sweep's file, finished or .part, against its own sweep file and its journal; report damage "
+                "(exit 0 intact, 2 damaged)");
+  verify_cmd->add_option("file", verify.input, "HDF5 file written by astrojax sweep, or its .part")->required();
+
   ajx::app::ThresholdsArgs thresholds;
   CLI::App* thresholds_cmd = app.add_subcommand(
       "thresholds", "ω_rise, ω_fall, ω1, ω2 per model variant: brackets with their widths and hold verdicts, "
@@ -231,6 +237,7 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : ajx::app::kExitBadInput;
   }
   if (*run_cmd) return ajx::app::run_command(run);
+  if (*verify_cmd) return ajx::app::verify_command(verify);
   if (*thresholds_cmd) return ajx::app::thresholds_command(thresholds);
   if (*classify_cmd) return ajx::app::classify_command(classify);
   if (*orbits_cmd) return ajx::app::orbits_command(orbits);
