@@ -15,27 +15,8 @@
 set -u
 bin=$1; mpiexec=$2; src=$3
 source "$(dirname "$0")/check.sh"
+source "$(dirname "$0")/sweep_faults.sh"
 cd "$work"
-# As in sweep_fault_test.sh: about 2 s of CPU, so that every fault lands mid-sweep.
-sweep=("$src/sweeps/quick.toml" -q --set protocol.windows_per_task=1 --set "grid.drive_radius=[0.01,0.015,0.02]"
-       --set integrator.method=rk4 --set integrator.step=2e-4)
-same() { for g in /config /chains /windows /samples /tasks; do h5diff "$1" "$2" "$g" > /dev/null 2>&1 || return 1; done; }
-size() { stat -c %s "$1" 2> /dev/null || echo 0; }
-# Starts the sweep on 3 ranks into $1, waits until its journal holds more than $2 bytes; sets
-# mp (mpirun's pid) and rank0..rank2.
-start_mpi() {
-  rm -f "$1"*
-  "$mpiexec" --oversubscribe -n 3 "$bin" sweep "${sweep[@]}" -o "$1" "${@:3}" > "$1.out" 2>&1 &
-  mp=$!
-  for _ in $(seq 1500); do [ "$(size "$1.journal")" -gt "$2" ] && break; sleep 0.01; done
-  rank0=; rank1=; rank2=
-  for k in $(pgrep -P $mp); do
-    r=$(tr '\0' '\n' < /proc/$k/environ 2> /dev/null | sed -n 's/^OMPI_COMM_WORLD_RANK=//p')
-    [ -n "$r" ] && eval "rank$r=$k"
-  done
-}
-gone() { for p in "$@"; do for _ in $(seq 100); do kill -0 "$p" 2> /dev/null || break; sleep 0.1; done; done; }
-resume() { "$mpiexec" --oversubscribe -n 3 "$bin" sweep "${sweep[@]}" -o "$1" --resume > "$1.resume" 2>&1; }
 ticks() { awk '{print $14 + $15}' "/proc/$1/stat" 2> /dev/null || echo 0; }  # user + system CPU [1/100 s]
 
 "$bin" sweep "${sweep[@]}" -o straight.h5 > straight.out 2>&1
@@ -133,7 +114,7 @@ rm -f full.h5*
 mp=$!
 for _ in $(seq 1500); do [ -e full.h5.journal ] && break; sleep 0.01; done
 for k in $(pgrep -P $mp); do
-  [ "$(tr '\0' '\n' < /proc/$k/environ 2> /dev/null | sed -n 's/^OMPI_COMM_WORLD_RANK=//p')" = 0 ] && prlimit --pid $k --fsize=1500000:1500000
+  [ "$(rank_of $k)" = 0 ] && prlimit --pid $k --fsize=1500000:1500000
 done
 wait $mp
 rc=$?
