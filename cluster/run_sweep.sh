@@ -5,7 +5,7 @@
 #
 #   run_sweep.sh SWEEP_FILE OUTPUT.h5 [more astrojax sweep options]
 #
-# - The file: OUTPUT.h5 complete: nothing to do. OUTPUT.h5.part present: --resume (a requeued
+# - The file: OUTPUT.h5 complete: nothing to do. OUTPUT.h5.part or .journal present: --resume (a requeued
 #   or resubmitted job). Otherwise a fresh sweep.
 # - The launcher (ASTROJAX_LAUNCHER = auto | srun | mpirun): srun --mpi=$ASTROJAX_SRUN_MPI
 #   (default pmix) where Slurm has that PMI plugin, otherwise mpirun with one rank per task.
@@ -26,9 +26,9 @@ ntasks=${SLURM_NTASKS:-1}
 log() { echo "[run_sweep $(date -u +%H:%M:%S) job ${SLURM_JOB_ID:-none}${SLURM_ARRAY_TASK_ID:+ array ${SLURM_ARRAY_TASK_ID}}] $*"; }
 
 if [ ! -x "$bin" ]; then log "error: $bin is not an executable (set ASTROJAX_BIN or ASTROJAX_DIR)"; exit 2; fi
-if [ -e "$output" ] && [ ! -e "$output.part" ]; then log "$output is complete: nothing to do"; exit 0; fi
+if [ -e "$output" ] && [ ! -e "$output.part" ] && [ ! -e "$output.journal" ]; then log "$output is complete: nothing to do"; exit 0; fi
 resume=()
-[ -e "$output.part" ] && resume=(--resume)
+{ [ -e "$output.part" ] || [ -e "$output.journal" ]; } && resume=(--resume)
 
 # srun where Slurm can start MPI ranks itself (its PMI plugin); mpirun otherwise. Under an
 # allocation, Open MPI's mpirun reads the nodes and task counts from Slurm.
