@@ -54,7 +54,7 @@ ORBIT_TYPES = ("fallen", "locked-circular", "lagging-circular", "flower")
 # astrojax orbits' predictions for each threshold of astrojax thresholds (none for ω2).
 PREDICTED = {"omega_rise": ("omega_rise", "omega_rise_cone"), "omega_fall": ("omega_fall",), "omega_1": ("omega1",),
              "omega_2": ()}
-TOLERANCE = 0.05  # "reproduced": within 5 % of the paper (issue 9)
+TOLERANCE = 0.05  # "reproduced": within 5 % of the paper
 
 # The tie is named in every set: the staircase file ties the string with the clutch.
 FULL = {"friction": "stick_slip", "slack": "true", "top_stop": "true", "bottom_stop": "true", "tie": "rigid"}

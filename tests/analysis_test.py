@@ -24,6 +24,8 @@ import zlib
 import numpy as np
 
 ASTROJAX, SOURCE, DATA = (os.path.abspath(p) for p in sys.argv[1:4])
+# Every script a test starts finds the astrojax under test, whatever the build folder.
+os.environ["ASTROJAX"] = ASTROJAX
 ANALYSIS = os.path.join(SOURCE, "analysis")
 PYTHON = sys.executable
 sys.path.insert(0, ANALYSIS)
@@ -184,8 +186,8 @@ class hysteresis(ImageChecks):
                            capture_output=True, text=True, env=dict(os.environ, ASTROJAX=ASTROJAX))
         self.assertEqual(p.returncode, 0, p.stderr)
         w, h = png_size(out)
-        self.assertEqual(w, 1980)  # 3 panels of 5.5 in at 120 dpi
-        self.assertGreater(h, 4.5 * 120)  # a row of 4.5 in and the legend
+        self.assertEqual(w, 2340)  # 3 panels of 6.5 in at 120 dpi
+        self.assertGreater(h, 5.5 * 120)  # a row of 5.5 in and the legend
 
 
 class branches(ImageChecks):

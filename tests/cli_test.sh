@@ -26,6 +26,16 @@ bad d_ge_l model.contact_distance "0 < d < l" --set model.contact_distance=0.9
 bad reversed_schedule "schedule[1].rate" "(0, 10000]" --set "schedule=[{kind=\"hold\",omega=1.0,duration=1.0},{kind=\"ramp\",from=1.0,to=5.0,rate=-1.0}]"
 bad empty_schedule schedule "at least one" --set "schedule=[]"
 
+# A mistyped key, command or option names the nearest right one; --version names the commit.
+bad typo_key "model.drive_radus" "allowed: ball_mass," --set model.drive_radus=0.01
+check "typo_key: the nearest key suggested" "grep -q \"did you mean 'drive_radius'\" '$work/typo_key.err'"
+"$bin" swep x >/dev/null 2>"$work/typo_cmd.err"
+check "mistyped command: exit 2 and the nearest command" "[ $? -eq 2 ] && grep -q \"did you mean 'sweep'\" '$work/typo_cmd.err'"
+"$bin" thresholds x.h5 --hodl >/dev/null 2>"$work/typo_opt.err"
+check "mistyped option: exit 2 and the nearest option" "[ $? -eq 2 ] && grep -q \"did you mean '--hold'\" '$work/typo_opt.err'"
+"$bin" --version >"$work/version.out" 2>&1
+check "--version: exit 0, the version and the git commit" "[ $? -eq 0 ] && grep -Eq '^astrojax [0-9]+\.[0-9]+\.[0-9]+ \(git commit [0-9a-f]+|unknown\)' '$work/version.out'"
+
 # An unwritable output path is bad input too, found before any work.
 "$bin" run "$src/sweeps/spin_up.toml" -o /proc/no/such/dir/x.h5 >/dev/null 2>"$work/unwritable.err"
 rc=$?

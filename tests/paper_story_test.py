@@ -10,7 +10,8 @@ What is asserted, per model variant:
 - every threshold at the documented set (R = 15 mm, d = 3.5 cm; τ_s = 1.5, τ_k = 1.35 mN m,
   c_a = 2 µN m s): its bracket must contain the documented bracket's midpoint, i.e. the
   threshold may move by less than half the protocol's step (the width of its bracket) before
-  this test fails; the lag's Hopf point within three of its fitted standard errors of 15.34π.
+  this test fails; the lag's Hopf point within three of its fitted standard errors of 15.34π;
+  the lag's mean ω_ball within half its own drift over the run of 4.248π.
 
 usage: paper_story_test.py ASTROJAX SOURCE_DIR WORK_DIR
 """
@@ -34,6 +35,7 @@ DOCUMENTED = {
     ("clutch", "fall", "omega_fall"): (3.70, 3.60),
 }
 HOPF = (15.34, 0.10)  # the lag's Hopf point, ± its fitted error [π rad/s]
+LAG_OMEGA_BALL = 4.248  # the lag's mean ω_ball on the way up [π rad/s]
 
 failures = []
 
@@ -116,6 +118,12 @@ def main():
     # Nearly constant ω_ball: a slope below 0.05 (a locked orbit has 1).
     check(f"clutch/up: the lag's ω_ball nearly constant (dω_ball/dω_m = {lag['omega_ball_slope']})",
           abs(float(lag["omega_ball_slope"])) < 0.05)
+    # Its level: 4.248π at the documented set, within half the drift the slope makes over the
+    # run (|dω_ball/dω_m| × the run's ω_m span / 2), the lag's own variation.
+    span = (float(lag["omega_to_rad_s"]) - float(lag["omega_from_rad_s"])) / PI
+    tol = 0.5 * abs(float(lag["omega_ball_slope"])) * span
+    check(f"clutch/up: the lag's ω_ball {float(lag['omega_ball_mean_rad_s']) / PI:.3f}π within {tol:.3f}π of 4.248π",
+          abs(float(lag["omega_ball_mean_rad_s"]) / PI - LAG_OMEGA_BALL) <= tol)
     down = [r["class"] for r in runs[c] if r["direction"] == "-1"]
     check("clutch/up: flower → lagging → locked → fallen on the way down",
           [k for i, k in enumerate(down) if i == 0 or down[i - 1] != k] ==

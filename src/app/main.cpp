@@ -1,6 +1,7 @@
 // astrojax: the driven-Astrojax explorer. Subcommands: run (one trajectory into HDF5) and
 // sweep (the MPI farm over a sweep file's chains).
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -8,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "app/commands.hpp"
+#include "config/did_you_mean.hpp"
 #include "parallel/mpi_env.hpp"
 
 namespace {
@@ -231,8 +233,33 @@ int main(int argc, char** argv) {
   th_cmd->add_option("--sample", th_sample, "Sampling step that brackets the landing [s]")->capture_default_str();
 
   require_finite(app);
+  app.set_version_flag("--version", fmt::format("astrojax {} (git commit {})", ASTROJAX_VERSION, ASTROJAX_GIT_COMMIT));
+  // A mistyped command or option: name the nearest one, as git and cargo do.
+  std::vector<std::string> names;
+  for (const CLI::App* sub : app.get_subcommands({})) names.push_back(sub->get_name());
+  if (argc > 1 && argv[1][0] != '-' && std::find(names.begin(), names.end(), argv[1]) == names.end()) {
+    const std::string near = ajx::config::closest(argv[1], names);
+    std::fprintf(stderr, "error: '%s' is not an astrojax command%s; the commands: %s (astrojax --help)\n", argv[1],
+                 near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near).c_str(),
+                 fmt::format("{}", fmt::join(names, ", ")).c_str());
+    return ajx::app::kExitBadInput;
+  }
   try {
     app.parse(argc, argv);
+  } catch (const CLI::ExtrasError& e) {
+    const int code = app.exit(e);
+    for (const CLI::App* sub : app.get_subcommands()) {  // the command that was given
+      std::vector<std::string> options;
+      for (const CLI::Option* o : sub->get_options())
+        for (const std::string& n : o->get_lnames()) options.push_back("--" + n);
+      for (int i = 2; i < argc; ++i)
+        if (argv[i][0] == '-' && argv[i][1] == '-')
+          if (const std::string near = ajx::config::closest(std::string(argv[i]).substr(0, std::string(argv[i]).find('=')), options);
+              !near.empty() && near != argv[i])
+            std::fprintf(stderr, "did you mean '%s' for '%s'? (astrojax %s --help)\n", near.c_str(), argv[i],
+                         sub->get_name().c_str());
+    }
+    return code == 0 ? 0 : ajx::app::kExitBadInput;
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : ajx::app::kExitBadInput;
   }

@@ -398,6 +398,10 @@ std::optional<Onset> flower_onset(const io::File& f, const SweepWindows& sw, std
 
 // ---- the report ---------------------------------------------------------------------------
 
+// The paper's lagging orbit: ω_ball nearly constant at about 4.8π between ω1 and ω2 (read off
+// its simulated Fig. 7(i), not measured) [rad/s].
+constexpr double kPaperLagOmegaBall = 4.8 * pi;
+
 std::string_view symbol(sweep::Threshold t) {
   switch (t) {
     case sweep::Threshold::Rise: return "ω_rise";
@@ -415,11 +419,15 @@ std::string against_paper(double a, double b, double p) {
   return fmt::format("{:+.1f} .. {:+.1f} %", 100 * (lo - p) / p, 100 * (hi - p) / p);
 }
 
+// What a chain is: its group and its grid point ("up", "drive_radius=0.01", "").
+std::string chain_label(const SweepWindows& sw, std::size_t c) {
+  if (sw.group[c].empty() || sw.params[c].empty()) return sw.group[c] + sw.params[c];
+  return sw.group[c] + " " + sw.params[c];
+}
+
 std::string chain_name(const SweepWindows& sw, std::size_t c) {
-  std::string name = fmt::format("{}", c);
-  if (!sw.group[c].empty()) name += " " + sw.group[c];
-  if (!sw.params[c].empty()) name += " " + sw.params[c];
-  return name;
+  const std::string label = chain_label(sw, c);
+  return label.empty() ? fmt::format("{}", c) : fmt::format("{} {}", c, label);
 }
 
 // One report, as text or as Markdown: per variant, a table of its brackets, the Hopf fits,
@@ -506,6 +514,21 @@ std::string report(const ThresholdsArgs& args, const SweepWindows& sw, const std
         }
       if (!any) line({std::string(symbol(t)), "", "not reached", "", "", fmt::format("{:.2f}", paper / pi), "", ""}, widths);
     }
+    // The lag's plateau: the longest lagging run on a rising leg, its mean ω_ball and slope.
+    for (std::size_t c = 0; c < sw.chains.size(); ++c) {
+      if (sw.variant[c] != v) continue;
+      std::optional<sweep::ClassRun> lag;
+      for (const sweep::ClassRun& r : sweep::class_runs(sw.chains[c], sw.omega_ball[c], false))
+        if (r.cls == sweep::OrbitClass::LaggingCircular && r.direction > 0 && (!lag || r.windows > lag->windows)) lag = r;
+      if (!lag || !std::isfinite(lag->omega_ball_mean)) continue;
+      line({"lag ω_ball", chain_name(sw, c), fmt::format("{:.3f}", lag->omega_ball_mean / pi), "",
+            fmt::format("over ω_m {:.2f} → {:.2f}π, dω_ball/dω_m {:+.3f}", lag->omega_from / pi, lag->omega_to / pi,
+                        lag->omega_ball_slope),
+            fmt::format("≈ {:.1f}", kPaperLagOmegaBall / pi),
+            fmt::format("{:+.1f} %", 100 * (lag->omega_ball_mean - kPaperLagOmegaBall) / kPaperLagOmegaBall),
+            fmt::format("{} windows", lag->windows)},
+           widths);
+    }
     if (!reasons.empty()) {
       out += markdown ? "\nVerdicts:\n\n" : "  verdicts:\n";
       for (std::size_t i = 0; i < reasons.size(); ++i)
@@ -586,7 +609,7 @@ std::string sequence_report(const ThresholdsArgs& args, const SweepWindows& sw, 
                      "dω_ball/dω_m");
   std::vector<std::vector<sweep::StepMatch>> matches;
   for (std::size_t c = 0; c < sw.chains.size(); ++c) {
-    const std::string params = chain_name(sw, c).substr(std::to_string(c).size() + (sw.group[c].empty() && sw.params[c].empty() ? 0 : 1));
+    const std::string params = chain_label(sw, c);
     const std::vector<sweep::ClassRun> runs = sweep::class_runs(sw.chains[c], sw.omega_ball[c], args.absorb_blips);
     for (const sweep::ClassRun& r : runs) {
       out += fmt::format("{:<6} {:<28} {:<4} {:<5} {:<17} {:8.3f} .. {:<10.3f} {:<8} {:<6} {:<11} {}\n", c, params, r.leg,

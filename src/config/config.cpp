@@ -12,6 +12,7 @@
 #include <sstream>
 #include <toml++/toml.h>
 
+#include "config/did_you_mean.hpp"
 #include "numerics/stepper.hpp"
 #include "orbits/continuation.hpp"
 
@@ -95,10 +96,14 @@ class Reader {
     }
     return v;
   }
+  // An unknown key names the nearest allowed one, if it looks like a typo, and lists them all.
   void reject_unknown() const {
     for (const auto& [k, v] : t_)
-      if (!used_.count(std::string(k.str())))
-        fail(k.str(), "unknown key");
+      if (!used_.count(std::string(k.str()))) {
+        const std::string near = closest(k.str(), used_);
+        fail(k.str(), fmt::format("unknown key{}; allowed: {}", near.empty() ? "" : " (did you mean '" + near + "'?)",
+                                  fmt::join(used_, ", ")));
+      }
   }
 
  private:
