@@ -837,9 +837,8 @@ std::vector<GridPoint> expand_grid(const SweepConfig& c) {
           if (seg.kind == sweep::Segment::Kind::Ramp) seg.ramp.rate = v;
       }
     }
-    std::vector<physics::ParameterIssue> issues;
-    if (auto issue = model_number_issue(g.model.p)) issues.push_back(*issue);  // the ranges of [model]
-    for (auto& issue : physics::validate(g.model)) issues.push_back(std::move(issue));
+    std::vector<physics::ParameterIssue> issues = physics::validate(g.model);  // in the physics' words first
+    if (auto issue = model_number_issue(g.model.p)) issues.push_back(*issue);  // then the ranges of [model]
     for (const auto& issue : issues) {
       std::string where;
       for (std::size_t a = 0; a < c.grid.size(); ++a) where += fmt::format(" grid.{}[{}]", c.grid[a].key, at[a]);
