@@ -26,3 +26,17 @@ start_mpi() {
 gone() { for p in "$@"; do for _ in $(seq 100); do kill -0 "$p" 2> /dev/null || break; sleep 0.1; done; done; }
 resume() { "$mpiexec" --oversubscribe -n 3 "$bin" sweep "${sweep[@]}" -o "$1" --resume > "$1.resume" 2>&1; }
 
+# SIGSTOPs rank 2 of the job start_mpi started and waits up to $1 s for the master to end (sets
+# master_ended 0/1 and waited [s]); then lets mpirun end (its MPI_Abort ends the job; once,
+# Open MPI's mpirun here stayed waiting for the stopped rank) and rank 2 go on, so that nothing
+# is left behind; sets rc to mpirun's exit code.
+stop_rank2() {
+  kill -STOP "$rank2"
+  local t0=$(date +%s)
+  for _ in $(seq $(($1 * 10))); do kill -0 "$rank0" 2> /dev/null || break; sleep 0.1; done
+  waited=$(($(date +%s) - t0)); master_ended=1; kill -0 "$rank0" 2> /dev/null && master_ended=0
+  for _ in $(seq 100); do kill -0 "$mp" 2> /dev/null || break; sleep 0.1; done
+  kill -CONT "$rank2" 2> /dev/null
+  wait "$mp"; rc=$?
+  gone $rank2
+}
