@@ -5,7 +5,7 @@
 #
 #   run_sweep.sh SWEEP_FILE OUTPUT.h5 [more astrojax sweep options]
 #
-# - The file: OUTPUT.h5 complete: nothing to do. OUTPUT.h5.part present: --resume (a requeued
+# - The file: OUTPUT.h5 complete: nothing to do. OUTPUT.h5.part or .journal present: --resume (a requeued
 #   or resubmitted job). Otherwise a fresh sweep.
 # - The launcher (ASTROJAX_LAUNCHER = auto | srun | mpirun): srun --mpi=$ASTROJAX_SRUN_MPI
 #   (default pmix) where Slurm has that PMI plugin, otherwise mpirun with one rank per task.
@@ -13,10 +13,12 @@
 #   preemption) is passed on as SIGUSR1: the sweep's master stops handing out tasks, writes those
 #   in flight and exits with 4. The script then requeues the job (scontrol requeue) when the
 #   job is requeueable, or says how to resubmit it.
-# Exit codes: those of astrojax sweep (0 ok, 2 bad input, 3 tasks failed, 4 interrupted).
+# Exit codes: those of astrojax sweep (0 ok, 1 internal error, 2 bad input, 3 tasks failed,
+# 4 interrupted, 5 output not writable: disk full). Only 4 is requeued: the others would fail
+# again the same way (5 resumes with --resume once the disk has room).
 set -uo pipefail
 
-if [ $# -lt 2 ]; then sed -n '2,18p' "$0"; exit 2; fi
+if [ $# -lt 2 ]; then sed -n '2,20p' "$0"; exit 2; fi
 sweep_file=$1; output=$2; shift 2
 bin=${ASTROJAX_BIN:-${ASTROJAX_DIR:-${SLURM_SUBMIT_DIR:-.}}/build/astrojax}
 ntasks=${SLURM_NTASKS:-1}
@@ -24,9 +26,9 @@ ntasks=${SLURM_NTASKS:-1}
 log() { echo "[run_sweep $(date -u +%H:%M:%S) job ${SLURM_JOB_ID:-none}${SLURM_ARRAY_TASK_ID:+ array ${SLURM_ARRAY_TASK_ID}}] $*"; }
 
 if [ ! -x "$bin" ]; then log "error: $bin is not an executable (set ASTROJAX_BIN or ASTROJAX_DIR)"; exit 2; fi
-if [ -e "$output" ] && [ ! -e "$output.part" ]; then log "$output is complete: nothing to do"; exit 0; fi
+if [ -e "$output" ] && [ ! -e "$output.part" ] && [ ! -e "$output.journal" ]; then log "$output is complete: nothing to do"; exit 0; fi
 resume=()
-[ -e "$output.part" ] && resume=(--resume)
+{ [ -e "$output.part" ] || [ -e "$output.journal" ]; } && resume=(--resume)
 
 # srun where Slurm can start MPI ranks itself (its PMI plugin); mpirun otherwise. Under an
 # allocation, Open MPI's mpirun reads the nodes and task counts from Slurm.

@@ -118,7 +118,7 @@ TEST(SweepConfig, BadSweepFilesNameFileKeyAndRange) {
       {{"protocol.segment=[{kind=\"steps\",from=1.0,to=2.0,num=0,measure=1.0}]"}, "protocol.segment[0].num", "[1, 100000]"},
       {{"protocol.segment=[{kind=\"hop\",from=1.0,to=2.0}]"}, "protocol.segment[0].kind", "ramp, steps"},
       {{"protocol.sample_rate=0"}, "protocol.sample_rate", "(0, 100000]"},
-      {{"grid.ramp_rate=[0.0]"}, "grid.ramp_rate[0]", "> 0"},
+      {{"grid.ramp_rate=[0.0]"}, "grid.ramp_rate[0]", "(0, 10000]"},
   };
   for (const auto& c : cases) {
     const std::string e = error_of(c.set);

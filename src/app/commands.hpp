@@ -1,5 +1,8 @@
-// Subcommands of the astrojax executable. Each returns the process exit code:
-// 0 success, 2 bad input (nothing written), 3 the integration failed (file written, marked failed).
+// Subcommands of the astrojax executable. Each returns the process exit code, one meaning each
+// (also under mpirun, where the master's code is the job's): 0 success, 1 an internal error (a
+// bug, an MPI failure), 2 bad input (refused before any work, nothing written), 3 the
+// integration failed (file written, marked failed), 4 interrupted (resumable: --resume),
+// 5 the output could not be written while running (disk full; resumable once fixed).
 #pragma once
 #include <string>
 #include <vector>
@@ -14,11 +17,15 @@ struct RunArgs {
   std::vector<std::string> overrides;  // "key=value"
   std::string output;                  // overrides output.path when non-empty
   bool quiet = false;
+  double max_memory = 0;               // [MB] memory budget; 0: half the machine's
   std::string command_line;            // stored in the file for provenance
 };
 int run_command(const RunArgs& args);
 
 inline constexpr int kExitInterrupted = 4;
+// The output could not be written while the work ran (disk full, file too large, I/O error):
+// what was finished is kept, but running again without fixing the cause cannot finish.
+inline constexpr int kExitOutputFailed = 5;
 
 struct SweepArgs {
   std::string config_path;
@@ -26,12 +33,22 @@ struct SweepArgs {
   std::string output;
   bool quiet = false;
   bool resume = false;  // continue an interrupted sweep from <output>.part
+  bool force = false;   // start afresh even over an interrupted sweep's .part and journal
   long max_tasks = 0;   // stop (resumably) after this many task results; 0: no limit
-  double task_timeout = 0;  // [s] a task not back within it is failed and its rank given up; 0: no bound
+  double task_timeout = 0;  // [s] a task not back within it runs elsewhere, its rank given up; 0: automatic
+  double min_task_timeout = 60;  // [s] the least automatic bound (20 times the slowest finished task)
+  double max_memory = 0;  // [MB] memory budget of one rank; 0: half the machine's
   std::string command_line;
 };
 // Collective: every rank of MPI_COMM_WORLD calls it (rank 0 is the master).
 int sweep_command(const SweepArgs& args);
+
+// astrojax verify: a sweep's file (finished or .part) checked against its own /config and its
+// journal; 0 intact, 2 damaged (each damage reported).
+struct VerifyArgs {
+  std::string input;
+};
+int verify_command(const VerifyArgs& args);
 
 struct ThresholdsArgs {
   std::string input;  // a sweep's HDF5 file

@@ -2,7 +2,9 @@
 // sweep (the MPI farm over a sweep file's chains).
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <fmt/format.h>
 
@@ -10,9 +12,35 @@
 #include "config/did_you_mean.hpp"
 #include "parallel/mpi_env.hpp"
 
+namespace {
+
+// Every floating-point option of `app` and its subcommands refuses NaN and infinity (CLI11
+// converts "nan" and "inf", and its ranges let NaN through).
+void require_finite(CLI::App& app) {
+  static const CLI::Validator finite(
+      [](std::string& s) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(s.c_str(), &end);
+        return end != s.c_str() && !std::isfinite(v) ? fmt::format("{} is not a finite number", s) : std::string();
+      },
+      "", "FINITE");
+  for (CLI::Option* o : app.get_options())
+    if (o->get_type_name().rfind("FLOAT", 0) == 0) o->check(finite);
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) require_finite(*sub);
+}
+
+const CLI::Validator non_empty([](std::string& s) { return s.empty() ? std::string("the output path is empty") : std::string(); },
+                               "", "NONEMPTY");
+
+}  // namespace
+
 int main(int argc, char** argv) {
   CLI::App app{"astrojax: bifurcation explorer for the motor-driven Astrojax pendulum"};
   app.require_subcommand(1);
+  app.footer("Exit codes (also of mpirun, which returns rank 0's): 0 done; 1 internal error (a bug, an MPI failure); "
+             "2 bad input, refused before any work, nothing written; 3 done, but some integrations or tasks failed "
+             "(marked in the file); 4 interrupted, resumable with --resume; 5 the output could not be written while "
+             "running (disk full, file too large), resumable with --resume once the cause is fixed.");
   std::string command_line;
   for (int i = 0; i < argc; ++i) command_line += (i ? " " : "") + std::string(argv[i]);
 
@@ -23,8 +51,12 @@ int main(int argc, char** argv) {
   run_cmd->add_option("config", run.config_path, "TOML file with [model], [layers], [integrator], [initial], [[schedule]], [output]")
       ->required();
   run_cmd->add_option("-s,--set", run.overrides, "Override a key, e.g. --set model.drive_radius=0.005 (repeatable)");
-  run_cmd->add_option("-o,--output", run.output, "HDF5 output path (overrides output.path)");
+  run_cmd->add_option("-o,--output", run.output, "HDF5 output path (overrides output.path)")->check(non_empty);
   run_cmd->add_flag("-q,--quiet", run.quiet, "Print only errors");
+  run_cmd->add_option("--max-memory", run.max_memory,
+                      "Memory the run may plan for [MB]; a run whose samples need more is refused before it starts "
+                      "(default: half the machine's memory)")
+      ->check(CLI::NonNegativeNumber);
 
   ajx::app::SweepArgs sweep;
   sweep.command_line = command_line;
@@ -33,17 +65,35 @@ int main(int argc, char** argv) {
   sweep_cmd->add_option("config", sweep.config_path, "TOML file with [protocol], [grid] and the [model] sections")
       ->required();
   sweep_cmd->add_option("-s,--set", sweep.overrides, "Override a key, e.g. --set grid.drive_radius=[0.005,0.01]");
-  sweep_cmd->add_option("-o,--output", sweep.output, "HDF5 output path (overrides output.path)");
+  sweep_cmd->add_option("-o,--output", sweep.output, "HDF5 output path (overrides output.path)")->check(non_empty);
   sweep_cmd->add_flag("-q,--quiet", sweep.quiet, "No progress lines");
   sweep_cmd->add_flag("--resume", sweep.resume,
                       "Continue an interrupted sweep from <output>.part (same file and overrides)");
+  sweep_cmd->add_flag("--force", sweep.force,
+                      "Start afresh even where an interrupted sweep left <output>.part or <output>.journal "
+                      "(their finished tasks are discarded)");
   sweep_cmd->add_option("--max-tasks", sweep.max_tasks,
                         "Stop after this many task results, as an interruption would (resume later with --resume)")
       ->check(CLI::NonNegativeNumber);
   sweep_cmd->add_option("--task-timeout", sweep.task_timeout,
-                        "Wall-clock bound of one task [s]: a task not back within it is reported failed, its rank "
-                        "given up, and the job ended once the rest is done (default 0: no bound)")
+                        "Wall-clock bound of one task [s]: a task not back within it is handed to another rank, its "
+                        "rank given up (after 3 such timeouts the task fails), and the job ended once the rest is "
+                        "done (default 0: automatic, 20 times the slowest finished task, at least --min-task-timeout)")
+      ->check(CLI::Range(0.0, 1e7));
+  sweep_cmd->add_option("--max-memory", sweep.max_memory,
+                        "Memory one rank may plan for [MB]; a sweep whose tasks or plan need more is refused before it "
+                        "starts (default: half the machine's memory)")
       ->check(CLI::NonNegativeNumber);
+  sweep_cmd->add_option("--min-task-timeout", sweep.min_task_timeout,
+                        "The least automatic task bound [s] (see --task-timeout)")
+      ->check(CLI::Range(0.1, 1e7))
+      ->capture_default_str();
+
+  ajx::app::VerifyArgs verify;
+  CLI::App* verify_cmd = app.add_subcommand(
+      "verify", "Check a sweep's file, finished or .part, against its own sweep file and its journal; report damage "
+                "(exit 0 intact, 2 damaged)");
+  verify_cmd->add_option("file", verify.input, "HDF5 file written by astrojax sweep, or its .part")->required();
 
   ajx::app::ThresholdsArgs thresholds;
   CLI::App* thresholds_cmd = app.add_subcommand(
@@ -182,6 +232,7 @@ int main(int argc, char** argv) {
   th_cmd->add_option("--repeats", th.repeats, "Timed runs per point (the median is kept)")->capture_default_str();
   th_cmd->add_option("--sample", th_sample, "Sampling step that brackets the landing [s]")->capture_default_str();
 
+  require_finite(app);
   app.set_version_flag("--version", fmt::format("astrojax {} (git commit {})", ASTROJAX_VERSION, ASTROJAX_GIT_COMMIT));
   // A mistyped command or option: name the nearest one, as git and cargo do.
   std::vector<std::string> names;
@@ -213,6 +264,7 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : ajx::app::kExitBadInput;
   }
   if (*run_cmd) return ajx::app::run_command(run);
+  if (*verify_cmd) return ajx::app::verify_command(verify);
   if (*thresholds_cmd) return ajx::app::thresholds_command(thresholds);
   if (*classify_cmd) return ajx::app::classify_command(classify);
   if (*orbits_cmd) return ajx::app::orbits_command(orbits);

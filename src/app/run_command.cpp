@@ -10,6 +10,8 @@
 #include <vector>
 
 #include "app/commands.hpp"
+#include "app/output_paths.hpp"
+#include "app/resource_budget.hpp"
 #include "app/provenance.hpp"
 #include "config/config.hpp"
 #include "io/hdf5_file.hpp"
@@ -117,59 +119,28 @@ physics::State initial_state(const config::RunConfig& c, const physics::MotorSch
                              c.initial.mode, 0.0, c.initial.length_tolerance, c.initial.tie_slip_rate);
 }
 
-}  // namespace
+// The samples of a run, held in memory until it ends and then written uncompressed: refused
+// before any work when they cannot fit (Trajectory's 25 doubles and one int a sample; its
+// vectors grow by doubling, so up to 3 times that while one is reallocated).
+void check_run_size(const config::RunConfig& cfg, double duration, double max_memory_mb) {
+  constexpr double kBytesPerSample = 25 * sizeof(double) + sizeof(std::int32_t);
+  const double samples = std::floor(duration / cfg.output.sample_interval) + 2;
+  const std::string what = fmt::format("{:.4g} samples ({:.6g} s every {:.3g} s)", samples, duration,
+                                       cfg.output.sample_interval);
+  check_memory(cfg.source_name, "output.sample_interval", what, 3 * kBytesPerSample * samples,
+               memory_budget(max_memory_mb), max_memory_mb);
+  const double need = kBytesPerSample * samples, free = free_bytes_for(cfg.output.path);
+  if (need > free)
+    throw config::ConfigError(fmt::format("{}: key 'output.path': {} make {:.4g} MB of output, but only {:.4g} MB are "
+                                          "free there", cfg.source_name, what, need / 1e6, free / 1e6));
+}
 
-int run_command(const RunArgs& args) {
-  config::RunConfig cfg;
-  physics::MotorSchedule schedule;
-  physics::State state;
-  std::optional<io::File> file;
-  std::optional<sim::PaperDrag> paper;  // the paper's two-step scheme (sim/paper_scheme.hpp)
-  sim::PairStart pair;
-  double start_projection = 0.0;        // |L1 + L2 - l| of the pair before projection [m]
-  // Everything that can be checked is checked before any work, and before any file exists.
-  try {
-    cfg = config::load_run_config(args.config_path, args.overrides);
-    if (!args.output.empty()) cfg.output.path = args.output;
-    paper = sim::paper_variant(cfg.run.method);
-    schedule = physics::MotorSchedule(cfg.schedule);
-    try {
-      if (paper) {
-        pair = pair_start(cfg, schedule);
-        start_projection = sim::project_pair(cfg.model, schedule, cfg.run.integ.h_fixed, pair);
-      } else {
-        state = initial_state(cfg, schedule);
-      }
-    } catch (const std::invalid_argument& e) {
-      throw config::ConfigError(fmt::format("{}: key 'initial.r1', 'initial.r2': {}; allowed "
-                                            "|L1 + L2 - l| <= initial.length_tolerance and L2 >= d",
-                                            cfg.source_name, e.what()));
-    }
-    const std::filesystem::path out(cfg.output.path);
-    std::error_code ec;
-    if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path(), ec);
-    try {
-      file.emplace(io::File::create_temporary(out));
-    } catch (const io::Hdf5Error& e) {
-      throw config::ConfigError(fmt::format("{}: key 'output.path': cannot write '{}' ({})",
-                                            cfg.source_name, cfg.output.path, e.what()));
-    }
-  } catch (const config::ConfigError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return kExitBadInput;
-  }
-
-  Trajectory traj;
-  const auto wall0 = std::chrono::steady_clock::now();
-  const sim::SampleObserver add = [&](const sim::Sample& s) { traj.add(s, cfg.model.p); };
-  const sim::RunSummary sum =
-      paper ? sim::run_paper_scheme(cfg.model, schedule, *paper, cfg.run.integ.h_fixed, pair, schedule.duration(),
-                                    cfg.output.sample_interval, add, state, cfg.run.omega_window)
-            : sim::Simulation(cfg.model, schedule, cfg.run).run(state, schedule.duration(), cfg.output.sample_interval, add);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-
-  io::File& f = *file;
-  write_provenance(f, args.command_line, cfg);
+// The trajectory, the summary and the provenance into the run's file, then committed.
+// `start_projection`: with the paper's scheme, |L1 + L2 - l| of its starting pair before projection.
+void write_run(io::File& f, const std::string& command_line, const config::RunConfig& cfg,
+               const physics::MotorSchedule& schedule, const Trajectory& traj, const sim::RunSummary& sum,
+               const physics::State& state, double wall, std::optional<double> start_projection) {
+  write_provenance(f, command_line, cfg);
   io::Group tg = f.create_group("trajectory");
   traj.write(tg);
   io::Group sg = f.create_group("summary");
@@ -205,7 +176,7 @@ int run_command(const RunArgs& args) {
     g.set_attribute("worst", v.worst);
     g.set_attribute("worst_units", v.unit);
   }
-  if (paper) sg.set_attribute("start_projection", start_projection);
+  if (start_projection) sg.set_attribute("start_projection", *start_projection);
   if (cfg.initial.preset == "table1" || cfg.initial.preset == "pair") {
     // The raw pair: its speeds |q^(1) - q^(0)|/h and its L1 + L2 - l at t = 0.
     const sim::PairStart raw = pair_start(cfg, schedule);
@@ -217,6 +188,70 @@ int run_command(const RunArgs& args) {
   }
   sg.set_attribute("wall_time", wall);
   f.commit();
+}
+
+}  // namespace
+
+int run_command(const RunArgs& args) {
+  config::RunConfig cfg;
+  physics::MotorSchedule schedule;
+  physics::State state;
+  std::optional<io::File> file;
+  std::optional<sim::PaperDrag> paper;  // the paper's two-step scheme (sim/paper_scheme.hpp)
+  sim::PairStart pair;
+  double start_projection = 0.0;        // |L1 + L2 - l| of the pair before projection [m]
+  // Everything that can be checked is checked before any work, and before any file exists.
+  try {
+    cfg = config::load_run_config(args.config_path, args.overrides);
+    if (!args.output.empty()) cfg.output.path = args.output;
+    check_output_path(cfg.source_name, "output.path", cfg.output.path,
+                      {args.config_path}, {".part"});
+    paper = sim::paper_variant(cfg.run.method);
+    schedule = physics::MotorSchedule(cfg.schedule);
+    check_run_size(cfg, schedule.duration(), args.max_memory);
+    try {
+      if (paper) {
+        pair = pair_start(cfg, schedule);
+        start_projection = sim::project_pair(cfg.model, schedule, cfg.run.integ.h_fixed, pair);
+      } else {
+        state = initial_state(cfg, schedule);
+      }
+    } catch (const std::invalid_argument& e) {
+      throw config::ConfigError(fmt::format("{}: key 'initial.r1', 'initial.r2': {}; allowed "
+                                            "|L1 + L2 - l| <= initial.length_tolerance and L2 >= d",
+                                            cfg.source_name, e.what()));
+    }
+    const std::filesystem::path out(cfg.output.path);
+    std::error_code ec;
+    if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path(), ec);
+    try {
+      file.emplace(io::File::create_temporary(out));
+    } catch (const io::Hdf5Error& e) {
+      throw config::ConfigError(fmt::format("{}: key 'output.path': cannot write '{}' ({})",
+                                            cfg.source_name, cfg.output.path, e.what()));
+    }
+  } catch (const config::ConfigError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return kExitBadInput;
+  }
+
+  Trajectory traj;
+  const auto wall0 = std::chrono::steady_clock::now();
+  const sim::SampleObserver add = [&](const sim::Sample& s) { traj.add(s, cfg.model.p); };
+  const sim::RunSummary sum =
+      paper ? sim::run_paper_scheme(cfg.model, schedule, *paper, cfg.run.integ.h_fixed, pair, schedule.duration(),
+                                    cfg.output.sample_interval, add, state, cfg.run.omega_window)
+            : sim::Simulation(cfg.model, schedule, cfg.run).run(state, schedule.duration(), cfg.output.sample_interval, add);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+
+  try {
+    write_run(*file, args.command_line, cfg, schedule, traj, sum, state, wall,
+              paper ? std::optional<double>(start_projection) : std::nullopt);
+  } catch (const io::Hdf5Error& e) {  // disk full, file too large, I/O error
+    file.reset();  // an uncommitted temporary file is removed
+    std::fprintf(stderr, "error: cannot write %s: %s\n", cfg.output.path.c_str(), e.what());
+    return kExitOutputFailed;
+  }
 
   if (!args.quiet || !sum.ok())
     std::printf(

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "app/commands.hpp"
+#include "app/output_paths.hpp"
 #include "app/sweep_file.hpp"
 #include "app/sweep_recovery.hpp"
 #include "app/sweep_result.hpp"
@@ -39,6 +40,9 @@ namespace ajx::app {
 
 namespace {
 
+// Without --task-timeout, a task still out after this many times the slowest finished task (and
+// at least --min-task-timeout) is taken as hung: its rank is given up and the task runs elsewhere.
+constexpr double kTaskTimeoutFactor = 20.0;
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 
 std::string now_iso() {
@@ -77,6 +81,7 @@ int sweep_command(const SweepArgs& args) {
                                             "`astrojax run` only; allowed here: {}", cfg.source_name,
                                             numerics::stepper_names()));
     plan = sweep::make_plan(cfg);  // chains, each split into tasks on window boundaries
+    check_sweep_memory(cfg, plan, args.max_memory);
   } catch (const config::ConfigError& e) {
     error = e.what();
   }
@@ -119,51 +124,42 @@ int sweep_command(const SweepArgs& args) {
   };
   if (master && error.empty()) {
     try {
+      check_output_path(cfg.source_name, "output.path", cfg.output_path, {args.config_path}, {".part", ".journal"});
+      if (!args.resume && !args.force) check_no_unfinished_sweep(cfg, part_path, journal_path);
       if (args.resume) {
         if (!std::filesystem::exists(part_path) && !std::filesystem::exists(journal_path)) {
           throw config::ConfigError(fmt::format(
               "{}: key 'output.path': nothing to resume: {} does not exist{}", cfg.source_name, part_path.string(),
               std::filesystem::exists(final_path) ? fmt::format(" ({} is complete)", final_path.string()) : ""));
         }
-        if (std::filesystem::exists(journal_path)) {
-          journal.emplace(io::Journal::open_append(journal_path));  // locked: no other sweep writes it
-          replay = io::Journal::read(journal_path);
-          if (replay.records.empty())  // killed before its first record
-            journal->append(kJournalIdentity, journal_identity(cfg));
-          else if (replay.records.front().key != kJournalIdentity || replay.records.front().payload != journal_identity(cfg))
-            throw config::ConfigError(fmt::format(
-                "{}: key 'output.path': {} was written by a different sweep file or overrides; resume it with the "
-                "same ones, or remove {} and {} to start afresh",
-                cfg.source_name, journal_path.string(), part_path.string(), journal_path.string()));
-        }
-        try {
-          file.emplace(io::File::open_rw(part_path), setups.size(), n_windows, cap, n_tasks);
-          file->check_same(cfg);
-          if (file->status().size() != n_tasks)
-            throw config::ConfigError(fmt::format("{}: key 'output.path': {} has {} tasks, the sweep {}",
-                                                  cfg.source_name, part_path.string(), file->status().size(), n_tasks));
-        } catch (const io::Hdf5Error& e) {
-          if (!journal) throw;
-          // Killed while writing: the journal holds every committed result; start the file anew.
-          std::fprintf(stderr, "warning: %s cannot be used (%s); rebuilding it from %s (%zu results)\n",
-                       part_path.c_str(), e.what(), journal_path.c_str(), replay.records.empty() ? 0 : replay.records.size() - 1);
-          file.reset();
-          std::filesystem::remove(part_path);
-          make_file();
-        }
-        if (journal && journal->cut_torn_tail())
-          std::fprintf(stderr, "warning: %s ended in a result cut short; that task runs again\n", journal_path.c_str());
-        if (!journal) {  // a .part from before journals: it alone says what is done
-          journal.emplace(io::Journal::create(journal_path));
+        // Only the journal is trusted: its records carry CRC-32s, while a byte of the .part may have
+        // flipped anywhere (a carried state, /chains, a sample chunk) without HDF5 noticing.
+        if (!std::filesystem::exists(journal_path))
+          throw config::ConfigError(fmt::format(
+              "{}: key 'output.path': {} has no journal {}, so what it holds cannot be checked; start afresh with "
+              "--force", cfg.source_name, part_path.string(), journal_path.string()));
+        journal.emplace(io::Journal::open_append(journal_path));  // locked: no other sweep writes it
+        replay = io::Journal::read(journal_path);
+        if (replay.records.empty())  // killed before its first record
           journal->append(kJournalIdentity, journal_identity(cfg));
-          status = file->status();
-        } else {
-          status.assign(n_tasks, 0);  // the journal's replay below says what is done
-        }
+        else if (replay.records.front().key != kJournalIdentity || replay.records.front().payload != journal_identity(cfg))
+          throw config::ConfigError(fmt::format(
+              "{}: key 'output.path': {} was written by a different sweep file or overrides; resume it with the "
+              "same ones, or start afresh with --force",
+              cfg.source_name, journal_path.string()));
+        if (journal->cut_torn_tail())
+          std::fprintf(stderr, "warning: %s ended in a result cut short or damaged; that task runs again\n",
+                       journal_path.c_str());
+        // Every dataset made again from the sweep file, and every result from the journal (below).
+        std::printf("%s rebuilt from the sweep file and %s (%zu checksummed results)\n", part_path.c_str(),
+                    journal_path.c_str(), replay.records.empty() ? 0 : replay.records.size() - 1);
+        std::filesystem::remove(part_path);
+        make_file();
+        status.assign(n_tasks, 0);  // the journal's replay below says what is done
       } else {
+        check_space(cfg, final_path, setups, cap);
         std::error_code ec;
         if (final_path.has_parent_path()) std::filesystem::create_directories(final_path.parent_path(), ec);
-        check_space(cfg, final_path, setups, cap);
         journal.emplace(io::Journal::create(journal_path));  // locked first: no other sweep writes here
         make_file();
         journal->append(kJournalIdentity, journal_identity(cfg));
@@ -308,6 +304,8 @@ int sweep_command(const SweepArgs& args) {
   };
   fo.progress_interval = terminal ? 0.5 : 10.0;
   fo.task_timeout = args.task_timeout;
+  fo.timeout_factor = kTaskTimeoutFactor;  // without --task-timeout: a task this many times the slowest is hung
+  fo.min_task_timeout = args.min_task_timeout;
   const std::string started = now_iso();
   parallel::FarmSummary fs;
   try {
@@ -317,9 +315,11 @@ int sweep_command(const SweepArgs& args) {
     // The workers have been told to stop; every result committed to the journal is safe.
     std::fprintf(stderr, "error: %s\nthe finished tasks are in %s (with %s); fix the cause and continue with the "
                  "same command and --resume\n", e.what(), part_path.c_str(), journal_path.c_str());
-    return 1;
+    return kExitOutputFailed;
   }
-  if (!master) return fs.status == parallel::FarmStatus::Completed ? 0 : kExitInterrupted;
+  // The job's exit code is the master's: mpirun returns the first non-zero code of any rank,
+  // so a worker that returned its own view (4 when the master stopped the farm) could decide it.
+  if (!master) return 0;
   if (terminal && !args.quiet) std::printf("\n");
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
 
@@ -354,7 +354,7 @@ int sweep_command(const SweepArgs& args) {
 
   std::printf("%s  %zu chains, %zu tasks (%lld failed, %lld not run, %lld never started), %.0f of %.0f simulated s "
               "in %.1f s wall on %d ranks -> %s\n",
-              complete ? "ok" : "INTERRUPTED", setups.size(), n_tasks, (long long)fs.failed, (long long)fs.not_run,
+              !complete ? "INTERRUPTED" : failures.empty() ? "ok" : "FAILED", setups.size(), n_tasks, (long long)fs.failed, (long long)fs.not_run,
               (long long)fs.unstarted, simulated, total_sim, wall, ranks,
               complete ? final_path.c_str() : part_path.c_str());
   for (const auto& fl : failures) std::printf("  failed: %s\n", fl.c_str());
@@ -363,8 +363,8 @@ int sweep_command(const SweepArgs& args) {
   const int code = !complete ? kExitInterrupted : failures.empty() ? 0 : kExitRunFailed;
   if (!fs.lost_ranks.empty()) {
     // A hung rank never reaches MPI_Finalize: the file is closed, so end the job here.
-    std::printf("ranks %s did not return their task within --task-timeout %g s (see the failures above); "
-                "ending the job\n", fmt::format("{}", fmt::join(fs.lost_ranks, ", ")).c_str(), args.task_timeout);
+    std::printf("ranks %s did not return their task within the task bound and were given up (their tasks ran "
+                "elsewhere); ending the job\n", fmt::format("{}", fmt::join(fs.lost_ranks, ", ")).c_str());
     std::fflush(stdout);
     MPI_Abort(MPI_COMM_WORLD, code);
   }

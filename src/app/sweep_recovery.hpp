@@ -3,6 +3,7 @@
 #pragma once
 #include <sys/statvfs.h>
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -10,7 +11,10 @@
 #include <string>
 #include <vector>
 
+#include "app/resource_budget.hpp"
 #include "config/config.hpp"
+#include "io/journal.hpp"
+#include "sweep/plan.hpp"
 #include "sweep/task.hpp"
 
 namespace ajx::app {
@@ -35,7 +39,10 @@ inline std::uint64_t sweep_bytes_bound(const std::vector<sweep::ChainSetup>& set
 // Refuses, before any work, a sweep whose file cannot fit on its file system.
 inline void check_space(const config::SweepConfig& cfg, const std::filesystem::path& out,
                         const std::vector<sweep::ChainSetup>& setups, std::size_t cap) {
-  const std::filesystem::path dir = out.has_parent_path() ? out.parent_path() : std::filesystem::path(".");
+  std::filesystem::path dir = out.parent_path();  // the nearest that exists: made only once this passes
+  std::error_code ec;
+  while (!dir.empty() && !std::filesystem::exists(dir, ec)) dir = dir.parent_path();
+  if (dir.empty()) dir = ".";
   struct statvfs fs;
   if (statvfs(dir.c_str(), &fs) != 0) return;  // an unreadable directory fails at create, with its reason
   const std::uint64_t free_bytes = std::uint64_t(fs.f_bavail) * fs.f_frsize;
@@ -45,6 +52,44 @@ inline void check_space(const config::SweepConfig& cfg, const std::filesystem::p
         "{}: key 'output.path': the sweep may write up to {:.1f} MB ({} and its journal), but {} has only {:.1f} MB "
         "free",
         cfg.source_name, double(need) / 1e6, out.string(), dir.string(), double(free_bytes) / 1e6));
+}
+
+// Memory of the busiest rank, refused before any work beyond the budget: rank 0 holds the plan
+// (about 1 kB a chain, 128 B a window, 256 B a task) and, like every worker, one task's samples
+// (12 doubles a sample) about three times over: as sampled, compressed, and in the message.
+inline void check_sweep_memory(const config::SweepConfig& cfg, const sweep::SweepPlan& plan, double max_memory_mb) {
+  double windows = 0;
+  for (const auto& c : plan.setups) windows += double(c.protocol.windows.size());
+  const double per_task = double(std::min<std::size_t>(std::size_t(cfg.windows_per_task), plan.max_windows));
+  const double task_bytes = 3.0 * per_task * double(plan.max_samples) * 12 * 8;
+  const double plan_bytes = 1024.0 * double(plan.chains()) + 128.0 * windows + 256.0 * double(plan.n_tasks);
+  check_memory(cfg.source_name, cfg.hold ? "hold.sample_rate" : "protocol.sample_rate",
+               fmt::format("a task of {:.0f} windows of up to {} samples, with a plan of {} chains and {} tasks",
+                           per_task, plan.max_samples, plan.chains(), plan.n_tasks),
+               task_bytes + plan_bytes, memory_budget(max_memory_mb), max_memory_mb);
+}
+
+// Refuses to start afresh over an interrupted sweep's files: its finished tasks would be lost.
+// `--resume` continues them, `--force` discards them.
+inline void check_no_unfinished_sweep(const config::SweepConfig& cfg, const std::filesystem::path& part,
+                                      const std::filesystem::path& journal) {
+  std::vector<std::string> found;
+  std::error_code ec;
+  if (std::filesystem::exists(part, ec)) found.push_back(part.string());
+  if (std::filesystem::exists(journal, ec)) {
+    std::size_t results = 0;
+    try {  // the first record is the sweep's identity, the others are results
+      const std::size_t n = io::Journal::read(journal).records.size();
+      results = n > 0 ? n - 1 : 0;
+    } catch (const io::JournalError&) {
+    }
+    found.push_back(fmt::format("{} ({} finished task results)", journal.string(), results));
+  }
+  if (found.empty()) return;
+  throw config::ConfigError(fmt::format(
+      "{}: key 'output.path': an interrupted sweep is there: {}; continue it with --resume, or discard it and start "
+      "afresh with --force",
+      cfg.source_name, fmt::join(found, " and ")));
 }
 
 }  // namespace ajx::app

@@ -6,6 +6,7 @@
 #include <limits>
 #include <optional>
 #include <fmt/format.h>
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -53,6 +54,12 @@ class Reader {
       fail(key, fmt::format("{} is out of range; allowed {}{}, {}{}", v, lo_open ? "(" : "[", lo, hi,
                             hi_open ? ")" : "]"));
     return v;
+  }
+  // A count: a whole number within [lo, hi] (2.5 windows is refused, not truncated).
+  long count(std::string_view key, long fallback, double lo, double hi) {
+    const double v = number(key, double(fallback), lo, hi);
+    if (v != std::floor(v)) fail(key, fmt::format("{} is not a whole number; allowed {}, {}, ..., {}", v, lo, lo + 1, hi));
+    return long(v);
   }
   std::string word(std::string_view key, std::string fallback, const std::vector<std::string>& allowed) {
     used_.insert(std::string(key));
@@ -137,7 +144,11 @@ void each_table(const toml::array& arr, std::string_view name, std::string_view 
 void apply_override(toml::table& root, const std::string& kv, std::string_view file) {
   const auto eq = kv.find('=');
   if (eq == std::string::npos || eq == 0)
-    throw ConfigError(fmt::format("override '{}': expected key=value", kv));
+    throw ConfigError(fmt::format("{}: override '{}': expected key=value", file, kv));
+  // One value on one line: a newline would let the value add tables and keys of its own.
+  if (kv.find_first_of("\r\n") != std::string::npos)
+    throw ConfigError(fmt::format("{}: override '{}': a newline is not allowed; give key=value with one TOML value",
+                                  file, kv));
   const std::string key = kv.substr(0, eq), value = kv.substr(eq + 1);
   toml::table* t = &root;
   std::size_t start = 0;
@@ -148,6 +159,7 @@ void apply_override(toml::table& root, const std::string& kv, std::string_view f
     if (!t) throw ConfigError(fmt::format("{}: override '{}': '{}' is not a table", file, kv, part));
   }
   const std::string leaf = key.substr(start);
+  if (leaf.empty()) throw ConfigError(fmt::format("{}: override '{}': expected key=value", file, kv));
   try {
     toml::table v = toml::parse("v = " + value);
     t->insert_or_assign(leaf, std::move(*v.get("v")));
@@ -193,31 +205,55 @@ std::vector<physics::DriveSegment> parse_schedule(const toml::table& root, std::
 }
 
 // [model], [layers], [integrator] and [initial]: shared by every command.
+// The [model] numbers and their ranges, shared by [model] and the [grid] axes that set them
+// (ranges that depend on each other are physics::validate's).
+struct ModelNumber {
+  std::string_view key;
+  double physics::Parameters::*field;
+  double lo, hi;
+  bool lo_open, hi_open;
+};
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr ModelNumber kModelNumbers[] = {
+    {"string_length", &physics::Parameters::string_length, 0.0, 100.0, true, false},
+    {"bead_mass", &physics::Parameters::bead_mass, 0.0, kInf, true, true},
+    {"ball_mass", &physics::Parameters::ball_mass, 0.0, kInf, true, true},
+    {"drag", &physics::Parameters::drag, 0.0, kInf, false, true},
+    {"mu_static", &physics::Parameters::mu_static, 0.0, kInf, false, true},
+    {"mu_kinetic", &physics::Parameters::mu_kinetic, 0.0, kInf, false, true},
+    {"gravity", &physics::Parameters::gravity, 0.0, kInf, false, true},
+    {"drive_radius", &physics::Parameters::drive_radius, 0.0, kInf, false, true},
+    {"contact_distance", &physics::Parameters::contact_distance, 0.0, kInf, true, true},
+    {"top_stop", &physics::Parameters::top_stop, 0.0, kInf, false, true},
+    {"tie_static_torque", &physics::Parameters::tie_static_torque, 0.0, kInf, false, true},
+    {"tie_kinetic_torque", &physics::Parameters::tie_kinetic_torque, 0.0, kInf, false, true},
+    {"tie_inertia", &physics::Parameters::tie_inertia, 0.0, kInf, true, true},
+    {"tie_damping", &physics::Parameters::tie_damping, 0.0, kInf, false, true},
+    {"couple_torque", &physics::Parameters::couple_torque, 0.0, kInf, false, true},
+    {"couple_slip_rate", &physics::Parameters::couple_slip_rate, 0.0, kInf, true, true},
+};
+
+// "model.key: v is out of range; allowed (lo, hi]" for the first number of `p` outside its range.
+std::optional<physics::ParameterIssue> model_number_issue(const physics::Parameters& p) {
+  for (const ModelNumber& m : kModelNumbers) {
+    const double v = p.*m.field;
+    if (std::isfinite(v) && (m.lo_open ? v > m.lo : v >= m.lo) && (m.hi_open ? v < m.hi : v <= m.hi)) continue;
+    return physics::ParameterIssue{fmt::format("model.{}", m.key), v,
+                                    fmt::format("{}{}, {}{}", m.lo_open ? "(" : "[", m.lo, m.hi, m.hi_open ? ")" : "]")};
+  }
+  return std::nullopt;
+}
+
 void parse_common(const toml::table& root, std::string_view file, CommonConfig& c) {
   bool tie_torques_given = false;
   bool couple_torque_given = false;
   {  // [model]: ranges that depend on each other are checked by physics::validate below.
     Reader r(subtable(root, "model", file), "model", file);
     physics::Parameters& p = c.model.p;
-    constexpr double inf = std::numeric_limits<double>::infinity();
-    p.string_length = r.number("string_length", p.string_length, 0.0, 100.0, true);
-    p.bead_mass = r.number("bead_mass", p.bead_mass, 0.0, inf, true, true);
-    p.ball_mass = r.number("ball_mass", p.ball_mass, 0.0, inf, true, true);
-    p.drag = r.number("drag", p.drag, 0.0, inf, false, true);
-    p.mu_static = r.number("mu_static", p.mu_static, 0.0, inf, false, true);
-    p.mu_kinetic = r.number("mu_kinetic", p.mu_kinetic, 0.0, inf, false, true);
-    p.gravity = r.number("gravity", p.gravity, 0.0, inf, false, true);
-    p.drive_radius = r.number("drive_radius", p.drive_radius, 0.0, inf, false, true);
-    p.contact_distance = r.number("contact_distance", p.contact_distance, 0.0, inf, true, true);
-    p.top_stop = r.number("top_stop", p.top_stop, 0.0, inf, false, true);
     tie_torques_given = r.has("tie_static_torque") && r.has("tie_kinetic_torque");
-    p.tie_static_torque = r.number("tie_static_torque", p.tie_static_torque, 0.0, inf, false, true);
-    p.tie_kinetic_torque = r.number("tie_kinetic_torque", p.tie_kinetic_torque, 0.0, inf, false, true);
-    p.tie_inertia = r.number("tie_inertia", p.tie_inertia, 0.0, inf, true, true);
-    p.tie_damping = r.number("tie_damping", p.tie_damping, 0.0, inf, false, true);
     couple_torque_given = r.has("couple_torque");
-    p.couple_torque = r.number("couple_torque", p.couple_torque, 0.0, inf, false, true);
-    p.couple_slip_rate = r.number("couple_slip_rate", p.couple_slip_rate, 0.0, inf, true, true);
+    for (const ModelNumber& m : kModelNumbers)
+      p.*m.field = r.number(m.key, p.*m.field, m.lo, m.hi, m.lo_open, m.hi_open);
     r.reject_unknown();
     for (const auto& issue : physics::validate(c.model))
       throw ConfigError(fmt::format("{}: key '{}': {} is out of range; allowed {}", file, issue.key,
@@ -292,10 +328,10 @@ void parse_common(const toml::table& root, std::string_view file, CommonConfig& 
     const std::string axes = r.word("axes", "rotating", {"rotating", "lab", "auto"});
     c.run.axes = axes == "lab" ? sim::Axes::Lab : axes == "auto" ? sim::Axes::Auto : sim::Axes::Rotating;
     c.run.projection_tol = r.number("projection_tol", 1e-12, 0.0, 1e-3, true);
-    c.run.max_events = long(r.number("max_events", 1e6, 1.0, 1e12));
+    c.run.max_events = r.count("max_events", 1000000, 1.0, 1e12);
     c.run.omega_window = r.number("omega_window", 10.0, 0.0, 1e7, true);
     c.run.rest_speed = r.number("rest_speed", c.run.rest_speed, 0.0, 1.0);
-    c.run.chatter_switches = int(r.number("chatter_switches", c.run.chatter_switches, 2.0, 1e6));
+    c.run.chatter_switches = int(r.count("chatter_switches", c.run.chatter_switches, 2.0, 1e6));
     c.run.chatter_window = r.number("chatter_window", c.run.chatter_window, 0.0, 1e3, true);
     r.reject_unknown();
   }
@@ -363,6 +399,9 @@ toml::table parse_root(std::string_view text, std::string_view file, const std::
 }
 
 std::string read_file(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw ConfigError(fmt::format("{}: is a directory; give the configuration file (TOML) itself", path));
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ConfigError(fmt::format("{}: cannot open the configuration file", path));
   std::stringstream ss;
@@ -449,7 +488,7 @@ std::vector<double> value_list(const toml::node& n, const std::string& key, std:
     for (const char* k : {"start", "stop", "num"})
       if (!r.has(k)) r.fail(k, "missing: give start, stop and num (num >= 1)");
     const double a = r.number("start", 0.0, -1e12, 1e12), b = r.number("stop", 0.0, -1e12, 1e12);
-    const int num = int(r.number("num", 1.0, 1.0, 1e5));
+    const int num = int(r.count("num", 1, 1.0, 1e5));
     r.reject_unknown();
     for (int i = 0; i < num; ++i) out.push_back(num == 1 ? a : a + (b - a) * i / (num - 1));
   } else {
@@ -464,7 +503,7 @@ std::vector<sweep::Segment> parse_protocol(const toml::table& root, std::string_
   Reader r(pt, "protocol", file);
   c.start_omega = r.number("start_omega", 0.0, 0.0, kOmegaMax);
   c.start_seed = r.word("start_seed", "hanging", {"hanging", "circular_high", "locked_orbit"});
-  c.windows_per_task = int(r.number("windows_per_task", 10.0, 1.0, 1e6));
+  c.windows_per_task = int(r.count("windows_per_task", 10, 1.0, 1e6));
   c.sample_rate = r.number("sample_rate", 100.0, 0.0, 1e5, true);
   const toml::array* arr = pt.get_as<toml::array>("segment");
   r.known("segment");  // its content is checked below
@@ -494,7 +533,7 @@ std::vector<sweep::Segment> parse_protocol(const toml::table& root, std::string_
       seg.steps.from = s.number("from", 0.0, 0.0, kOmegaMax);
       seg.steps.to = s.number("to", 0.0, 0.0, kOmegaMax);
       if (!s.has("num")) s.fail("num", "missing (number of levels, >= 1)");
-      seg.steps.num = int(s.number("num", 1.0, 1.0, 1e5));
+      seg.steps.num = int(s.count("num", 1, 1.0, 1e5));
       if (!s.has("measure")) s.fail("measure", "missing (measured hold at each level [s])");
       seg.steps.settle = s.number("settle", 0.0, 0.0, 1e6);
       seg.steps.measure = s.number("measure", 0.0, 0.0, 1e6, true);
@@ -508,6 +547,25 @@ std::vector<sweep::Segment> parse_protocol(const toml::table& root, std::string_
 }  // namespace
 
 namespace {
+
+// The chains of a sweep: the grid's points, times (hold) the held ω_m, seeds and perturbations.
+void check_chain_count(const SweepConfig& c) {
+  double chains = 1.0;
+  std::vector<std::string> factors;
+  for (const auto& axis : c.grid) {
+    chains *= double(axis.values.size());
+    factors.push_back(fmt::format("grid.{}: {}", axis.key, axis.values.size()));
+  }
+  if (c.hold) {
+    chains *= double(c.hold->omega.size()) * double(c.hold->seeds.size()) * double(c.hold->perturbations + 1);
+    factors.push_back(fmt::format("hold.omega: {}, hold.seeds: {}, hold.perturbations + 1: {}", c.hold->omega.size(),
+                                  c.hold->seeds.size(), c.hold->perturbations + 1));
+  }
+  if (chains > double(kMaxChains))
+    throw ConfigError(fmt::format("{}: key '{}': the sweep has {:.0f} chains ({}); allowed at most {}", c.source_name,
+                                  c.grid.empty() ? "hold" : "grid", chains, fmt::join(factors, ", "), kMaxChains));
+}
+
 
 // The tables of one sweep (a plain file, or one part of a grouped one) after [model],
 // [layers], [integrator] and [initial]: [protocol] or [hold], [grid], [output].
@@ -541,7 +599,7 @@ void read_sweep_tables(const toml::table& root, SweepConfig& c) {
     } else if (ht.contains("seeds")) {
       r.fail("seeds", "expected an array of names (hanging, circular_high, locked_orbit)");
     }
-    h.perturbations = int(r.number("perturbations", 0.0, 0.0, 1000.0));
+    h.perturbations = int(r.count("perturbations", 0, 0.0, 1000.0));
     h.perturbation = r.number("perturbation", h.perturbation, 0.0, 10.0, true);
     c.sample_rate = r.number("sample_rate", 100.0, 0.0, 1e5, true);
     r.reject_unknown();
@@ -565,6 +623,7 @@ void read_sweep_tables(const toml::table& root, SweepConfig& c) {
     c.output_path = r.text("path", c.output_path);
     r.reject_unknown();
   }
+  check_chain_count(c);  // before the grid is expanded: a sweep too large to hold is refused, not run out of memory
   expand_grid(c);  // every grid point is checked before any work
   if (c.hold) return;
   try {
@@ -792,14 +851,16 @@ std::vector<GridPoint> expand_grid(const SweepConfig& c) {
       if (const GridParameter* axis = grid_parameter(k)) {
         axis->set(g.model.p, v);
       } else {  // ramp_rate
-        if (!(v > 0.0))
-          throw ConfigError(fmt::format("{}: key 'grid.ramp_rate[{}]': {} is out of range; allowed > 0 rad/s²",
+        if (!(v > 0.0 && v <= 1e4))  // as protocol.segment[i].rate
+          throw ConfigError(fmt::format("{}: key 'grid.ramp_rate[{}]': {} is out of range; allowed (0, 10000] rad/s²",
                                         c.source_name, at[a], v));
         for (auto& seg : g.protocol)
           if (seg.kind == sweep::Segment::Kind::Ramp) seg.ramp.rate = v;
       }
     }
-    for (const auto& issue : physics::validate(g.model)) {
+    std::vector<physics::ParameterIssue> issues = physics::validate(g.model);  // in the physics' words first
+    if (auto issue = model_number_issue(g.model.p)) issues.push_back(*issue);  // then the ranges of [model]
+    for (const auto& issue : issues) {
       std::string where;
       for (std::size_t a = 0; a < c.grid.size(); ++a) where += fmt::format(" grid.{}[{}]", c.grid[a].key, at[a]);
       throw ConfigError(fmt::format("{}: key '{}' at grid point{}: {} is out of range; allowed {}", c.source_name,
@@ -833,7 +894,7 @@ OrbitsConfig parse_orbits_config(std::string_view text, std::string_view source_
           throw ConfigError(fmt::format("{}: key 'orbits.omega[{}]': {} is out of range; allowed (0, 2000] rad/s", file,
                                         i, c.orbits.omega[i]));
     }
-    c.orbits.s_points = int(r.number("s_points", c.orbits.s_points, 2, 10000));
+    c.orbits.s_points = int(r.count("s_points", c.orbits.s_points, 2, 10000));
     c.orbits.parameter = r.word("continue", "", orbits::continuation_parameters());
     if (const toml::array* a = t->get_as<toml::array>("range")) {
       r.known("range");

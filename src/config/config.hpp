@@ -112,6 +112,11 @@ struct GridPoint {
 // Every point is validated; errors name the file and the grid key.
 std::vector<GridPoint> expand_grid(const SweepConfig& c);
 
+// The most chains a sweep may have: its plan and file layout are held in memory on rank 0
+// (about 1 kB a chain), and a grid that multiplies past this is a typing error more often than
+// a plan. Checked before the grid is expanded.
+inline constexpr std::size_t kMaxChains = 1'000'000;
+
 SweepConfig parse_sweep_config(std::string_view text, std::string_view source_name,
                                const std::vector<std::string>& overrides = {});
 SweepConfig load_sweep_config(const std::string& path, const std::vector<std::string>& overrides = {});

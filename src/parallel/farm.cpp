@@ -125,11 +125,16 @@ class FarmComm {
     check_mpi(MPI_Send(msg.data(), static_cast<int>(msg.size()), MPI_BYTE, dest, tag, comm_), "MPI_Send");
   }
 
-  // Blocking wait for the next message from `source`.
-  MPI_Status probe(int source) const {
+  // Waits for the next message from `source`, polling with `backoff` between looks: MPI_Probe
+  // busy-polls in Open MPI, so a worker waiting for work would hold a core at 100 %.
+  template <class Backoff>
+  MPI_Status probe(int source, Backoff& backoff) const {
     MPI_Status st;
-    check_mpi(MPI_Probe(source, MPI_ANY_TAG, comm_, &st), "MPI_Probe");
-    return st;
+    for (backoff.reset();; backoff.wait()) {
+      int flag = 0;
+      check_mpi(MPI_Iprobe(source, MPI_ANY_TAG, comm_, &flag, &st), "MPI_Iprobe");
+      if (flag) return st;
+    }
   }
 
   // Non-blocking: a message from anyone, if one is waiting.
@@ -221,6 +226,7 @@ class Scheduler {
   }
 
   bool failed() const { return error_ != nullptr; }
+  std::size_t chains() const { return states_.size(); }
   void rethrow_if_failed() const {
     if (error_) std::rethrow_exception(error_);
   }
@@ -265,6 +271,13 @@ class Scheduler {
       deliver(nr);
     }
     s.next = s.chain.tasks.size();
+  }
+
+  // Chain c's task in flight goes back to the ready set, to run again elsewhere.
+  void requeue(std::size_t c) {
+    states_[c].in_flight = false;
+    --in_flight_;
+    ready_.insert(c);
   }
 
   // Calls on_progress if the interval has passed since the last call (or the start).
@@ -385,16 +398,41 @@ FarmSummary run_in_process(std::vector<Chain> chains, const WorkFunction& work, 
   return s;
 }
 
-// Tasks in flight past the wall-clock bound: delivered as failed, their workers given up.
-void give_up_late(double timeout, const std::vector<Clock::time_point>& handed,
-                  std::vector<std::optional<std::size_t>>& assigned, std::vector<bool>& lost, int& n_lost,
+// The wall-clock bound of a task now [s]; 0: none (FarmOptions::task_timeout).
+double task_bound(const FarmOptions& o, double slowest_task) {
+  if (o.task_timeout > 0) return o.task_timeout;
+  if (o.timeout_factor <= 0 || slowest_task <= 0) return 0.0;
+  return std::max(o.min_task_timeout, o.timeout_factor * slowest_task);
+}
+
+// The master's record of the workers: what each holds and since when, and which are given up.
+struct Workers {
+  std::vector<std::optional<std::size_t>> assigned;  // chain per worker
+  std::vector<Clock::time_point> handed;             // when each worker got its task
+  std::vector<bool> lost;                            // past the task bound, given up
+  int n_lost = 0;
+  explicit Workers(int size)
+      : assigned(static_cast<std::size_t>(size)), handed(static_cast<std::size_t>(size)),
+        lost(static_cast<std::size_t>(size), false) {}
+};
+
+// Tasks in flight past the bound: their workers given up, the tasks handed out again (or, after
+// max_attempts timeouts, delivered as failed).
+void give_up_late(const FarmOptions& options, double bound, Workers& ws, std::vector<int>& attempts,
                   Scheduler& sched) {
-  for (std::size_t w = 1; w < assigned.size(); ++w) {
-    if (!assigned[w] || seconds_since(handed[w]) <= timeout) continue;
-    const std::size_t c = *assigned[w];
-    assigned[w].reset();
-    lost[w] = true;
-    ++n_lost;
+  for (std::size_t w = 1; w < ws.assigned.size(); ++w) {
+    if (!ws.assigned[w] || seconds_since(ws.handed[w]) <= bound) continue;
+    const std::size_t c = *ws.assigned[w];
+    ws.assigned[w].reset();
+    ws.lost[w] = true;
+    ++ws.n_lost;
+    const double waited = seconds_since(ws.handed[w]);
+    std::fprintf(stderr, "warning: rank %zu: no result after %.1f s (the task bound is %.3g s); rank %zu given up, "
+                 "its task handed to another\n", w, waited, bound, w);
+    if (++attempts[c] < options.max_attempts) {
+      sched.requeue(c);
+      continue;
+    }
     const Task& t = sched.task(c);
     TaskResult r;
     r.task_id = t.id;
@@ -402,10 +440,10 @@ void give_up_late(double timeout, const std::vector<Clock::time_point>& handed,
     r.index = t.index;
     r.ran = true;
     r.rank = static_cast<int>(w);
-    r.wall_seconds = seconds_since(handed[w]);
-    char buf[160];
-    std::snprintf(buf, sizeof buf, "no result after %.1f s on rank %zu (the task wall-clock bound is %g s); rank %zu given up",
-                  r.wall_seconds, w, timeout, w);
+    r.wall_seconds = waited;
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "no result after %.1f s on rank %zu (the task wall-clock bound is %.3g s; it timed "
+                  "out on %d ranks); rank %zu given up", waited, w, bound, attempts[c], w);
     r.error = buf;
     sched.finish(c, std::move(r));
   }
@@ -417,11 +455,10 @@ FarmSummary run_master(const FarmComm& comm, int size, std::vector<Chain> chains
   const int workers = size - 1;
   std::vector<double> busy(static_cast<std::size_t>(size), 0.0);
   std::vector<std::int64_t> ran(static_cast<std::size_t>(size), 0);
-  std::vector<std::optional<std::size_t>> assigned(static_cast<std::size_t>(size));  // chain per worker
+  Workers ws(size);
   std::deque<int> idle;  // workers waiting for a task, in the order they asked
-  std::vector<Clock::time_point> handed(static_cast<std::size_t>(size));  // when each worker got its task
-  std::vector<bool> lost(static_cast<std::size_t>(size), false);          // past the task timeout
-  int n_lost = 0;
+  std::vector<int> attempts(sched.chains(), 0);  // per chain: timeouts of its task in flight
+  double slowest = 0;  // the longest task finished so far [s]
   Clock::time_point last_timeout_check = start;
   std::uint64_t sent = 0, received = 0;
   bool stopping = false;
@@ -442,18 +479,19 @@ FarmSummary run_master(const FarmComm& comm, int size, std::vector<Chain> chains
       const Bytes msg = pack(h, t.input, sched.carry(c));
       comm.send(msg, w, kTagTask);
       sent += msg.size();
-      assigned[static_cast<std::size_t>(w)] = c;
-      handed[static_cast<std::size_t>(w)] = Clock::now();
+      ws.assigned[static_cast<std::size_t>(w)] = c;
+      ws.handed[static_cast<std::size_t>(w)] = Clock::now();
     }
     // Done when every worker is waiting (so none has a message still on its way) and there is
     // nothing more to hand out.
     // Lost workers never ask again: with none left, what is still ready never starts.
-    const int active = workers - n_lost;
+    const int active = workers - ws.n_lost;
     if (static_cast<int>(idle.size()) == active && (stopping || !sched.has_ready() || active == 0)) break;
 
     // Timeouts are checked every 50 ms at most (a pass costs one look per worker).
-    if (options.task_timeout > 0 && seconds_since(last_timeout_check) > 0.05) {
-      give_up_late(options.task_timeout, handed, assigned, lost, n_lost, sched);
+    const double bound = task_bound(options, slowest);
+    if (bound > 0 && seconds_since(last_timeout_check) > 0.05) {
+      give_up_late(options, bound, ws, attempts, sched);
       last_timeout_check = Clock::now();
     }
     const std::optional<MPI_Status> st = comm.iprobe();
@@ -466,12 +504,12 @@ FarmSummary run_master(const FarmComm& comm, int size, std::vector<Chain> chains
     Message m = comm.receive(*st);
     received += m.buf.size();
     const int w = m.source;
-    if (m.tag == kTagResult && lost[static_cast<std::size_t>(w)]) {
-      // The late result of a task already reported as failed: dropped; the rank works again.
-      lost[static_cast<std::size_t>(w)] = false;
-      --n_lost;
+    if (m.tag == kTagResult && ws.lost[static_cast<std::size_t>(w)]) {
+      // The late result of a task handed out again (or reported failed): dropped; the rank works again.
+      ws.lost[static_cast<std::size_t>(w)] = false;
+      --ws.n_lost;
     } else if (m.tag == kTagResult) {
-      std::optional<std::size_t>& slot = assigned[static_cast<std::size_t>(w)];
+      std::optional<std::size_t>& slot = ws.assigned[static_cast<std::size_t>(w)];
       if (!slot || m.header.task_id != sched.task(*slot).id)
         throw std::runtime_error("farm: rank " + std::to_string(w) + " returned task " +
                                  std::to_string(m.header.task_id) + ", which it was not given");
@@ -490,6 +528,8 @@ FarmSummary run_master(const FarmComm& comm, int size, std::vector<Chain> chains
       r.rank = w;
       busy[static_cast<std::size_t>(w)] += r.wall_seconds;
       ++ran[static_cast<std::size_t>(w)];
+      slowest = std::max(slowest, r.wall_seconds);
+      attempts[c] = 0;
       sched.finish(c, std::move(r));
     } else if (m.tag != kTagHello) {
       throw std::runtime_error("farm: unexpected message tag " + std::to_string(m.tag) + " from rank " +
@@ -509,7 +549,7 @@ FarmSummary run_master(const FarmComm& comm, int size, std::vector<Chain> chains
   }
   sched.rethrow_if_failed();
   for (int w = 1; w < size; ++w)
-    if (lost[static_cast<std::size_t>(w)]) s.lost_ranks.push_back(w);
+    if (ws.lost[static_cast<std::size_t>(w)]) s.lost_ranks.push_back(w);
   s.busy_seconds = std::move(busy);
   s.tasks_per_rank = std::move(ran);
   s.bytes_sent = sent;
@@ -523,8 +563,9 @@ FarmSummary run_worker(const FarmComm& comm, int rank, int size, const WorkFunct
   s.busy_seconds.assign(static_cast<std::size_t>(size), 0.0);
   s.tasks_per_rank.assign(static_cast<std::size_t>(size), 0);
   comm.send(pack(Header{}), 0, kTagHello);
+  Backoff backoff;
   while (true) {
-    const Message m = comm.receive(comm.probe(0));
+    const Message m = comm.receive(comm.probe(0, backoff));
     if (m.tag == kTagStop) {
       if (m.header.code < 0 || m.header.code > static_cast<std::int32_t>(FarmStatus::Aborted))
         throw std::runtime_error("farm: stop message with unknown status " + std::to_string(m.header.code));

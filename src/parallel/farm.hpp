@@ -102,13 +102,19 @@ struct FarmOptions {
   // Rank 0 only, optional: called at most every progress_interval seconds.
   std::function<void(const Progress&)> on_progress;
   double progress_interval = 1.0;
-  // Wall-clock bound of one task [s] (0: none), with >= 2 ranks. A task whose result has not
-  // come back within it is delivered as failed ("no result after ... s on rank r"), its chain
-  // ends, and its rank is given no more work (a rank may hang in a system call or in MPI
-  // itself; MPI cannot cancel it). Such a rank is listed in FarmSummary::lost_ranks; should
-  // its late result come after all, it is dropped and the rank works again. The caller must
-  // end the job with MPI_Abort while ranks are lost: they will not reach MPI_Finalize.
+  // Wall-clock bound of one task [s], with >= 2 ranks: task_timeout when > 0, else (when
+  // timeout_factor > 0) timeout_factor times the slowest task finished so far, at least
+  // min_task_timeout (no bound before the first result). A task whose result has not come back
+  // within it is handed to another worker (a stopped or hung rank: MPI cannot cancel it), and
+  // its rank is given no more work; after max_attempts such timeouts it is delivered as failed
+  // ("no result after ... s on rank r") and its chain ends. A rank given up is listed in
+  // FarmSummary::lost_ranks; should its late result come after all, it is dropped (the task ran
+  // elsewhere) and the rank works again. The caller must end the job with MPI_Abort while ranks
+  // are lost: they will not reach MPI_Finalize.
   double task_timeout = 0.0;
+  double timeout_factor = 0.0;
+  double min_task_timeout = 60.0;
+  int max_attempts = 3;
 };
 
 // Complete on rank 0. On worker ranks only status, ranks, wall_seconds and this rank's

@@ -1,0 +1,42 @@
+# Shared by the sweep fault tests (source it after check.sh, with bin, mpiexec and src set): the
+# sweep they interrupt, file comparison, and starting, watching and resuming it on 3 ranks.
+# Fixed-step RK4 at 0.2 ms makes each sweep about 2 s of CPU, so that every fault lands mid-sweep:
+# with its own dop853 the quick sweep ends in 0.3 s, and a kill the scheduler delays could come
+# after the end.
+sweep=("$src/sweeps/quick.toml" -q --set protocol.windows_per_task=1 --set "grid.drive_radius=[0.01,0.015,0.02]"
+       --set integrator.method=rk4 --set integrator.step=2e-4)
+same() { for g in /config /chains /windows /samples /tasks; do h5diff "$1" "$2" "$g" > /dev/null 2>&1 || return 1; done; }
+size() { stat -c %s "$1" 2> /dev/null || echo 0; }
+# The MPI rank of process $1.
+rank_of() { tr '\0' '\n' < "/proc/$1/environ" 2> /dev/null | sed -n 's/^OMPI_COMM_WORLD_RANK=//p'; }
+# Starts the sweep on 3 ranks into $1 and waits until its journal holds more than $2 bytes
+# (some tasks done, most not); sets mp (mpirun's pid) and rank0..rank2 (the ranks' pids).
+start_mpi() {
+  rm -f "$1"*
+  "$mpiexec" --oversubscribe -n 3 "$bin" sweep "${sweep[@]}" -o "$1" "${@:3}" > "$1.out" 2>&1 &
+  mp=$!
+  for _ in $(seq 1500); do [ "$(size "$1.journal")" -gt "$2" ] && break; sleep 0.01; done
+  rank0=; rank1=; rank2=
+  for k in $(pgrep -P $mp); do
+    r=$(rank_of $k)
+    [ -n "$r" ] && eval "rank$r=$k"
+  done
+}
+# Waits until the given pids are gone (the ranks of a killed job).
+gone() { for p in "$@"; do for _ in $(seq 100); do kill -0 "$p" 2> /dev/null || break; sleep 0.1; done; done; }
+resume() { "$mpiexec" --oversubscribe -n 3 "$bin" sweep "${sweep[@]}" -o "$1" --resume > "$1.resume" 2>&1; }
+
+# SIGSTOPs rank 2 of the job start_mpi started and waits up to $1 s for the master to end (sets
+# master_ended 0/1 and waited [s]); then lets mpirun end (its MPI_Abort ends the job; once,
+# Open MPI's mpirun here stayed waiting for the stopped rank) and rank 2 go on, so that nothing
+# is left behind; sets rc to mpirun's exit code.
+stop_rank2() {
+  kill -STOP "$rank2"
+  local t0=$(date +%s)
+  for _ in $(seq $(($1 * 10))); do kill -0 "$rank0" 2> /dev/null || break; sleep 0.1; done
+  waited=$(($(date +%s) - t0)); master_ended=1; kill -0 "$rank0" 2> /dev/null && master_ended=0
+  for _ in $(seq 100); do kill -0 "$mp" 2> /dev/null || break; sleep 0.1; done
+  kill -CONT "$rank2" 2> /dev/null
+  wait "$mp"; rc=$?
+  gone $rank2
+}
