@@ -54,12 +54,18 @@ demo() {
   mkdir -p out
   local ranks; ranks=$(( $(nproc) < 2 ? 2 : $(nproc) ))
   local start=$SECONDS
+  # An earlier demo that was interrupted left its finished tasks: continue it.
+  local resume=()
+  if [ -e out/paper.h5.part ] || [ -e out/paper.h5.journal ]; then
+    echo "note: continuing the interrupted main job (out/paper.h5.part)"
+    resume=(--resume)
+  fi
   if [ "$(id -u)" -eq 0 ]; then
     echo "note: running as root, where mpirun refuses; running the sweep as one process instead"
     echo "      (as a normal user this is: mpirun -n $ranks $BUILD_DIR/astrojax sweep sweeps/paper.toml)"
-    "$BUILD_DIR"/astrojax sweep sweeps/paper.toml -o out/paper.h5
+    "$BUILD_DIR"/astrojax sweep sweeps/paper.toml -o out/paper.h5 "${resume[@]}"
   else
-    mpirun -n "$ranks" "$BUILD_DIR"/astrojax sweep sweeps/paper.toml -o out/paper.h5
+    mpirun -n "$ranks" "$BUILD_DIR"/astrojax sweep sweeps/paper.toml -o out/paper.h5 "${resume[@]}"
   fi
   "$BUILD_DIR"/astrojax thresholds out/paper.h5 --markdown out/paper_thresholds.md --csv out/paper_thresholds.csv
   "$PYTHON" analysis/plot_hysteresis.py out/paper.h5 --thresholds out/paper_thresholds.csv -o out/paper_hysteresis.png
