@@ -106,7 +106,7 @@ rc=$?
 check "SIGTERM to run_sweep.sh: exit 4 (got $rc), no requeue outside Slurm" \
   "[ $rc -eq 4 ] && grep -q 'continue with' script.out && ! grep -q requeueing script.out"
 
-# A full disk under mpirun (a file-size limit on the master, SIGXFSZ ignored by a shell that
+# A full disk under mpirun (a file-size limit of half the finished file on the master, SIGXFSZ ignored by a shell that
 # then becomes the rank: mpirun resets the signals of what it starts): the job's code is the
 # master's 5, which run_sweep.sh does not requeue; the workers' stop no longer decides it.
 rm -f full.h5*
@@ -114,7 +114,7 @@ rm -f full.h5*
 mp=$!
 for _ in $(seq 1500); do [ -e full.h5.journal ] && break; sleep 0.01; done
 for k in $(pgrep -P $mp); do
-  [ "$(rank_of $k)" = 0 ] && prlimit --pid $k --fsize=1500000:1500000
+  [ "$(rank_of $k)" = 0 ] && prlimit --pid $k --fsize=$(($(size straight.h5) / 2)):$(($(size straight.h5) / 2))
 done
 wait $mp
 rc=$?

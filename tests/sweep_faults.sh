@@ -1,10 +1,10 @@
 # Shared by the sweep fault tests (source it after check.sh, with bin, mpiexec and src set): the
 # sweep they interrupt, file comparison, and starting, watching and resuming it on 3 ranks.
-# Fixed-step RK4 at 0.2 ms makes each sweep about 2 s of CPU, so that every fault lands mid-sweep:
+# Fixed-step RK4 at 0.1 ms makes each sweep about 3 s of CPU, so that every fault lands mid-sweep:
 # with its own dop853 the quick sweep ends in 0.3 s, and a kill the scheduler delays could come
 # after the end.
 sweep=("$src/sweeps/quick.toml" -q --set protocol.windows_per_task=1 --set "grid.drive_radius=[0.01,0.015,0.02]"
-       --set integrator.method=rk4 --set integrator.step=2e-4)
+       --set integrator.method=rk4 --set integrator.step=1e-4)
 same() { for g in /config /chains /windows /samples /tasks; do h5diff "$1" "$2" "$g" > /dev/null 2>&1 || return 1; done; }
 size() { stat -c %s "$1" 2> /dev/null || echo 0; }
 # The MPI rank of process $1.
