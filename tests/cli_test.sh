@@ -36,6 +36,14 @@ check "mistyped option: exit 2 and the nearest option" "[ $? -eq 2 ] && grep -q 
 "$bin" --version >"$work/version.out" 2>&1
 check "--version: exit 0, the version and the git commit" "[ $? -eq 0 ] && grep -Eq '^astrojax [0-9]+\.[0-9]+\.[0-9]+ \(git commit [0-9a-f]+|unknown\)' '$work/version.out'"
 
+# sweep --dry-run: the plan per group and variant, nothing run or written; bad input still 2.
+"$bin" sweep "$src/sweeps/paper.toml" --dry-run -o "$work/dry.h5" >"$work/dry.out" 2>&1
+check "--dry-run: exit 0, nothing written" "[ $? -eq 0 ] && [ ! -e '$work/dry.h5' ] && [ ! -e '$work/dry.h5.part' ] && [ ! -e '$work/dry.h5.journal' ]"
+check "--dry-run: one row per group and variant, and the totals" \
+  "[ \$(grep -Ec '^  (rise|up|fall) +(paper|clutch) ' '$work/dry.out') -eq 6 ] && grep -q 'in all: 6 chains, 82 tasks' '$work/dry.out'"
+"$bin" sweep "$src/sweeps/quick.toml" --dry-run --set model.drive_radius=-1 >/dev/null 2>"$work/dry_bad.err"
+check "--dry-run of a bad file: exit 2 naming the key" "[ $? -eq 2 ] && grep -q 'model.drive_radius' '$work/dry_bad.err'"
+
 # An unwritable output path is bad input too, found before any work.
 "$bin" run "$src/sweeps/spin_up.toml" -o /proc/no/such/dir/x.h5 >/dev/null 2>"$work/unwritable.err"
 rc=$?

@@ -34,6 +34,7 @@ struct SweepArgs {
   bool quiet = false;
   bool resume = false;  // continue an interrupted sweep from <output>.part
   bool force = false;   // start afresh even over an interrupted sweep's .part and journal
+  bool dry_run = false; // print the plan (chains, tasks, simulated seconds, a CPU estimate) and exit
   long max_tasks = 0;   // stop (resumably) after this many task results; 0: no limit
   double task_timeout = 0;  // [s] a task not back within it runs elsewhere, its rank given up; 0: automatic
   double min_task_timeout = 60;  // [s] the least automatic bound (20 times the slowest finished task)

@@ -69,6 +69,8 @@ int main(int argc, char** argv) {
   sweep_cmd->add_flag("-q,--quiet", sweep.quiet, "No progress lines");
   sweep_cmd->add_flag("--resume", sweep.resume,
                       "Continue an interrupted sweep from <output>.part (same file and overrides)");
+  sweep_cmd->add_flag("--dry-run", sweep.dry_run,
+                      "Check the file and print the plan (chains, tasks, simulated seconds, a CPU estimate); run nothing");
   sweep_cmd->add_flag("--force", sweep.force,
                       "Start afresh even where an interrupted sweep left <output>.part or <output>.journal "
                       "(their finished tasks are discarded)");
