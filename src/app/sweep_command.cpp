@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "app/commands.hpp"
+#include "app/progress.hpp"
 #include "app/output_paths.hpp"
 #include "app/sweep_file.hpp"
 #include "app/sweep_recovery.hpp"
@@ -340,8 +341,9 @@ int sweep_command(const SweepArgs& args) {
     const double elapsed = p.elapsed_seconds;
     const double rate = elapsed > 0 ? (simulated - done_sim) / elapsed : 0.0;
     const double eta = rate > 0 ? (total_sim - simulated) / rate : nan;
-    std::printf("%s%lld/%lld tasks, %lld failed, %.1f simulated s per wall s, ETA %.0f s%s", terminal ? "\r" : "",
-                (long long)p.done, (long long)p.total, (long long)p.failed, rate, eta, terminal ? "   " : "\n");
+    const double share = total_sim > 0 ? simulated / total_sim : 1.0;
+    std::printf("%s%s%s", terminal ? "\r" : "",
+                progress_line(p.done, p.total, p.failed, share, rate, eta, terminal).c_str(), terminal ? "   " : "\n");
     std::fflush(stdout);
   };
   fo.progress_interval = terminal ? 0.5 : 10.0;
