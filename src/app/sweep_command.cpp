@@ -392,8 +392,10 @@ int sweep_command(const SweepArgs& args) {
   const bool complete = std::none_of(status.begin(), status.end(), [](std::int32_t v) { return v == 0; });
   if (complete) {
     std::filesystem::rename(part_path, final_path);
+    // The file holds everything now. The journal goes while still locked: released first, a
+    // resume started in between would find it unlocked beside the finished file and redo it.
+    std::filesystem::remove(journal_path);
     journal.reset();
-    std::filesystem::remove(journal_path);  // the file holds everything now
   }
 
   std::printf("%s  %zu chains, %zu tasks (%lld failed, %lld not run, %lld never started), %.0f of %.0f simulated s "
