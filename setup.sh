@@ -54,11 +54,15 @@ demo() {
   mkdir -p out
   local ranks; ranks=$(( $(nproc) < 2 ? 2 : $(nproc) ))
   local start=$SECONDS
-  # An earlier demo that was interrupted left its finished tasks: continue it.
+  # An earlier demo that was interrupted left its finished tasks: continue it. One that
+  # finished is made again (--force replaces its file).
   local resume=()
   if [ -e out/paper.h5.part ] || [ -e out/paper.h5.journal ]; then
     echo "note: continuing the interrupted main job (out/paper.h5.part)"
     resume=(--resume)
+  elif [ -e out/paper.h5 ]; then
+    echo "note: out/paper.h5 exists from an earlier demo; making it again"
+    resume=(--force)
   fi
   if [ "$(id -u)" -eq 0 ]; then
     echo "note: running as root, where mpirun refuses; running the sweep as one process instead"
