@@ -12,9 +12,12 @@ site=$(realpath -m "$2")
 cd "$(dirname "$0")/.."
 [ -x "$bin" ] || { echo "error: $1 is not an executable astrojax" >&2; exit 2; }
 
-# The commands, as the program lists them: the indented words under its SUBCOMMANDS heading.
-mapfile -t commands < <("$bin" --help | awk '/^[A-Za-z]*[Ss][Uu][Bb][Cc][Oo][Mm][Mm][Aa][Nn][Dd][Ss]:/ {on = 1; next}
-                                             on && /^  [a-z]/ {print $1} on && /^[^ ]/ {on = 0}')
+# The subcommands a --help lists: the indented words under its SUBCOMMANDS heading.
+subcommands() {
+  "$bin" "$@" --help | awk 'toupper($0) ~ /^SUBCOMMANDS:/ {on = 1; next}
+                            on && /^  [a-z]/ {print $1} on && /^[^ ]/ {on = 0}'
+}
+mapfile -t commands < <(subcommands)
 [ ${#commands[@]} -gt 0 ] || { echo "error: $bin --help lists no commands" >&2; exit 1; }
 
 cli=docs/reference/cli.md
@@ -35,6 +38,14 @@ cli=docs/reference/cli.md
     echo '```text'
     "$bin" "$c" --help
     echo '```'
+    for sub in $(subcommands "$c"); do
+      echo
+      echo "### astrojax $c $sub"
+      echo
+      echo '```text'
+      "$bin" "$c" "$sub" --help
+      echo '```'
+    done
   done
 } > "$cli.tmp"
 mv "$cli.tmp" "$cli"
