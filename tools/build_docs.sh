@@ -12,9 +12,12 @@ site=$(realpath -m "$2")
 cd "$(dirname "$0")/.."
 [ -x "$bin" ] || { echo "error: $1 is not an executable astrojax" >&2; exit 2; }
 
+# The program under the name a user types, so that its usage lines read "astrojax ...".
+ajx() { (exec -a astrojax "$bin" "$@"); }
+
 # The subcommands a --help lists: the indented words under its SUBCOMMANDS heading.
 subcommands() {
-  "$bin" "$@" --help | awk 'toupper($0) ~ /^SUBCOMMANDS:/ {on = 1; next}
+  ajx "$@" --help | awk 'toupper($0) ~ /^SUBCOMMANDS:/ {on = 1; next}
                             on && /^  [a-z]/ {print $1} on && /^[^ ]/ {on = 0}'
 }
 mapfile -t commands < <(subcommands)
@@ -29,21 +32,21 @@ cli=docs/reference/cli.md
   echo "with a worked example."
   echo
   echo '```text'
-  "$bin" --help
+  ajx --help
   echo '```'
   for c in "${commands[@]}"; do
     echo
     echo "## astrojax $c"
     echo
     echo '```text'
-    "$bin" "$c" --help
+    ajx "$c" --help
     echo '```'
     for sub in $(subcommands "$c"); do
       echo
       echo "### astrojax $c $sub"
       echo
       echo '```text'
-      "$bin" "$c" "$sub" --help
+      ajx "$c" "$sub" --help
       echo '```'
     done
   done
@@ -54,7 +57,7 @@ mv "$cli.tmp" "$cli"
 # keys command writes none, and mkdocs then fails if the navigation names the page.
 config=docs/reference/configuration.md
 if printf '%s\n' "${commands[@]}" | grep -qx keys; then
-  "$bin" keys --markdown > "$config.tmp"
+  ajx keys --markdown > "$config.tmp"
   mv "$config.tmp" "$config"
 else
   rm -f "$config"
