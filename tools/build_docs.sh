@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds the documentation site offline: writes the generated reference pages from a built
 # astrojax, copies the committed figures into docs/figures/, then runs mkdocs build --strict
-# (a broken link, a missing page or any other warning fails).
+# (a broken link, a missing page or any other warning fails), and checks every #anchor.
 #   tools/build_docs.sh ASTROJAX SITE_DIR
 # Generated, git-ignored: docs/reference/cli.md (every command's --help),
 # docs/reference/configuration.md (astrojax keys --markdown), docs/figures/*.png.
@@ -67,6 +67,8 @@ mkdir -p docs/figures
 cp analysis/figures/*.png docs/figures/
 
 mkdocs build --strict --quiet -f mkdocs.yml -d "$site"
+# mkdocs checks the pages links point to, not their #anchors: this does.
+/usr/bin/python3 tools/check_anchors.py "$site"
 
 # MathJax from Debian's libjs-mathjax, linked rather than copied (41 MB).
 ln -sfn /usr/share/javascript/mathjax "$site/mathjax"
