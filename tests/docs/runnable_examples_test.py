@@ -1,8 +1,8 @@
 """Runs the shell examples of the documentation that are marked runnable, against a built
 astrojax, in a temporary folder: the guide must not show a command that fails.
 
-A block is runnable when the line before its opening fence is an HTML comment starting with
-"runnable" (`<!-- runnable -->`), which the rendered page does not show. Blocks of one page run
+A block is runnable when the line before its opening fence is an HTML comment at the start of
+the line, starting with "runnable" (`<!-- runnable -->`), which the rendered page does not show. Blocks of one page run
 in order, in one folder, so a later block may read what an earlier one wrote. The folder looks
 like a checkout: build/astrojax is the astrojax under test, and sweeps/, analysis/ and
 tests/data/ are the repository's (read only; outputs go to out/).
@@ -27,7 +27,7 @@ def runnable_blocks(page):
     lines = page.read_text().split("\n")
     blocks = []
     for i, line in enumerate(lines):
-        if not MARK.match(line.strip()):
+        if not MARK.match(line):  # at the start of the line: an indented one is an example
             continue
         fence = FENCE.match(lines[i + 1]) if i + 1 < len(lines) else None
         if not fence or fence.group(1) not in ("sh", "bash", "shell"):
