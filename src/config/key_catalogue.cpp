@@ -9,6 +9,7 @@
 #include "orbits/continuation.hpp"
 #include "physics/parameter_table.hpp"
 #include "sim/table1_starts.hpp"
+#include "sweep/orbit_classifier.hpp"
 
 namespace ajx::config {
 
@@ -208,6 +209,11 @@ std::vector<KeyInfo> build() {
                     "the parameter a branch is continued in"));
   k.push_back(other("orbits", "range", "[lo, hi]", "", "lo < hi", "", "the continued parameter's interval"));
   k.push_back(other("orbits", "s", "number or list", "m", "each between the stops", "", "the bead's arc lengths s* of the table"));
+  // The classifier's settings: not in files, but given to classify as --set classifier.NAME=value.
+  const sweep::ClassifierSettings defaults;
+  for (const sweep::ClassifierSettingInfo& c : sweep::classifier_setting_table())
+    k.push_back(num("classifier", std::string(c.name), std::string(c.unit), 0.0, kInf, true, true,
+                    fmt::format("{}", defaults.*c.field), std::string(c.doc)));
   return k;
 }
 
@@ -254,6 +260,8 @@ std::string key_reference_markdown() {
       const std::string title = section == "schedule" || section == "protocol.segment" || section == "group"
                                     ? fmt::format("`[[{}]]`", section)
                                 : section == "variant" ? std::string("`[variant.NAME]`")
+                                : section == "classifier"
+                                    ? std::string("Classifier settings (`astrojax classify --set classifier.NAME=value`)")
                                 : section == "grid.*"
                                     ? std::string("A value list `{start, stop, num}` (a [grid] axis, hold.omega, orbits.omega, orbits.s)")
                                     : fmt::format("`[{}]`", section);

@@ -489,22 +489,29 @@ OrbitClassification classify_orbit(const OrbitWindow& w, const OrbitScales& sc, 
   return out;
 }
 
+namespace {
+using S = ClassifierSettings;
+// The settings `--set classifier.NAME=value` may change (every one a number > 0).
+const ClassifierSettingInfo kTunable[] = {
+    {"radius_floor", &S::radius_floor, "m", "mean radius below which a ball's azimuth, so ω_ball, is not trusted"},
+    {"min_samples_per_turn", &S::min_samples_per_turn, "", "azimuth steps above 2π/this are under-sampled"},
+    {"on_ball_tol", &S::on_ball_tol, "", "|l − L1 − d| <= this·d counts as the bead on the bottom ball"},
+    {"fallen_fraction", &S::fallen_fraction, "", "fallen when the bead is on the ball this share of each half window"},
+    {"radius_drift_tol", &S::radius_drift_tol, "", "steady: |Δρ̄|/ρ̄ between the window's halves"},
+    {"omega_drift_tol", &S::omega_drift_tol, "", "steady: min(|Δω_ball|/|ω_ball|, |Δν|/|ν|) between the halves"},
+    {"L1_drift_tol", &S::L1_drift_tol, "", "steady: |ΔL̄1|/l between the halves"},
+    {"spread_drift_tol", &S::spread_drift_tol, "", "a steady flower: |Δσ_ρ|/σ_ρ between the halves"},
+    {"min_cycles", &S::min_cycles, "", "oscillation cycles per window for the drift allowance and for a flower"},
+    {"max_rate_in_drag_units", &S::max_rate_in_drag_units, "", "circular: |ρ̇/ρ| <= this·γ, γ the drag rate"},
+    {"circular_max_rel_amplitude", &S::circular_max_rel_amplitude, "", "circular: the radius's amplitude a/ρ̄ at most this"},
+    {"locked_tol", &S::locked_tol, "", "locked: |ν − 1| at most this, ν = ω_ball/ω_m"},
+    {"free_swing_band", &S::free_swing_band, "", "a free swing: |ω_ball/√(g/l) − 1| within this"},
+};
+}  // namespace
+
+std::span<const ClassifierSettingInfo> classifier_setting_table() { return kTunable; }
+
 ClassifierSettings parse_classifier_settings(const std::vector<std::string>& name_values) {
-  using S = ClassifierSettings;
-  static const std::pair<const char*, double S::*> tunable[] = {
-      {"radius_floor", &S::radius_floor},
-      {"min_samples_per_turn", &S::min_samples_per_turn},
-      {"on_ball_tol", &S::on_ball_tol},
-      {"fallen_fraction", &S::fallen_fraction},
-      {"radius_drift_tol", &S::radius_drift_tol},
-      {"omega_drift_tol", &S::omega_drift_tol},
-      {"L1_drift_tol", &S::L1_drift_tol},
-      {"spread_drift_tol", &S::spread_drift_tol},
-      {"min_cycles", &S::min_cycles},
-      {"max_rate_in_drag_units", &S::max_rate_in_drag_units},
-      {"circular_max_rel_amplitude", &S::circular_max_rel_amplitude},
-      {"locked_tol", &S::locked_tol},
-      {"free_swing_band", &S::free_swing_band}};
   S settings;
   for (const std::string& kv : name_values) {
     const auto eq = kv.find('=');
@@ -516,8 +523,10 @@ ClassifierSettings parse_classifier_settings(const std::vector<std::string>& nam
     const std::string key = full.substr(kSection.size());
     std::string names;
     bool found = false;
-    for (const auto& [name, member] : tunable) {
-      names += std::string(names.empty() ? "" : ", ") + "classifier." + name;
+    for (const ClassifierSettingInfo& info : kTunable) {
+      const std::string_view name = info.name;
+      const auto member = info.field;
+      names += std::string(names.empty() ? "" : ", ") + "classifier." + std::string(name);
       if (key != name) continue;
       double v = std::numeric_limits<double>::quiet_NaN();
       try {

@@ -138,6 +138,14 @@ struct OrbitClassification {
 // allowed names.
 ClassifierSettings parse_classifier_settings(const std::vector<std::string>& name_values);
 
+// The settings --set classifier.NAME=value may change: name, field, unit, meaning.
+struct ClassifierSettingInfo {
+  std::string_view name;
+  double ClassifierSettings::*field;
+  std::string_view unit, doc;
+};
+std::span<const ClassifierSettingInfo> classifier_setting_table();
+
 // Pure: no I/O, no state. Throws std::invalid_argument when the array sizes disagree
 // (r1, r2: 3N; omega_m, L1: N; T1, T2, mode: N or empty).
 OrbitClassification classify_orbit(const OrbitWindow& w, const OrbitScales& scales,
