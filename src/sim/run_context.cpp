@@ -17,18 +17,6 @@ RunAxes RunAxes::choose(const physics::Model& model, const physics::MotorSchedul
   return {model, schedule, rotating};
 }
 
-physics::TopKinematics RunAxes::top(const Contact& c, double t, const Vec& y) const {
-  return rotating ? physics::top_in_rotating_axes(schedule, model.p.drive_radius, t)
-                  : physics::top_kinematics(model, schedule, c, t, y);
-}
-
-double RunAxes::angle(double t) const {
-  if (!rotating) return 0.0;
-  double phi, w, wd;
-  schedule.phase(t, phi, w, wd);
-  return phi;
-}
-
 numerics::System RunAxes::system(const Contact& contact) const {
   const physics::Model& m = model;
   const physics::MotorSchedule& sched = schedule;

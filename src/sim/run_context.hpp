@@ -3,6 +3,8 @@
 #pragma once
 #include "numerics/integrate.hpp"
 #include "physics/mode_transitions.hpp"
+#include "physics/rotating_axes.hpp"
+#include "physics/tie.hpp"
 #include "sim/simulation.hpp"
 
 namespace ajx::sim {
@@ -21,9 +23,18 @@ struct RunAxes {
                         const State& s);
   // The top of the string: the motor's a(t), or the tie's, for the bead's mode c (a slipping
   // tie's χ̈ depends on the string's pull in that mode).
-  physics::TopKinematics top(const Contact& c, double t, const numerics::Vec& y) const;
+  // (Inline: called at every guard evaluation.)
+  physics::TopKinematics top(const Contact& c, double t, const numerics::Vec& y) const {
+    return rotating ? physics::top_in_rotating_axes(schedule, model.p.drive_radius, t)
+                    : physics::top_kinematics(model, schedule, c, t, y);
+  }
   // The angle from the integrator's axes to the lab's: φ(t), or 0 in the lab.
-  double angle(double t) const;
+  double angle(double t) const {
+    if (!rotating) return 0.0;
+    double phi, w, wd;
+    schedule.phase(t, phi, w, wd);
+    return phi;
+  }
   // ẏ = f(t, y) in these axes for the mode `contact` holds when f is called.
   numerics::System system(const Contact& contact) const;
 };
