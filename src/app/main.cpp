@@ -34,6 +34,8 @@ const CLI::Validator non_empty([](std::string& s) { return s.empty() ? std::stri
 
 }  // namespace
 
+// Long for a reason: the command line's declaration, one CLI11 block per subcommand, read top to
+// bottom as the reference of every option; the commands themselves are in src/app/*_command.cpp.
 int main(int argc, char** argv) {
   CLI::App app{"astrojax: bifurcation explorer for the motor-driven Astrojax pendulum"};
   app.require_subcommand(1);

@@ -92,17 +92,12 @@ void print_plan(const config::SweepConfig& cfg, const sweep::SweepPlan& plan) {
               plan.total_duration / kSimulatedPerCpuSecond, kSimulatedPerCpuSecond);
 }
 
-}  // namespace
+// ---- parse ----------------------------------------------------------------------------------
 
-int sweep_command(const SweepArgs& args) {
-  const int rank = parallel::comm_rank(MPI_COMM_WORLD), ranks = parallel::comm_size(MPI_COMM_WORLD);
-  const bool master = rank == 0;
-
-  // Every rank parses the same file: the chains are then known everywhere and only task ids,
-  // states and results travel. Rank 0 reports errors; all ranks stop on them.
-  config::SweepConfig cfg;
-  sweep::SweepPlan plan;
-  std::string error;
+// Every rank parses the same file: the chains are then known everywhere and only task ids,
+// states and results travel. Returns the error (empty: none); rank 0 reports it, all ranks
+// stop on it.
+std::string parse_sweep(const SweepArgs& args, config::SweepConfig& cfg, sweep::SweepPlan& plan) {
   try {
     cfg = config::load_sweep_config(args.config_path, args.overrides);
     if (!args.output.empty()) cfg.output_path = args.output;
@@ -116,36 +111,34 @@ int sweep_command(const SweepArgs& args) {
     plan = sweep::make_plan(cfg);  // chains, each split into tasks on window boundaries
     check_sweep_memory(cfg, plan, args.max_memory);
   } catch (const config::ConfigError& e) {
-    error = e.what();
+    return e.what();
   }
-  if (args.dry_run) {  // the plan, checked like the sweep's, and nothing run or written
-    const bool ok = agree(error.empty());
-    if (master) {
-      if (ok)
-        print_plan(cfg, plan);
-      else
-        std::fprintf(stderr, "error: %s\n", error.empty() ? "invalid sweep file" : error.c_str());
-    }
-    return ok ? 0 : kExitBadInput;
-  }
-  const std::vector<sweep::ChainSetup>& setups = plan.setups;
-  const auto& spans = plan.spans;
-  const auto& first_task = plan.first_task;
-  const std::size_t n_tasks = plan.n_tasks, n_windows = plan.max_windows, cap = plan.max_samples;
-  const double total_sim = plan.total_duration;
+  return {};
+}
 
-  // Rank 0 opens the file: "<path>.part" while the sweep runs, renamed to <path> when every
-  // task has finished. --resume reopens the .part of an interrupted sweep. Every result goes
-  // first to the journal "<path>.journal" and then into the .part: a resume replays the
-  // journal onto the .part, or onto a new one when the old cannot be read (killed mid-write).
-  const std::filesystem::path final_path(cfg.output_path), part_path(cfg.output_path + ".part");
-  const std::filesystem::path journal_path(cfg.output_path + ".journal");
+// ---- the output: the file, the journal and the tasks' status (rank 0) -----------------------
+
+// Rank 0 opens the file: "<path>.part" while the sweep runs, renamed to <path> when every
+// task has finished. --resume reopens the .part of an interrupted sweep. Every result goes
+// first to the journal "<path>.journal" and then into the .part: a resume replays the
+// journal onto the .part, or onto a new one when the old cannot be read (killed mid-write).
+struct SweepOutput {
+  const SweepArgs& args;
+  const config::SweepConfig& cfg;
+  const sweep::SweepPlan& plan;
+  const std::filesystem::path final_path, part_path, journal_path;
   std::optional<SweepFile> file;
   std::optional<io::Journal> journal;
   io::JournalContents replay;
-  std::vector<std::int32_t> status;
-  const auto make_file = [&] {
-    file.emplace(io::File::create(part_path), setups.size(), n_windows, cap, n_tasks);
+  std::vector<std::int32_t> status;  // per task: 0 not yet, 1 ran, 2 failed, 3 not run
+  std::vector<std::string> failures;
+
+  SweepOutput(const SweepArgs& a, const config::SweepConfig& c, const sweep::SweepPlan& p)
+      : args(a), cfg(c), plan(p), final_path(c.output_path), part_path(c.output_path + ".part"),
+        journal_path(c.output_path + ".journal") {}
+
+  void make_file() {
+    file.emplace(io::File::create(part_path), plan.setups.size(), plan.max_windows, plan.max_samples, plan.n_tasks);
     file->create(cfg, plan);
     if (cfg.hold) {  // which ω_m, seed and perturbation each chain holds
       std::vector<double> w;
@@ -164,70 +157,74 @@ int sweep_command(const SweepArgs& args) {
           .set_attribute("description", "0: the seed itself; k >= 1: the seed with velocity kick k");
     }
     file->file().flush();
-  };
-  if (master && error.empty()) {
+  }
+
+  // --resume: the journal checked and reopened, the .part made again from the sweep file.
+  void open_resume() {
+    if (!std::filesystem::exists(part_path) && !std::filesystem::exists(journal_path)) {
+      throw config::ConfigError(fmt::format(
+          "{}: key 'output.path': nothing to resume: {} does not exist{}", cfg.source_name, part_path.string(),
+          std::filesystem::exists(final_path) ? fmt::format(" ({} is complete)", final_path.string()) : ""));
+    }
+    // Only the journal is trusted: its records carry CRC-32s, while a byte of the .part may have
+    // flipped anywhere (a carried state, /chains, a sample chunk) without HDF5 noticing.
+    if (!std::filesystem::exists(journal_path))
+      throw config::ConfigError(fmt::format(
+          "{}: key 'output.path': {} has no journal {}, so what it holds cannot be checked; start afresh with "
+          "--force", cfg.source_name, part_path.string(), journal_path.string()));
+    journal.emplace(io::Journal::open_append(journal_path));  // locked: no other sweep writes it
+    replay = io::Journal::read(journal_path);
+    if (replay.records.empty())  // killed before its first record
+      journal->append(kJournalIdentity, journal_identity(cfg));
+    else if (replay.records.front().key != kJournalIdentity || replay.records.front().payload != journal_identity(cfg))
+      throw config::ConfigError(fmt::format(
+          "{}: key 'output.path': {} was written by a different sweep file or overrides; resume it with the "
+          "same ones, or start afresh with --force",
+          cfg.source_name, journal_path.string()));
+    if (journal->cut_torn_tail())
+      std::fprintf(stderr, "warning: %s ended in a result cut short or damaged; that task runs again\n",
+                   journal_path.c_str());
+    // Every dataset made again from the sweep file, and every result from the journal (below).
+    std::printf("%s rebuilt from the sweep file and %s (%zu checksummed results)\n", part_path.c_str(),
+                journal_path.c_str(), replay.records.empty() ? 0 : replay.records.size() - 1);
+    std::filesystem::remove(part_path);
+    make_file();
+    status.assign(plan.n_tasks, 0);  // the journal's replay below says what is done
+  }
+
+  // Rank 0: the output checked and opened (afresh or resumed). Returns the error (empty: none).
+  std::string open() {
     try {
       check_output_path(cfg.source_name, "output.path", cfg.output_path, {args.config_path}, {".part", ".journal"});
       if (!args.resume) check_not_overwriting(cfg.source_name, "output.path", cfg.output_path, args.force);
       if (!args.resume && !args.force) check_no_unfinished_sweep(cfg, part_path, journal_path);
       if (args.resume) {
-        if (!std::filesystem::exists(part_path) && !std::filesystem::exists(journal_path)) {
-          throw config::ConfigError(fmt::format(
-              "{}: key 'output.path': nothing to resume: {} does not exist{}", cfg.source_name, part_path.string(),
-              std::filesystem::exists(final_path) ? fmt::format(" ({} is complete)", final_path.string()) : ""));
-        }
-        // Only the journal is trusted: its records carry CRC-32s, while a byte of the .part may have
-        // flipped anywhere (a carried state, /chains, a sample chunk) without HDF5 noticing.
-        if (!std::filesystem::exists(journal_path))
-          throw config::ConfigError(fmt::format(
-              "{}: key 'output.path': {} has no journal {}, so what it holds cannot be checked; start afresh with "
-              "--force", cfg.source_name, part_path.string(), journal_path.string()));
-        journal.emplace(io::Journal::open_append(journal_path));  // locked: no other sweep writes it
-        replay = io::Journal::read(journal_path);
-        if (replay.records.empty())  // killed before its first record
-          journal->append(kJournalIdentity, journal_identity(cfg));
-        else if (replay.records.front().key != kJournalIdentity || replay.records.front().payload != journal_identity(cfg))
-          throw config::ConfigError(fmt::format(
-              "{}: key 'output.path': {} was written by a different sweep file or overrides; resume it with the "
-              "same ones, or start afresh with --force",
-              cfg.source_name, journal_path.string()));
-        if (journal->cut_torn_tail())
-          std::fprintf(stderr, "warning: %s ended in a result cut short or damaged; that task runs again\n",
-                       journal_path.c_str());
-        // Every dataset made again from the sweep file, and every result from the journal (below).
-        std::printf("%s rebuilt from the sweep file and %s (%zu checksummed results)\n", part_path.c_str(),
-                    journal_path.c_str(), replay.records.empty() ? 0 : replay.records.size() - 1);
-        std::filesystem::remove(part_path);
-        make_file();
-        status.assign(n_tasks, 0);  // the journal's replay below says what is done
+        open_resume();
       } else {
-        check_space(cfg, final_path, setups, cap);
+        check_space(cfg, final_path, plan.setups, plan.max_samples);
         std::error_code ec;
         if (final_path.has_parent_path()) std::filesystem::create_directories(final_path.parent_path(), ec);
         journal.emplace(io::Journal::create(journal_path));  // locked first: no other sweep writes here
         make_file();
         journal->append(kJournalIdentity, journal_identity(cfg));
-        status.assign(n_tasks, 0);
+        status.assign(plan.n_tasks, 0);
       }
     } catch (const io::Hdf5Error& e) {
-      error = fmt::format("{}: key 'output.path': cannot write '{}' ({})", cfg.source_name, part_path.string(), e.what());
+      return fmt::format("{}: key 'output.path': cannot write '{}' ({})", cfg.source_name, part_path.string(), e.what());
     } catch (const io::JournalError& e) {
-      error = fmt::format("{}: key 'output.path': {}", cfg.source_name, e.what());
+      return fmt::format("{}: key 'output.path': {}", cfg.source_name, e.what());
     } catch (const config::ConfigError& e) {
-      error = e.what();
+      return e.what();
     }
-  }
-  if (!agree(error.empty())) {
-    if (master) std::fprintf(stderr, "error: %s\n", error.empty() ? "invalid sweep file" : error.c_str());
-    return kExitBadInput;
+    return {};
   }
 
   // One result into the file (the journal holds it already): the windows as the worker
   // classified and compressed them (sweep_result.hpp), written and flushed. A journal record is a kind byte and then: 1 (ran) the task's
   // output; 2 (failed without output: past the task wall-clock bound) the reason; 3 (not run)
-  // nothing.
-  std::vector<std::string> failures;
-  const auto commit = [&](std::size_t id, std::span<const std::byte> record) -> double {
+  // nothing. Returns the simulated seconds of the task.
+  double commit(std::size_t id, std::span<const std::byte> record) {
+    const auto& first_task = plan.first_task;
     if (record.empty() || std::to_integer<int>(record[0]) == 3) {
       status[id] = 3;
       file->write_not_run(id);
@@ -248,13 +245,15 @@ int sweep_command(const SweepArgs& args) {
     if (!out.ok) failures.push_back(fmt::format("task {} (chain {}, part {}): {}", id, chain, id - first_task[chain], out.failure));
     file->write_task(id, chain, result);  // written and flushed at once
     return out.simulated;  // [s]
-  };
-  if (master && replay.records.size() > 1) {
+  }
+
+  // --resume: every journal record committed again, onto a new .part when the old cannot be written.
+  void replay_journal() {
     const auto replay_all = [&] {
       for (std::size_t k = 1; k < replay.records.size(); ++k) {
         const std::int64_t id = replay.records[k].key;
-        if (id < 0 || std::size_t(id) >= n_tasks)
-          throw io::JournalError(fmt::format("{}: record {} names task {} of {}", journal_path.string(), k, id, n_tasks));
+        if (id < 0 || std::size_t(id) >= plan.n_tasks)
+          throw io::JournalError(fmt::format("{}: record {} names task {} of {}", journal_path.string(), k, id, plan.n_tasks));
         commit(std::size_t(id), replay.records[k].payload);
       }
     };
@@ -266,63 +265,74 @@ int sweep_command(const SweepArgs& args) {
       file.reset();
       std::filesystem::remove(part_path);
       make_file();
-      status.assign(n_tasks, 0);
+      status.assign(plan.n_tasks, 0);
       failures.clear();
       replay_all();
     }
   }
+};
 
-  // The work: decode (chain, span), integrate, return the windows and the carry.
-  const parallel::WorkFunction work = [&](const parallel::Task& task, const parallel::Bytes& carry) {
+// ---- plan: the chains still to run (rank 0) --------------------------------------------------
+
+// Each chain from its first task that never ran, with the state its predecessor left (stored
+// in the file); chains that finished or failed are done. done_sim: the simulated seconds of
+// the tasks already done.
+std::vector<parallel::Chain> chains_to_run(const SweepOutput& output, double& done_sim) {
+  const sweep::SweepPlan& plan = output.plan;
+  const auto& spans = plan.spans;
+  const auto& first_task = plan.first_task;
+  const auto& status = output.status;
+  std::vector<parallel::Chain> chains;
+  for (std::size_t c = 0; c < plan.setups.size(); ++c) {
+    std::size_t k = 0;
+    while (k < spans[c].size() && status[first_task[c] + k] == 1) ++k;
+    if (k > 0) done_sim += spans[c][k - 1].t_end;
+    if (k == spans[c].size() || status[first_task[c] + k] != 0) continue;
+    parallel::Chain ch;
+    ch.id = std::int64_t(c);
+    ch.carry = sweep::encode(k == 0 ? plan.start_state(c) : output.file->state(first_task[c] + k - 1));
+    for (std::size_t j = k; j < spans[c].size(); ++j) {
+      sweep::ByteWriter w;
+      w.put<std::int64_t>(std::int64_t(c));
+      w.put<std::int64_t>(std::int64_t(j));
+      ch.tasks.push_back({std::int64_t(first_task[c] + j), ch.id, std::int64_t(j), w.take()});
+    }
+    chains.push_back(std::move(ch));
+  }
+  return chains;
+}
+
+// ---- execute: the farm ------------------------------------------------------------------------
+
+// The work: decode (chain, span), integrate, return the windows and the carry.
+parallel::WorkFunction task_work(const sweep::SweepPlan& plan) {
+  return [&plan](const parallel::Task& task, const parallel::Bytes& carry) {
+    const auto& setups = plan.setups;
     sweep::ByteReader r(task.input.data(), task.input.size());
     const auto chain = std::size_t(r.get<std::int64_t>());
     const auto span = std::size_t(r.get<std::int64_t>());
-    sweep::TaskOutput out = sweep::run_task(setups[chain], spans[chain][span], sweep::decode_state(carry));
+    sweep::TaskOutput out = sweep::run_task(setups[chain], plan.spans[chain][span], sweep::decode_state(carry));
     parallel::Outcome o;
     o.ok = out.ok;
     o.error = out.failure;
     o.carry = sweep::encode(out.final_state);
-    o.output = encode(make_result(setups[chain], std::move(out), cap));  // classified and compressed here
+    o.output = encode(make_result(setups[chain], std::move(out), plan.max_samples));  // classified and compressed here
     return o;
   };
+}
 
-  // The chains still to run: each from its first task that never ran, with the state its
-  // predecessor left (stored in the file); chains that finished or failed are done.
-  std::vector<parallel::Chain> chains;
-  double done_sim = 0.0;
-  if (master) {
-    for (std::size_t c = 0; c < setups.size(); ++c) {
-      std::size_t k = 0;
-      while (k < spans[c].size() && status[first_task[c] + k] == 1) ++k;
-      if (k > 0) done_sim += spans[c][k - 1].t_end;
-      if (k == spans[c].size() || status[first_task[c] + k] != 0) continue;
-      parallel::Chain ch;
-      ch.id = std::int64_t(c);
-      ch.carry = sweep::encode(k == 0 ? plan.start_state(c) : file->state(first_task[c] + k - 1));
-      for (std::size_t j = k; j < spans[c].size(); ++j) {
-        sweep::ByteWriter w;
-        w.put<std::int64_t>(std::int64_t(c));
-        w.put<std::int64_t>(std::int64_t(j));
-        ch.tasks.push_back({std::int64_t(first_task[c] + j), ch.id, std::int64_t(j), w.take()});
-      }
-      chains.push_back(std::move(ch));
-    }
-    if (args.resume && !args.quiet)
-      std::printf("resuming %s: %zu of %zu chains to continue, %.0f of %.0f simulated s done\n", part_path.c_str(),
-                  chains.size(), setups.size(), done_sim, total_sim);
-  }
+// The simulated seconds: done before this job, done so far, in all.
+struct SimulatedSeconds {
+  double done_before = 0.0, done = 0.0, total = 0.0;
+};
 
-  double simulated = done_sim;
-  std::atomic<bool> stop{false};
-  if (master)
-    parallel::install_stop_handlers(stop);
-  else
-    parallel::ignore_stop_signals();
-
+// The farm's options: each result journalled and committed on rank 0 (stopping after
+// --max-tasks), the progress line, the task time bounds.
+parallel::FarmOptions farm_options(const SweepArgs& args, SweepOutput& output, SimulatedSeconds& sim,
+                                   std::atomic<bool>& stop, long& results, bool terminal) {
   parallel::FarmOptions fo;
   fo.stop = &stop;
-  long results = 0;
-  fo.on_result = [&](const parallel::TaskResult& r) {
+  fo.on_result = [&args, &output, &sim, &stop, &results](const parallel::TaskResult& r) {
     if (args.max_tasks > 0 && ++results >= args.max_tasks) stop = true;
     const auto id = std::size_t(r.task_id);
     const bool no_output = r.ran && !r.ok && r.output.empty();
@@ -332,17 +342,15 @@ int sweep_command(const SweepArgs& args) {
                     reinterpret_cast<const std::byte*>(r.error.data() + r.error.size()));
     else if (r.ran)
       record.insert(record.end(), r.output.begin(), r.output.end());
-    journal->append(r.task_id, record);  // committed: a resume replays it
-    simulated += commit(id, record);
+    output.journal->append(r.task_id, record);  // committed: a resume replays it
+    sim.done += output.commit(id, record);
   };
-  const auto wall0 = std::chrono::steady_clock::now();
-  const bool terminal = isatty(fileno(stdout));
-  fo.on_progress = [&](const parallel::Progress& p) {
+  fo.on_progress = [&args, &sim, terminal](const parallel::Progress& p) {
     if (args.quiet) return;
     const double elapsed = p.elapsed_seconds;
-    const double rate = elapsed > 0 ? (simulated - done_sim) / elapsed : 0.0;
-    const double eta = rate > 0 ? (total_sim - simulated) / rate : nan;
-    const double share = total_sim > 0 ? simulated / total_sim : 1.0;
+    const double rate = elapsed > 0 ? (sim.done - sim.done_before) / elapsed : 0.0;
+    const double eta = rate > 0 ? (sim.total - sim.done) / rate : nan;
+    const double share = sim.total > 0 ? sim.done / sim.total : 1.0;
     std::printf("%s%s%s", terminal ? "\r" : "",
                 progress_line(p.done, p.total, p.failed, share, rate, eta, terminal).c_str(), terminal ? "   " : "\n");
     std::fflush(stdout);
@@ -351,59 +359,57 @@ int sweep_command(const SweepArgs& args) {
   fo.task_timeout = args.task_timeout;
   fo.timeout_factor = kTaskTimeoutFactor;  // without --task-timeout: a task this many times the slowest is hung
   fo.min_task_timeout = args.min_task_timeout;
-  const std::string started = now_iso();
-  parallel::FarmSummary fs;
-  try {
-    fs = parallel::run_farm(std::move(chains), work, fo);
-  } catch (const std::runtime_error& e) {  // io::Hdf5Error, io::JournalError: disk full, ...
-    if (!master || !(dynamic_cast<const io::Hdf5Error*>(&e) || dynamic_cast<const io::JournalError*>(&e))) throw;
-    // The workers have been told to stop; every result committed to the journal is safe.
-    std::fprintf(stderr, "error: %s\nthe finished tasks are in %s (with %s); fix the cause and continue with the "
-                 "same command and --resume\n", e.what(), part_path.c_str(), journal_path.c_str());
-    return kExitOutputFailed;
-  }
-  // The job's exit code is the master's: mpirun returns the first non-zero code of any rank,
-  // so a worker that returned its own view (4 when the master stopped the farm) could decide it.
-  if (!master) return 0;
-  if (terminal && !args.quiet) std::printf("\n");
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  return fo;
+}
 
+// ---- report -----------------------------------------------------------------------------------
+
+void write_sweep_provenance(io::Group& prov, const SweepArgs& args, int ranks, const std::string& started,
+                            double wall, const parallel::FarmSummary& fs) {
+  char host[256] = "?";
+  gethostname(host, sizeof host - 1);
+  prov.set_attribute("program", "astrojax-explorer");
+  prov.set_attribute("command_line", args.command_line);
+  prov.set_attribute("ranks", ranks);
+  prov.set_attribute("host", std::string(host));
+  prov.set_attribute(args.resume ? "resume_start_time" : "start_time", started);
+  prov.set_attribute("end_time", now_iso());
+  prov.set_attribute(args.resume ? "resume_wall_time" : "wall_time", wall);
+  prov.set_attribute("farm_status", parallel::to_string(fs.status));
+  prov.set_attribute("tasks_per_second", fs.tasks_per_second);
+  prov.set_attribute("bytes_to_workers", fs.bytes_sent);  // farm messages, headers included
+  prov.set_attribute("bytes_from_workers", fs.bytes_received);
+  double work = 0;
+  for (double b : fs.busy_seconds) work += b;
+  prov.set_attribute("work_seconds", work);  // summed over ranks: integration alone
+  prov.set_attribute("master_result_seconds", fs.result_seconds);  // classify, journal, write
+  prov.set_attribute("version", ASTROJAX_VERSION);
+  prov.set_attribute("git_commit", ASTROJAX_GIT_COMMIT);  // at configure time
+}
+
+// Rank 0 after the farm: the file finished (and renamed when complete), the summary line, the
+// failures; returns the job's exit code.
+int report_sweep(const SweepArgs& args, SweepOutput& output, const parallel::FarmSummary& fs,
+                 const SimulatedSeconds& sim, const std::string& started, double wall, int ranks) {
+  std::vector<std::string>& failures = output.failures;
+  const std::vector<std::int32_t>& status = output.status;
+  const std::filesystem::path &final_path = output.final_path, &part_path = output.part_path;
   std::sort(failures.begin(), failures.end());
-  file->finish(failures, [&](io::Group& prov) {
-    char host[256] = "?";
-    gethostname(host, sizeof host - 1);
-    prov.set_attribute("program", "astrojax-explorer");
-    prov.set_attribute("command_line", args.command_line);
-    prov.set_attribute("ranks", ranks);
-    prov.set_attribute("host", std::string(host));
-    prov.set_attribute(args.resume ? "resume_start_time" : "start_time", started);
-    prov.set_attribute("end_time", now_iso());
-    prov.set_attribute(args.resume ? "resume_wall_time" : "wall_time", wall);
-    prov.set_attribute("farm_status", parallel::to_string(fs.status));
-    prov.set_attribute("tasks_per_second", fs.tasks_per_second);
-    prov.set_attribute("bytes_to_workers", fs.bytes_sent);  // farm messages, headers included
-    prov.set_attribute("bytes_from_workers", fs.bytes_received);
-    double work = 0;
-    for (double b : fs.busy_seconds) work += b;
-    prov.set_attribute("work_seconds", work);  // summed over ranks: integration alone
-    prov.set_attribute("master_result_seconds", fs.result_seconds);  // classify, journal, write
-    prov.set_attribute("version", ASTROJAX_VERSION);
-    prov.set_attribute("git_commit", ASTROJAX_GIT_COMMIT);  // at configure time
-  });
+  output.file->finish(failures, [&](io::Group& prov) { write_sweep_provenance(prov, args, ranks, started, wall, fs); });
   const bool complete = std::none_of(status.begin(), status.end(), [](std::int32_t v) { return v == 0; });
   if (complete) {
     std::filesystem::rename(part_path, final_path);
     // The file holds everything now. The journal goes while still locked: released first, a
     // resume started in between would find it unlocked beside the finished file and redo it.
-    std::filesystem::remove(journal_path);
-    journal.reset();
+    std::filesystem::remove(output.journal_path);
+    output.journal.reset();
   }
 
   std::printf("%s  %zu chains, %zu tasks (%lld failed, %lld not run, %lld never started), %.0f of %.0f simulated s "
               "in %.1f s wall on %d ranks -> %s\n",
-              !complete ? "INTERRUPTED" : failures.empty() ? "ok" : "FAILED", setups.size(), n_tasks, (long long)fs.failed, (long long)fs.not_run,
-              (long long)fs.unstarted, simulated, total_sim, wall, ranks,
-              complete ? final_path.c_str() : part_path.c_str());
+              !complete ? "INTERRUPTED" : failures.empty() ? "ok" : "FAILED", output.plan.setups.size(),
+              output.plan.n_tasks, (long long)fs.failed, (long long)fs.not_run, (long long)fs.unstarted, sim.done,
+              sim.total, wall, ranks, complete ? final_path.c_str() : part_path.c_str());
   for (const auto& fl : failures) std::printf("  failed: %s\n", fl.c_str());
   if (!complete)
     std::printf("the finished tasks are in %s; continue with the same command and --resume\n", part_path.c_str());
@@ -416,6 +422,73 @@ int sweep_command(const SweepArgs& args) {
     MPI_Abort(MPI_COMM_WORLD, code);
   }
   return code;
+}
+
+}  // namespace
+
+int sweep_command(const SweepArgs& args) {
+  const int rank = parallel::comm_rank(MPI_COMM_WORLD), ranks = parallel::comm_size(MPI_COMM_WORLD);
+  const bool master = rank == 0;
+
+  config::SweepConfig cfg;
+  sweep::SweepPlan plan;
+  std::string error = parse_sweep(args, cfg, plan);
+  if (args.dry_run) {  // the plan, checked like the sweep's, and nothing run or written
+    const bool ok = agree(error.empty());
+    if (master) {
+      if (ok)
+        print_plan(cfg, plan);
+      else
+        std::fprintf(stderr, "error: %s\n", error.empty() ? "invalid sweep file" : error.c_str());
+    }
+    return ok ? 0 : kExitBadInput;
+  }
+
+  SweepOutput output(args, cfg, plan);
+  if (master && error.empty()) error = output.open();
+  if (!agree(error.empty())) {
+    if (master) std::fprintf(stderr, "error: %s\n", error.empty() ? "invalid sweep file" : error.c_str());
+    return kExitBadInput;
+  }
+  if (master && output.replay.records.size() > 1) output.replay_journal();
+
+  std::vector<parallel::Chain> chains;
+  SimulatedSeconds sim;
+  sim.total = plan.total_duration;
+  if (master) {
+    chains = chains_to_run(output, sim.done_before);
+    if (args.resume && !args.quiet)
+      std::printf("resuming %s: %zu of %zu chains to continue, %.0f of %.0f simulated s done\n",
+                  output.part_path.c_str(), chains.size(), plan.setups.size(), sim.done_before, sim.total);
+  }
+  sim.done = sim.done_before;
+
+  std::atomic<bool> stop{false};
+  if (master)
+    parallel::install_stop_handlers(stop);
+  else
+    parallel::ignore_stop_signals();
+  long results = 0;
+  const auto wall0 = std::chrono::steady_clock::now();
+  const bool terminal = isatty(fileno(stdout));
+  const parallel::FarmOptions fo = farm_options(args, output, sim, stop, results, terminal);
+  const std::string started = now_iso();
+  parallel::FarmSummary fs;
+  try {
+    fs = parallel::run_farm(std::move(chains), task_work(plan), fo);
+  } catch (const std::runtime_error& e) {  // io::Hdf5Error, io::JournalError: disk full, ...
+    if (!master || !(dynamic_cast<const io::Hdf5Error*>(&e) || dynamic_cast<const io::JournalError*>(&e))) throw;
+    // The workers have been told to stop; every result committed to the journal is safe.
+    std::fprintf(stderr, "error: %s\nthe finished tasks are in %s (with %s); fix the cause and continue with the "
+                 "same command and --resume\n", e.what(), output.part_path.c_str(), output.journal_path.c_str());
+    return kExitOutputFailed;
+  }
+  // The job's exit code is the master's: mpirun returns the first non-zero code of any rank,
+  // so a worker that returned its own view (4 when the master stopped the farm) could decide it.
+  if (!master) return 0;
+  if (terminal && !args.quiet) std::printf("\n");
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  return report_sweep(args, output, fs, sim, started, wall, ranks);
 }
 
 }  // namespace ajx::app

@@ -431,12 +431,11 @@ std::string chain_name(const SweepWindows& sw, std::size_t c) {
   return label.empty() ? fmt::format("{}", c) : fmt::format("{} {}", c, label);
 }
 
-// One report, as text or as Markdown: per variant, a table of its brackets, the Hopf fits,
-// and the verdicts' reasons.
-std::string report(const ThresholdsArgs& args, const SweepWindows& sw, const std::vector<Row>& rows,
-                   const std::vector<std::optional<Onset>>& onsets, bool markdown, const std::string& hold_text) {
-  std::string out;
-  const auto line = [&](const std::vector<std::string>& cells, const std::vector<int>& widths) {
+// The report's table lines: Markdown rows, or text columns padded to their widths.
+struct TableText {
+  std::string& out;
+  bool markdown;
+  void line(const std::vector<std::string>& cells, const std::vector<int>& widths) const {
     if (markdown) {
       out += "| " + fmt::format("{}", fmt::join(cells, " | ")) + " |\n";
       return;
@@ -449,10 +448,94 @@ std::string report(const ThresholdsArgs& args, const SweepWindows& sw, const std
       if (i + 1 < cells.size()) l += std::string(std::size_t(std::max(0L, widths[i] - shown)), ' ');
     }
     out += l + "\n";
-  };
+  }
+};
+const std::vector<int> kReportWidths{10, 20, 18, 10, 34, 10, 18, 0};
+
+// The lines of threshold t in variant v: each chain's bracket (and its refinement), for ω2
+// also the Hopf fits; verdict reasons appended to `reasons`. False when none was reached.
+bool threshold_lines(const TableText& table, const SweepWindows& sw, const std::vector<Row>& rows,
+                     const std::vector<std::optional<Onset>>& onsets, std::size_t v, sweep::Threshold t,
+                     std::vector<std::string>& reasons) {
+  const std::vector<int>& widths = kReportWidths;
+  const double paper = sweep::paper_value(t);
+  bool any = false;
+  for (const Row& r : rows) {
+    if (r.threshold != t || sw.variant[r.chain] != v || !r.bracket) continue;
+    any = true;
+    const sweep::Bracket& b = *r.bracket;
+    const auto& ws = sw.chains[r.chain];
+    std::string verdict = "not judged";
+    if (r.held) {
+      verdict = std::string(sweep::to_string(r.held->judgement.verdict));
+      reasons.push_back(fmt::format("{} of chain {}: {}: {}", symbol(t), chain_name(sw, r.chain), verdict,
+                                    r.held->judgement.reason));
+      verdict += fmt::format(" [{}]", reasons.size());
+    }
+    table.line({std::string(symbol(t)), chain_name(sw, r.chain), fmt::format("{:.3f} → {:.3f}", b.before / pi, b.after / pi),
+                fmt::format("{:.3f}", std::abs(b.after - b.before) / pi),
+                fmt::format("{} → {}", sweep::to_string(class_at(ws, b.window_before)), sweep::to_string(class_at(ws, b.window_after))),
+                fmt::format("{:.2f}", paper / pi), against_paper(b.before, b.after, paper), verdict},
+               widths);
+    if (r.refined) {
+      const std::string cell =
+          r.refined->bracket
+              ? fmt::format("{:.3f} → {:.3f}", r.refined->bracket->before / pi, r.refined->bracket->after / pi)
+              : (r.refined->ok ? "lost: the change moves with the ramp" : "failed: " + r.refined->failure);
+      table.line({"", fmt::format("{}× slower", r.refined->factor), cell,
+                  r.refined->bracket ? fmt::format("{:.3f}", std::abs(r.refined->bracket->after - r.refined->bracket->before) / pi) : "",
+                  "", "", r.refined->bracket ? against_paper(r.refined->bracket->before, r.refined->bracket->after, paper) : "", ""},
+                 widths);
+    }
+  }
+  if (t == sweep::Threshold::Omega2)
+    for (std::size_t c = 0; c < sw.chains.size(); ++c) {
+      if (sw.variant[c] != v || !onsets[c]) continue;
+      any = true;
+      if (!onsets[c]->fit) {
+        table.line({"ω2 (Hopf)", chain_name(sw, c), "not fitted", "",
+                    fmt::format("{} levels with both legs", onsets[c]->levels), fmt::format("{:.2f}", paper / pi),
+                    "", "needs 3 above the first flower"},
+                   widths);
+        continue;
+      }
+      const sweep::HopfFit& h = *onsets[c]->fit;
+      table.line({"ω2 (Hopf)", chain_name(sw, c), fmt::format("{:.2f} ± {:.2f}", h.omega_h / pi, h.sigma / pi),
+                  fmt::format("{:.3f}", 2 * h.sigma / pi), fmt::format("lag's Hopf point, {} levels", h.levels),
+                  fmt::format("{:.2f}", paper / pi), against_paper(h.omega_h - h.sigma, h.omega_h + h.sigma, paper),
+                  fmt::format("fit χ²/dof {:.2g}", h.reduced_chi2)},
+                 widths);
+    }
+  return any;
+}
+
+// The lag's plateau in variant v: per chain the longest lagging run on a rising leg, its mean
+// ω_ball and slope.
+void lag_plateau_lines(const TableText& table, const SweepWindows& sw, std::size_t v) {
+  for (std::size_t c = 0; c < sw.chains.size(); ++c) {
+    if (sw.variant[c] != v) continue;
+    std::optional<sweep::ClassRun> lag;
+    for (const sweep::ClassRun& r : sweep::class_runs(sw.chains[c], sw.omega_ball[c], false))
+      if (r.cls == sweep::OrbitClass::LaggingCircular && r.direction > 0 && (!lag || r.windows > lag->windows)) lag = r;
+    if (!lag || !std::isfinite(lag->omega_ball_mean)) continue;
+    table.line({"lag ω_ball", chain_name(sw, c), fmt::format("{:.3f}", lag->omega_ball_mean / pi), "",
+                fmt::format("over ω_m {:.2f} → {:.2f}π, dω_ball/dω_m {:+.3f}", lag->omega_from / pi, lag->omega_to / pi,
+                            lag->omega_ball_slope),
+                fmt::format("≈ {:.1f}", kPaperLagOmegaBall / pi),
+                fmt::format("{:+.1f} %", 100 * (lag->omega_ball_mean - kPaperLagOmegaBall) / kPaperLagOmegaBall),
+                fmt::format("{} windows", lag->windows)},
+               kReportWidths);
+  }
+}
+
+// One report, as text or as Markdown: per variant, a table of its brackets, the Hopf fits,
+// and the verdicts' reasons.
+std::string report(const ThresholdsArgs& args, const SweepWindows& sw, const std::vector<Row>& rows,
+                   const std::vector<std::optional<Onset>>& onsets, bool markdown, const std::string& hold_text) {
+  std::string out;
+  const TableText table{out, markdown};
   const std::vector<std::string> head{"threshold", "chain", "bracket [π rad/s]", "width [π]", "classes", "paper [π]",
                                       "bracket vs paper", "verdict"};
-  const std::vector<int> widths{10, 20, 18, 10, 34, 10, 18, 0};
   if (markdown)
     out += fmt::format("# Thresholds of `{}`\n\n", args.input);
   out += fmt::format("{}Brackets: the mean ω_m of the last window before the class changed and of the first after.{}\n",
@@ -461,75 +544,15 @@ std::string report(const ThresholdsArgs& args, const SweepWindows& sw, const std
     const Variant& var = sw.variants[v];
     out += markdown ? fmt::format("\n## {}\n\n", var.name.empty() ? "Every chain" : var.name + ": " + var.label)
                     : fmt::format("\n{}\n", var.name.empty() ? "every chain" : "variant " + var.name + ": " + var.label);
-    line(head, widths);
+    table.line(head, kReportWidths);
     if (markdown) out += "|---|---|---|---|---|---|---|---|\n";
     std::vector<std::string> reasons;
-    for (sweep::Threshold t : sweep::kThresholds) {
-      const double paper = sweep::paper_value(t);
-      bool any = false;
-      for (const Row& r : rows) {
-        if (r.threshold != t || sw.variant[r.chain] != v || !r.bracket) continue;
-        any = true;
-        const sweep::Bracket& b = *r.bracket;
-        const auto& ws = sw.chains[r.chain];
-        std::string verdict = "not judged";
-        if (r.held) {
-          verdict = std::string(sweep::to_string(r.held->judgement.verdict));
-          reasons.push_back(fmt::format("{} of chain {}: {}: {}", symbol(t), chain_name(sw, r.chain), verdict,
-                                        r.held->judgement.reason));
-          verdict += fmt::format(" [{}]", reasons.size());
-        }
-        line({std::string(symbol(t)), chain_name(sw, r.chain), fmt::format("{:.3f} → {:.3f}", b.before / pi, b.after / pi),
-              fmt::format("{:.3f}", std::abs(b.after - b.before) / pi),
-              fmt::format("{} → {}", sweep::to_string(class_at(ws, b.window_before)), sweep::to_string(class_at(ws, b.window_after))),
-              fmt::format("{:.2f}", paper / pi), against_paper(b.before, b.after, paper), verdict},
-             widths);
-        if (r.refined) {
-          const std::string cell =
-              r.refined->bracket
-                  ? fmt::format("{:.3f} → {:.3f}", r.refined->bracket->before / pi, r.refined->bracket->after / pi)
-                  : (r.refined->ok ? "lost: the change moves with the ramp" : "failed: " + r.refined->failure);
-          line({"", fmt::format("{}× slower", r.refined->factor), cell,
-                r.refined->bracket ? fmt::format("{:.3f}", std::abs(r.refined->bracket->after - r.refined->bracket->before) / pi) : "",
-                "", "", r.refined->bracket ? against_paper(r.refined->bracket->before, r.refined->bracket->after, paper) : "", ""},
-               widths);
-        }
-      }
-      if (t == sweep::Threshold::Omega2)
-        for (std::size_t c = 0; c < sw.chains.size(); ++c) {
-          if (sw.variant[c] != v || !onsets[c]) continue;
-          any = true;
-          if (!onsets[c]->fit) {
-            line({"ω2 (Hopf)", chain_name(sw, c), "not fitted", "",
-                  fmt::format("{} levels with both legs", onsets[c]->levels), fmt::format("{:.2f}", paper / pi),
-                  "", "needs 3 above the first flower"},
-                 widths);
-            continue;
-          }
-          const sweep::HopfFit& h = *onsets[c]->fit;
-          line({"ω2 (Hopf)", chain_name(sw, c), fmt::format("{:.2f} ± {:.2f}", h.omega_h / pi, h.sigma / pi),
-                fmt::format("{:.3f}", 2 * h.sigma / pi), fmt::format("lag's Hopf point, {} levels", h.levels),
-                fmt::format("{:.2f}", paper / pi), against_paper(h.omega_h - h.sigma, h.omega_h + h.sigma, paper),
-                fmt::format("fit χ²/dof {:.2g}", h.reduced_chi2)},
-               widths);
-        }
-      if (!any) line({std::string(symbol(t)), "", "not reached", "", "", fmt::format("{:.2f}", paper / pi), "", ""}, widths);
-    }
-    // The lag's plateau: the longest lagging run on a rising leg, its mean ω_ball and slope.
-    for (std::size_t c = 0; c < sw.chains.size(); ++c) {
-      if (sw.variant[c] != v) continue;
-      std::optional<sweep::ClassRun> lag;
-      for (const sweep::ClassRun& r : sweep::class_runs(sw.chains[c], sw.omega_ball[c], false))
-        if (r.cls == sweep::OrbitClass::LaggingCircular && r.direction > 0 && (!lag || r.windows > lag->windows)) lag = r;
-      if (!lag || !std::isfinite(lag->omega_ball_mean)) continue;
-      line({"lag ω_ball", chain_name(sw, c), fmt::format("{:.3f}", lag->omega_ball_mean / pi), "",
-            fmt::format("over ω_m {:.2f} → {:.2f}π, dω_ball/dω_m {:+.3f}", lag->omega_from / pi, lag->omega_to / pi,
-                        lag->omega_ball_slope),
-            fmt::format("≈ {:.1f}", kPaperLagOmegaBall / pi),
-            fmt::format("{:+.1f} %", 100 * (lag->omega_ball_mean - kPaperLagOmegaBall) / kPaperLagOmegaBall),
-            fmt::format("{} windows", lag->windows)},
-           widths);
-    }
+    for (sweep::Threshold t : sweep::kThresholds)
+      if (!threshold_lines(table, sw, rows, onsets, v, t, reasons))
+        table.line({std::string(symbol(t)), "", "not reached", "", "", fmt::format("{:.2f}", sweep::paper_value(t) / pi),
+                    "", ""},
+                   kReportWidths);
+    lag_plateau_lines(table, sw, v);
     if (!reasons.empty()) {
       out += markdown ? "\nVerdicts:\n\n" : "  verdicts:\n";
       for (std::size_t i = 0; i < reasons.size(); ++i)

@@ -129,6 +129,9 @@ double locate_root(G&& g, double ta, double ga, double tb, double gb, double tol
 
 }  // namespace
 
+// Long (about 250 lines) for a reason: the one step loop of every run, whose event brackets (on
+// the stack), dense output and counters are shared by its step-acceptance, event-location and
+// observer parts; split into functions they would pass a dozen references through the hot path.
 IntegrateResult integrate(const System& f, Stepper& stepper, double t0, Vec& y, double t_end,
                           std::span<const Event> events, const StepObserver& observe,
                           const PostStep& post_step, const IntegrateOptions& opt) {

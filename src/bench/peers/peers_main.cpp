@@ -177,6 +177,8 @@ double cpu_seconds() {
 
 }  // namespace
 
+// Long for a reason: a benchmark driver read top to bottom (options, then scenes x solvers x
+// tolerances into one CSV), kept in one piece like the astrojax bench it mirrors.
 int main(int argc, char** argv) {
   CLI::App app{"astrojax_peers: peer ODE solvers on the smooth work-precision scenes (same CSV as astrojax bench)"};
   std::vector<std::string> paths, overrides;

@@ -1,0 +1,30 @@
+#include "sim/run_context.hpp"
+
+#include "physics/rotating_axes.hpp"
+#include "physics/tie.hpp"
+#include "sim/step_bound.hpp"
+
+namespace ajx::sim {
+
+using numerics::Vec;
+
+RunAxes RunAxes::choose(const physics::Model& model, const physics::MotorSchedule& schedule, Axes axes,
+                        const State& s) {
+  const bool rotating =
+      !model.layers.tie_clutch &&
+      (axes == Axes::Rotating ||
+       (axes == Axes::Auto && corotates(physics::top_kinematics(model, schedule, s.contact, s.t, s.y), s.y)));
+  return {model, schedule, rotating};
+}
+
+numerics::System RunAxes::system(const Contact& contact) const {
+  const physics::Model& m = model;
+  const physics::MotorSchedule& sched = schedule;
+  if (rotating)
+    return [&m, &sched, &contact](double t, const Vec& y, Vec& dydt) {
+      physics::rhs_in_rotating_axes(m, sched, contact, t, y, dydt);
+    };
+  return [&m, &sched, &contact](double t, const Vec& y, Vec& dydt) { physics::rhs(m, sched, contact, t, y, dydt); };
+}
+
+}  // namespace ajx::sim
