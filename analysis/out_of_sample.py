@@ -10,8 +10,9 @@ Variants (each a row of the reproduction report's hypothesis table):
 Fit. analysis/fit_thresholds.py's evaluation and Nelder–Mead, --protocol holds: ω_rise from the
 first ramp of sweeps/paper_ramps.toml, ω1, ω2, ω_fall from sweeps/table1_staircase.toml held
 level by level (one chain), ω_fall from Table 1's orbit held straight down (paper.toml's fall
-group) where the staircase's down leg has no circular orbit left to fall from; χ² = Σ ((ω_k − paper_k)/paper_k / σ_k)² over the four thresholds
-only, a threshold not reached counted as a miss of --penalty σ. Cost bounded: start at the
+group) where the staircase's down leg has no circular orbit left to fall from; J = Σ ((ω_k −
+paper_k)/paper_k)² over the four thresholds only (analysis/calibrate.py's score), a threshold not
+reached counted as a relative miss of --penalty. Cost bounded: start at the
 documented set (sweeps/paper.toml), then at most --max-evals evaluations (about 30 s each for
 the clutch, less for the rigid tie on 1 core), no Jacobian; the report says how many ran.
 Predictions at the best point, nothing refitted, each from the staircase held at that point:
@@ -60,14 +61,30 @@ CHANGES = {"mass": ["model.bead_mass=0.1", "model.ball_mass=0.1"],
            "length": ["model.string_length=0.662", "protocol.start_seed=locked_orbit"]}
 
 
+def score(meas, penalty):
+    """J = Σ ((ω_k − paper_k)/paper_k)² over the four thresholds of `meas` ({name: (value
+    [rad/s], …)}); a threshold not reached adds penalty²."""
+    rel = [meas[k][0] / (ft.PAPER[k] * PI) - 1 for k in ft.THRESHOLDS]
+    return float(sum(r * r if np.isfinite(r) else penalty ** 2 for r in rel))
+
+
 class Evaluator(ft.Evaluator):
     """fit_thresholds' evaluation, with ω_fall from the fresh orbit ('fall') where the staircase's
-    down leg has no circular orbit to fall from (the rigid tie falls at ω1 on the way up)."""
+    down leg has no circular orbit to fall from (the rigid tie falls at ω1 on the way up), and
+    scored by J = Σ ((ω_k − paper_k)/paper_k)², a threshold not reached counting as a miss of
+    --penalty (relative): χ² weighted by the brackets' widths would favour points whose
+    threshold falls among not-settled windows, where the bracket is wide."""
 
     def record(self, key, values, results, phase, issue):
         if results is not None and not np.isfinite(ft.bracket(results["held"][0], "omega_fall")[0]):
             results = dict(results, down=results["fall"])
-        return super().record(key, values, results, phase, issue)
+        rec = super().record(key, values, results, phase, issue)
+        rec["J"] = score(rec["meas"], self.args.penalty)
+        print(f"      J = {rec['J']:.4g}", file=sys.stderr, flush=True)
+        return rec
+
+    def chi2(self, x):
+        return self.many([x], "simplex")[0]["J"]
 
 
 def fall_file(work):
@@ -91,7 +108,7 @@ def fit(variant, args, files, work):
     lo, hi = np.array([p.lo for p in params]), np.array([p.hi for p in params])
     if args.max_evals > 1:
         ft.nelder_mead(ev.chi2, x0, 0.15 * (hi - lo), lo, hi, args.max_evals - 1)
-    return min(ev.log, key=lambda r: r["chi2"]), ev.count
+    return min(ev.log, key=lambda r: r["J"]), ev.count
 
 
 def held(args, files, values, spec, extra, out):
@@ -182,13 +199,13 @@ def threshold_cells(best):
 def fit_table(fits):
     L = ["## The fits (four thresholds only)", "",
          "| variant | fitted parameters | evaluations | best point | ω_rise 12.63π | ω1 4.80π | ω2 15.00π | "
-         "ω_fall 3.24π | χ² | thresholds reached : parameters |", "|---|---|---|---|---|---|---|---|---|---|"]
+         "ω_fall 3.24π | J | thresholds reached : parameters |", "|---|---|---|---|---|---|---|---|---|---|"]
     for v, (best, n) in fits.items():
         keys = VARIANTS[v]["params"]
         point = ", ".join(f"{k} = {best['values'][k]:.4g}" for k in keys)
         reached = sum(np.isfinite(best["meas"][k][0]) for k in ft.THRESHOLDS)
         L.append(f"| {VARIANTS[v]['label']} | {len(keys)} | {n} | {point} | " + " | ".join(threshold_cells(best))
-                 + f" | {best['chi2']:.3g} | {reached} : {len(keys)} |")
+                 + f" | {best['J']:.3g} | {reached} : {len(keys)} |")
     return L + [""]
 
 
@@ -226,8 +243,9 @@ def report(args, fits, preds, elapsed):
          f"{elapsed / 60:.1f} min. Each fit: Nelder–Mead from sweeps/paper.toml's set, at most {args.max_evals} "
          "evaluations (ω_rise from sweeps/paper_ramps.toml's first ramp, ω1, ω2, ω_fall from "
          "sweeps/table1_staircase.toml held level by level; ω_fall from Table 1's orbit held straight down, 3.9π … 2.5π, "
-         "where the staircase's down leg has no circular orbit left); a threshold not reached counts as a miss of "
-         f"{args.penalty:g} σ. σ is the bracket's half-width (0.1π at ω1, ω_fall; 0.25π at ω2; a window at ω_rise).", ""]
+         "where the staircase's down leg has no circular orbit left), minimising J = Σ ((ω_k − paper_k)/paper_k)² over "
+         f"the four thresholds; a threshold not reached counts as a relative miss of {args.penalty:g}. The brackets "
+         "are 0.1π wide at ω1 and ω_fall, 0.5π at ω2 and one 10 s window (≈ 0.32π) at ω_rise.", ""]
     L += fit_table(fits) + prediction_table(preds)
     return "\n".join(L) + "\n"
 
@@ -237,7 +255,8 @@ def parse_args(argv):
     ap.add_argument("-o", "--output", required=True, help="the Markdown report (.md)")
     ap.add_argument("--variants", default="rigid,clutch,couple", help="comma-separated, of: " + ", ".join(VARIANTS))
     ap.add_argument("--max-evals", type=int, default=12, help="evaluations per fit, the start included (default 12)")
-    ap.add_argument("--penalty", type=float, default=100.0, help="residual of a threshold not reached, in σ (default 100)")
+    ap.add_argument("--penalty", type=float, default=1.0,
+                    help="relative miss of a threshold not reached (default 1: 100 %%)")
     ap.add_argument("--keep", metavar="DIR", help="keep the prediction sweeps' files in DIR")
     ap.add_argument("--astrojax", metavar="PATH", help="the astrojax executable (default: build/astrojax)")
     args = ap.parse_args(argv)
@@ -250,8 +269,8 @@ def parse_args(argv):
         ajx.fail("--variants: none given")
     if not 1 <= args.max_evals <= 1000:
         ajx.fail(f"--max-evals {args.max_evals}: allowed 1..1000")
-    if not 0 < args.penalty <= 1e6:
-        ajx.fail(f"--penalty {args.penalty:g}: allowed (0, 1e6]")
+    if not 0 < args.penalty <= 100:
+        ajx.fail(f"--penalty {args.penalty:g}: allowed (0, 100]")
     if args.keep:
         os.makedirs(args.keep, exist_ok=True)
     return args
