@@ -10,8 +10,8 @@ What is asserted, per model variant:
 - every threshold at the documented set (R = 15 mm, d = 3.5 cm; τ_s = 1.5, τ_k = 1.35 mN m,
   c_a = 2 µN m s): its bracket must contain the documented bracket's midpoint, i.e. the
   threshold may move by less than half the protocol's step (the width of its bracket) before
-  this test fails; the lag's Hopf point within three of its fitted standard errors of 15.34π;
-  the lag's mean ω_ball within half its own drift over the run of 4.248π.
+  this test fails; the lag's Hopf point within its documented standard error (0.35π) of 15.34π;
+  the lag's mean ω_ball within half its documented drift over the run (0.062π) of 4.248π.
 
 usage: paper_story_test.py ASTROJAX SOURCE_DIR WORK_DIR
 """
@@ -34,7 +34,10 @@ DOCUMENTED = {
     ("paper", "fall", "omega_fall"): (3.70, 3.60),
     ("clutch", "fall", "omega_fall"): (3.70, 3.60),
 }
-HOPF = (15.34, 0.10)  # the lag's Hopf point, ± its fitted error [π rad/s]
+# The lag's Hopf point and its standard error [π rad/s] as `astrojax thresholds` fits it at the
+# documented set (scaled by its χ²/dof, 2.1e2). The run is deterministic, so the error is the
+# fit's, not scatter between runs: a change that moves the point by more than it fails.
+HOPF = (15.34, 0.35)
 # The lag on the way up at the documented set: mean ω_ball [π rad/s], dω_ball/dω_m, and the
 # ω_m run it spans [π rad/s]. Its tolerance is half the drift that slope makes over that run,
 # fixed here so that a change which makes the lag drift more cannot widen it.
@@ -140,8 +143,8 @@ def main():
     check("one Hopf fit, for clutch/up", len(hopf) == 1 and " up " in hopf[0])
     if hopf:
         value, sigma = (float(x) for x in hopf[0].split()[4:7:2])
-        check(f"the lag's Hopf point {value:.2f} ± {sigma:.2f}π within 3σ of {HOPF[0]}π",
-              abs(value - HOPF[0]) <= 3 * max(sigma, HOPF[1]))
+        check(f"the lag's Hopf point {value:.2f} ± {sigma:.2f}π within the documented σ = {HOPF[1]}π of {HOPF[0]}π",
+              abs(value - HOPF[0]) <= HOPF[1])
     check("the Markdown report names both variants",
           "## paper:" in open(md).read() and "## clutch:" in open(md).read())
     print(f"{len(failures)} failed")
