@@ -24,8 +24,9 @@ int classify_command(const ClassifyArgs& args) {
 
   try {
     io::File f = io::File::open_rw(args.input);
+    checked_format_version(f, args.input);
     const auto cls = f.read_int32s("windows/class"), count = f.read_int32s("samples/count");
-    const auto model = f.read_doubles("chains/model");
+    const StoredModels models = read_chain_models(f);
     const auto t = f.read_doubles("samples/t"), om = f.read_doubles("samples/omega_m"), L1 = f.read_doubles("samples/L1");
     const auto T1 = f.read_doubles("samples/T1"), T2 = f.read_doubles("samples/T2"), mode = f.read_doubles("samples/mode");
     const auto r1 = f.read_doubles("samples/r1"), r2 = f.read_doubles("samples/r2");
@@ -33,14 +34,7 @@ int classify_command(const ClassifyArgs& args) {
     SweepFile out(std::move(f), C, W, cap, 0);
     long changed = 0, total = 0;
     for (std::size_t c = 0; c < C; ++c) {
-      physics::Parameters p;
-      p.string_length = model(c, 0);
-      p.bead_mass = model(c, 1);
-      p.ball_mass = model(c, 2);
-      p.drag = model(c, 3);
-      p.gravity = model(c, 6);
-      p.contact_distance = model(c, 8);
-      const sweep::OrbitScales scales = sweep::orbit_scales(p);
+      const sweep::OrbitScales scales = sweep::orbit_scales(models.chains[c]);
       for (std::size_t k = 0; k < W; ++k) {
         const auto n = std::size_t(count(c, k));
         if (cls(c, k) < 0 || n == 0) continue;  // never computed

@@ -168,3 +168,10 @@ namespace ajx::app {
 int bench_threshold_command(const WorkPrecisionArgs& args, double sample_dt);
 
 }  // namespace ajx::app
+
+namespace ajx::app {
+
+// astrojax keys: the configuration reference, plain or as Markdown.
+int keys_command(bool markdown);
+
+}  // namespace ajx::app

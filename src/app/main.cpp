@@ -97,6 +97,12 @@ int main(int argc, char** argv) {
                 "(exit 0 intact, 2 damaged)");
   verify_cmd->add_option("file", verify.input, "HDF5 file written by astrojax sweep, or its .part")->required();
 
+  bool keys_markdown = false;
+  CLI::App* keys_cmd = app.add_subcommand(
+      "keys", "List every configuration key with its type, unit, allowed values, default and meaning (the "
+              "configuration reference, made from the parameter table and the key catalogue the reader uses)");
+  keys_cmd->add_flag("--markdown", keys_markdown, "Markdown tables, one per section (the docs' reference page)");
+
   ajx::app::ThresholdsArgs thresholds;
   CLI::App* thresholds_cmd = app.add_subcommand(
       "thresholds", "ω_rise, ω_fall, ω1, ω2 per model variant: brackets with their widths and hold verdicts, "
@@ -265,6 +271,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : ajx::app::kExitBadInput;
   }
+  if (*keys_cmd) return ajx::app::keys_command(keys_markdown);
   if (*run_cmd) return ajx::app::run_command(run);
   if (*verify_cmd) return ajx::app::verify_command(verify);
   if (*thresholds_cmd) return ajx::app::thresholds_command(thresholds);

@@ -140,6 +140,7 @@ void check_run_size(const config::RunConfig& cfg, double duration, double max_me
 void write_run(io::File& f, const std::string& command_line, const config::RunConfig& cfg,
                const physics::MotorSchedule& schedule, const Trajectory& traj, const sim::RunSummary& sum,
                const physics::State& state, double wall, std::optional<double> start_projection) {
+  write_format(f, "run");
   write_provenance(f, command_line, cfg);
   io::Group tg = f.create_group("trajectory");
   traj.write(tg);
