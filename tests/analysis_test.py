@@ -18,6 +18,7 @@ import re
 import struct
 import subprocess
 import sys
+import shutil
 import unittest
 import zlib
 
@@ -48,6 +49,7 @@ def script(name, *args, check=True):
 
 
 def make():
+    shutil.rmtree(DATA, ignore_errors=True)  # made afresh: astrojax refuses to replace a file
     os.makedirs(DATA, exist_ok=True)
     run([ASTROJAX, "sweep", os.path.join(SOURCE, "tests/data/tiny_phase.toml"), "-o", data("phase.h5"), "-q"])
     run([ASTROJAX, "sweep", os.path.join(SOURCE, "tests/data/tiny_hold.toml"), "-o", data("hold.h5"), "-q"])

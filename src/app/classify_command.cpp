@@ -7,7 +7,10 @@
 #include <utility>
 #include <vector>
 
+#include <filesystem>
+
 #include "app/commands.hpp"
+#include "app/output_paths.hpp"
 #include "app/sweep_file.hpp"
 
 namespace ajx::app {
@@ -21,10 +24,29 @@ int classify_command(const ClassifyArgs& args) {
     return kExitBadInput;
   }
   const std::string used = fmt::format("{}", fmt::join(args.settings, "\n"));
+  // The file to rewrite: a copy at -o, or the input itself when --force says so.
+  std::string target = args.input;
+  try {
+    if (args.output.empty() && !args.force)
+      throw config::ConfigError(fmt::format("{}: classify rewrites the file's classes; give -o COPY for a reclassified "
+                                            "copy, or --force to rewrite it in place", args.input));
+    if (!args.output.empty()) {
+      check_output_path(args.input, "-o", args.output, {args.input}, {});
+      check_not_overwriting(args.input, "-o", args.output, args.force);
+      std::filesystem::copy_file(args.input, args.output, std::filesystem::copy_options::overwrite_existing);
+      target = args.output;
+    }
+  } catch (const config::ConfigError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return kExitBadInput;
+  } catch (const std::filesystem::filesystem_error& e) {
+    std::fprintf(stderr, "error: %s: %s\n", args.input.c_str(), e.what());
+    return kExitBadInput;
+  }
 
   try {
-    io::File f = io::File::open_rw(args.input);
-    checked_format_version(f, args.input);
+    io::File f = io::File::open_rw(target);
+    checked_format_version(f, target);
     const auto cls = f.read_int32s("windows/class"), count = f.read_int32s("samples/count");
     const StoredModels models = read_chain_models(f);
     const auto t = f.read_doubles("samples/t"), om = f.read_doubles("samples/omega_m"), L1 = f.read_doubles("samples/L1");
@@ -63,7 +85,7 @@ int classify_command(const ClassifyArgs& args) {
     io::Group wg = out.file().open_group("windows");
     wg.set_attribute("classifier_settings", used.empty() ? std::string("defaults") : used);
     out.close();
-    std::printf("classified %ld windows again in %s: %ld changed class\n", total, args.input.c_str(), changed);
+    std::printf("classified %ld windows again in %s: %ld changed class\n", total, target.c_str(), changed);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s: %s\n", args.input.c_str(), e.what());
     return kExitBadInput;

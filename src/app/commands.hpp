@@ -17,6 +17,7 @@ struct RunArgs {
   std::vector<std::string> overrides;  // "key=value"
   std::string output;                  // overrides output.path when non-empty
   bool quiet = false;
+  bool force = false;                  // replace an existing output
   double max_memory = 0;               // [MB] memory budget; 0: half the machine's
   std::string command_line;            // stored in the file for provenance
 };
@@ -67,8 +68,10 @@ struct ThresholdsArgs {
 int thresholds_command(const ThresholdsArgs& args);
 
 struct ClassifyArgs {
-  std::string input;                  // a sweep's HDF5 file, rewritten in place
-  std::vector<std::string> settings;  // "name=value" of ClassifierSettings fields
+  std::string input;                  // a sweep's HDF5 file
+  std::string output;                 // the reclassified copy; empty: rewrite input (needs force)
+  bool force = false;                 // rewrite input in place, or replace an existing output
+  std::vector<std::string> settings;  // "classifier.name=value" of ClassifierSettings fields
 };
 int classify_command(const ClassifyArgs& args);
 
