@@ -112,7 +112,10 @@ def fit(variant, args, files, work):
 
 
 def held(args, files, values, spec, extra, out):
-    """The staircase held at `values` (+ `extra` settings): (Sweep, sequence rows)."""
+    """The staircase held at `values` (+ `extra` settings): (Sweep, sequence rows). A file left
+    in --keep by an earlier run is this script's own output and is replaced."""
+    if os.path.exists(out):
+        os.remove(out)
     ft.run_sweep(args.astrojax_exe, files["held"], out, values, spec["tie"], 0, spec["set"] + extra)
     return ajx.Sweep(out), ajx.run_sequence(out, args.astrojax_exe)
 
