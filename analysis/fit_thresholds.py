@@ -78,6 +78,7 @@ MODEL_KEYS = {
     "contact_distance": (0.0, True, math.inf, "m"), "top_stop": (0.0, False, math.inf, "m"),
     "tie_static_torque": (0.0, False, math.inf, "N m"), "tie_kinetic_torque": (0.0, False, math.inf, "N m"),
     "tie_inertia": (0.0, True, math.inf, "kg m²"), "tie_damping": (0.0, False, math.inf, "N m s"),
+    "couple_torque": (0.0, False, math.inf, "N m"), "couple_slip_rate": (0.0, True, math.inf, "rad/s"),
 }
 # The set of README "One parameter set for the whole protocol";
 # every evaluation sets all of these, then --fixed, then the fitted ones.
@@ -414,20 +415,22 @@ def staircase_file(staircase_path, work):
 
 # ---- one evaluation: three sweeps, their thresholds ----------------------------------
 
-def overrides(values, tie):
+def overrides(values, tie, extra=()):
     """--set arguments: the drive radius as the one grid value (the shipped files have a grid
-    over R), every other key as model.KEY."""
+    over R), every other key as model.KEY; `extra` are further KEY=VALUE settings (--set)."""
     out = ["--set", f"layers.tie={tie}"]
+    for e in extra:
+        out += ["--set", e]
     for k, v in values.items():
         out += ["--set", f"grid.drive_radius=[{v!r}]"] if k == "drive_radius" else ["--set", f"model.{k}={v!r}"]
     return out
 
 
-def run_sweep(astrojax, scene, out, values, tie, refine):
+def run_sweep(astrojax, scene, out, values, tie, refine, extra=()):
     """One sweep and its thresholds: (threshold rows, sequence rows, note). Exit code 3 (some
     tasks failed, the file written with their windows classed "failed", which astrojax
     thresholds skips) is kept, with astrojax's reason in the note; any other error stops."""
-    proc = ajx.run_checked([astrojax, "sweep", scene, "-q", "-o", out, *overrides(values, tie)], allowed=(0, 3))
+    proc = ajx.run_checked([astrojax, "sweep", scene, "-q", "-o", out, *overrides(values, tie, extra)], allowed=(0, 3))
     note = ""
     if proc.returncode == 3:
         why = " ".join((proc.stderr or proc.stdout).split())
@@ -544,7 +547,7 @@ class Evaluator:
         results = {}
         with concurrent.futures.ThreadPoolExecutor(max_workers=self.args.jobs) as pool:
             futures = {pool.submit(run_sweep, self.args.astrojax_exe, self.files[name], out, values, self.args.tie,
-                                   self.args.refine): (key, name, out) for key, values, name, out in jobs}
+                                   self.args.refine, self.args.set): (key, name, out) for key, values, name, out in jobs}
             for fut in futures:
                 key, name, out = futures[fut]
                 results.setdefault(key, {})[name] = fut.result()
@@ -735,7 +738,7 @@ def final_check(args, values, work):
     second = ("table1_staircase", args.staircase_sweep) if args.protocol == "holds" else ("table1", args.table1_sweep)
     for label, path in (("paper", args.paper_sweep), second):
         h5 = os.path.join(work, f"final_{label}.h5")
-        sets = overrides(values, args.tie)
+        sets = overrides(values, args.tie, args.set)
         if label == "table1_staircase":  # its grid runs c_a: one chain at the fitted value
             sets += ["--set", f"grid.tie_damping=[{values['tie_damping']!r}]"]
         ajx.run_checked([args.astrojax_exe, "sweep", path, "-q", "-o", h5, *sets])
@@ -775,6 +778,9 @@ def parse_args(argv):
                     help="a [model] key held at VALUE (default: " + ", ".join(f"{k}={v:g}" for k, v in BASE.items())
                          + " for the keys not fitted)")
     ap.add_argument("--tie", default="clutch", choices=("clutch", "rigid"), help="layers.tie (default clutch)")
+    ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                    help="a further setting passed to every sweep as astrojax --set, e.g. "
+                         "layers.pair_couple=motor_clutch; repeatable")
     ap.add_argument("--plateau", action="store_true", help="also fit the lag's mean ω_ball to the paper's ≈ 4.8π")
     ap.add_argument("--plateau-sigma", type=float, default=0.02,
                     help="relative σ of the paper's ω_ball ≈ 4.8π (default 0.02: ±0.1π)")

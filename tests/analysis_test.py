@@ -1161,6 +1161,49 @@ done
         self.assertIn("-o OUTPUT", out)
 
 
+class out_of_sample(unittest.TestCase):
+    """analysis/out_of_sample.py: its score, the fall protocol it builds, the settings it passes
+    and its input errors; no runs."""
+
+    def test_score(self):
+        import out_of_sample as oos
+        PI = math.pi
+        # +10 % on ω_rise, −5 % on ω1, exact ω2 and ω_fall: J = 0.1² + 0.05².
+        meas = {"omega_rise": (1.1 * 12.63 * PI, 0, ""), "omega_1": (0.95 * 4.80 * PI, 0, ""),
+                "omega_2": (15.00 * PI, 0, ""), "omega_fall": (3.24 * PI, 0, "")}
+        self.assertAlmostEqual(oos.score(meas, 1.0), 0.0125, places=12)
+        # Not reached: penalty² each.
+        meas["omega_2"] = (np.nan, np.nan, "not reached")
+        self.assertAlmostEqual(oos.score(meas, 2.0), 0.0125 + 4.0, places=12)
+
+    def test_fall_file_and_settings(self):
+        import tempfile
+        import tomllib
+        import fit_thresholds as ft
+        import out_of_sample as oos
+        with tempfile.TemporaryDirectory() as tmp:
+            with open(oos.fall_file(tmp), "rb") as f:
+                doc = tomllib.load(f)
+        hold, down = doc["protocol"]["segment"]
+        self.assertNotIn("grid", doc)
+        self.assertEqual((hold["from"], hold["to"], hold["num"]), (4 * math.pi, 4 * math.pi, 1))
+        self.assertAlmostEqual(down["from"], 3.9 * math.pi, places=12)
+        self.assertAlmostEqual(down["to"], 2.5 * math.pi, places=12)
+        self.assertEqual(down["num"], 15)  # 3.9π … 2.5π in steps of 0.1π
+        self.assertEqual(ft.overrides({"drive_radius": 0.01, "couple_torque": 1e-3}, "rigid",
+                                      ["layers.pair_couple=motor_clutch"]),
+                         ["--set", "layers.tie=rigid", "--set", "layers.pair_couple=motor_clutch",
+                          "--set", "grid.drive_radius=[0.01]", "--set", "model.couple_torque=0.001"])
+
+    def test_bad_input(self):
+        for extra, message in ((["--variants", "rigid,bogus"], "--variants: unknown 'bogus'"),
+                               (["--max-evals", "0"], "--max-evals 0: allowed 1..1000"),
+                               (["--penalty", "0"], "--penalty 0: allowed (0, 100]")):
+            rc, out = script("out_of_sample.py", "-o", os.path.join(DATA, "oos.md"), *extra, check=False)
+            self.assertEqual(rc, 2, (extra, out))
+            self.assertIn(message, out, extra)
+
+
 if __name__ == "__main__":
     if sys.argv[4] == "make":
         make()

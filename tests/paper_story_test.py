@@ -10,8 +10,8 @@ What is asserted, per model variant:
 - every threshold at the documented set (R = 15 mm, d = 3.5 cm; τ_s = 1.5, τ_k = 1.35 mN m,
   c_a = 2 µN m s): its bracket must contain the documented bracket's midpoint, i.e. the
   threshold may move by less than half the protocol's step (the width of its bracket) before
-  this test fails; the lag's Hopf point within three of its fitted standard errors of 15.34π;
-  the lag's mean ω_ball within half its own drift over the run of 4.248π.
+  this test fails; the lag's Hopf point within its documented standard error (0.35π) of 15.34π;
+  the lag's mean ω_ball within half its documented drift over the run (0.062π) of 4.248π.
 
 usage: paper_story_test.py ASTROJAX SOURCE_DIR WORK_DIR
 """
@@ -34,8 +34,15 @@ DOCUMENTED = {
     ("paper", "fall", "omega_fall"): (3.70, 3.60),
     ("clutch", "fall", "omega_fall"): (3.70, 3.60),
 }
-HOPF = (15.34, 0.10)  # the lag's Hopf point, ± its fitted error [π rad/s]
-LAG_OMEGA_BALL = 4.248  # the lag's mean ω_ball on the way up [π rad/s]
+# The lag's Hopf point and its standard error [π rad/s] as `astrojax thresholds` fits it at the
+# documented set (scaled by its χ²/dof, 2.1e2). The run is deterministic, so the error is the
+# fit's, not scatter between runs: a change that moves the point by more than it fails.
+HOPF = (15.34, 0.35)
+# The lag on the way up at the documented set: mean ω_ball [π rad/s], dω_ball/dω_m, and the
+# ω_m run it spans [π rad/s]. Its tolerance is half the drift that slope makes over that run,
+# fixed here so that a change which makes the lag drift more cannot widen it.
+LAG_OMEGA_BALL, LAG_SLOPE, LAG_SPAN = 4.248, 0.011, (4.80, 16.00)
+LAG_TOL = 0.5 * LAG_SLOPE * (LAG_SPAN[1] - LAG_SPAN[0])
 
 failures = []
 
@@ -118,12 +125,10 @@ def main():
     # Nearly constant ω_ball: a slope below 0.05 (a locked orbit has 1).
     check(f"clutch/up: the lag's ω_ball nearly constant (dω_ball/dω_m = {lag['omega_ball_slope']})",
           abs(float(lag["omega_ball_slope"])) < 0.05)
-    # Its level: 4.248π at the documented set, within half the drift the slope makes over the
-    # run (|dω_ball/dω_m| × the run's ω_m span / 2), the lag's own variation.
-    span = (float(lag["omega_to_rad_s"]) - float(lag["omega_from_rad_s"])) / PI
-    tol = 0.5 * abs(float(lag["omega_ball_slope"])) * span
-    check(f"clutch/up: the lag's ω_ball {float(lag['omega_ball_mean_rad_s']) / PI:.3f}π within {tol:.3f}π of 4.248π",
-          abs(float(lag["omega_ball_mean_rad_s"]) / PI - LAG_OMEGA_BALL) <= tol)
+    # Its level: 4.248π at the documented set, within LAG_TOL (half the documented drift over
+    # the documented run), the lag's own variation.
+    check(f"clutch/up: the lag's ω_ball {float(lag['omega_ball_mean_rad_s']) / PI:.3f}π within {LAG_TOL:.3f}π of "
+          f"{LAG_OMEGA_BALL}π", abs(float(lag["omega_ball_mean_rad_s"]) / PI - LAG_OMEGA_BALL) <= LAG_TOL)
     down = [r["class"] for r in runs[c] if r["direction"] == "-1"]
     check("clutch/up: flower → lagging → locked → fallen on the way down",
           [k for i, k in enumerate(down) if i == 0 or down[i - 1] != k] ==
@@ -138,8 +143,8 @@ def main():
     check("one Hopf fit, for clutch/up", len(hopf) == 1 and " up " in hopf[0])
     if hopf:
         value, sigma = (float(x) for x in hopf[0].split()[4:7:2])
-        check(f"the lag's Hopf point {value:.2f} ± {sigma:.2f}π within 3σ of {HOPF[0]}π",
-              abs(value - HOPF[0]) <= 3 * max(sigma, HOPF[1]))
+        check(f"the lag's Hopf point {value:.2f} ± {sigma:.2f}π within the documented σ = {HOPF[1]}π of {HOPF[0]}π",
+              abs(value - HOPF[0]) <= HOPF[1])
     check("the Markdown report names both variants",
           "## paper:" in open(md).read() and "## clutch:" in open(md).read())
     print(f"{len(failures)} failed")
