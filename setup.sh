@@ -92,7 +92,7 @@ case "${1:-}" in
   build) install; build ;;
   demo) install; build astrojax; demo ;;
   docs) PACKAGES+=("${DOCS_PACKAGES[@]}"); install; build astrojax
-        tools/build_docs.sh "$BUILD_DIR"/astrojax "$BUILD_DIR"/site ;;
+        tests/docs/build_docs.sh "$BUILD_DIR"/astrojax "$BUILD_DIR"/site ;;
   test) PACKAGES+=("${DOCS_PACKAGES[@]}"); install; build; (cd "$BUILD_DIR" && ctest -L unit -j"$(nproc)" --output-on-failure) ;;
   peers) PACKAGES+=("${PEER_PACKAGES[@]}"); install
          cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DASTROJAX_PEERS=ON >/dev/null

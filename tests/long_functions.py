@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Functions longer than a limit in C++ sources, longest first.
 
-Usage: tools/long_functions.py [--limit 80] FILE_OR_DIR...   (default: src)
+Usage: tests/long_functions.py [--limit 80] FILE_OR_DIR...   (default: src)
 
 A brace scan: comments, string and character literals are blanked first; a '{' whose text
 before it ends in ')' (with const, noexcept, override, a trailing return type or a

@@ -2,14 +2,14 @@
 # Builds the documentation site offline: writes the generated reference pages from a built
 # astrojax, copies the committed figures into docs/figures/, then runs mkdocs build --strict
 # (a broken link, a missing page or any other warning fails), and checks every #anchor.
-#   tools/build_docs.sh ASTROJAX SITE_DIR
+#   tests/docs/build_docs.sh ASTROJAX SITE_DIR
 # Generated, git-ignored: docs/reference/cli.md (every command's --help),
 # docs/reference/configuration.md (astrojax keys --markdown), docs/figures/*.png.
 set -euo pipefail
 [ $# -eq 2 ] || { echo "usage: $0 ASTROJAX SITE_DIR" >&2; exit 2; }
 bin=$(realpath "$1")
 site=$(realpath -m "$2")
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 [ -x "$bin" ] || { echo "error: $1 is not an executable astrojax" >&2; exit 2; }
 
 # The program under the name a user types, so that its usage lines read "astrojax ...".
@@ -78,7 +78,7 @@ cp analysis/figures/*.png docs/figures/
 
 mkdocs build --strict --quiet -f mkdocs.yml -d "$site"
 # mkdocs checks the pages links point to, not their #anchors: this does.
-/usr/bin/python3 tools/check_anchors.py "$site"
+/usr/bin/python3 tests/docs/check_anchors.py "$site"
 
 # MathJax from Debian's libjs-mathjax, linked rather than copied (41 MB).
 ln -sfn /usr/share/javascript/mathjax "$site/mathjax"
