@@ -18,7 +18,7 @@ for who in master worker; do
   start_mpi "$who.h5" 400000
   case $who in master) victim=$rank0 ;; worker) victim=$rank1 ;; esac
   kill -9 "$victim"
-  wait "$mp" 2> /dev/null
+  wait_mpi "$mp" 60 "$out"
   gone $rank0 $rank1 $rank2
   check "kill -9 $who: killed mid-sweep (pid '$victim', a .part and no file)" \
     "[ -n '$victim' ] && [ -e '$who.h5.part' ] && [ ! -e '$who.h5' ]"
@@ -31,7 +31,7 @@ done
 # locked by the running master); once they are gone the file is complete or resumable.
 start_mpi mpirun.h5 100000  # early: the ranks that outlive mpirun are still writing when the resume starts
 kill -9 "$mp"
-wait "$mp" 2> /dev/null
+wait "$mp" 2> /dev/null  # mpirun itself, killed: ends at once
 resume mpirun.h5
 rc=$?
 alive=0; kill -0 "$rank0" 2> /dev/null && alive=1
@@ -63,8 +63,7 @@ p=$!
 for _ in $(seq 1000); do [ -e full.h5.journal ] && break; sleep 0.01; done
 limit=$(($(size straight.h5) / 2))
 prlimit --pid $p --fsize=$limit:$limit
-wait $p
-rc=$?
+wait_for $p 120
 check "disk full: exit 5 with the reason and how to resume (got $rc)" \
   "[ $rc -eq 5 ] && grep -q 'too large\|No space' full.out && grep -q -- '--resume' full.out"
 "$bin" sweep "${sweep[@]}" -o full.h5 --resume > full.resume 2>&1
