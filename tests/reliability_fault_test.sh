@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
 # Verified resumes, exit codes that mean one thing, liveness, finished work never discarded:
+# - a byte flipped in a finished file (/chains, /windows, /tasks, a sample chunk): verify names it;
 # - a .part damaged in /chains, in a carried state or in a sample chunk, and a journal with a
 #   flipped byte, resume into the uninterrupted file; a .part without its journal is refused;
 #   astrojax verify names the damage and passes the resumed file;
@@ -21,6 +22,33 @@ ticks() { awk '{print $14 + $15}' "/proc/$1/stat" 2> /dev/null || echo 0; }  # u
 
 "$bin" sweep "${sweep[@]}" -o straight.h5 > straight.out 2>&1
 check "uninterrupted run: exit 0" "[ $? -eq 0 ]"
+
+# A finished file's records carry checksums (Fletcher32 on every uncompressed chunk and whole
+# array, the zlib Adler-32 of each deflated sample chunk): one byte flipped on disk in a chunk
+# of a dataset, and astrojax verify exits 2 naming that dataset; the file as written passes.
+flip() {  # flip FILE DATASET CHUNK: one byte in the middle of that chunk as stored
+  /usr/bin/python3 - "$@" <<'PY'
+import sys, h5py
+path, name, k = sys.argv[1], sys.argv[2], int(sys.argv[3])
+with h5py.File(path, "r") as f:
+    info = f[name].id.get_chunk_info(k)
+at = info.byte_offset + info.size // 2
+with open(path, "r+b") as fh:
+    fh.seek(at); b = fh.read(1); fh.seek(at); fh.write(bytes([b[0] ^ 0x10]))
+PY
+}
+"$bin" verify straight.h5 > verify.out 2>&1
+check "astrojax verify of a finished file: exit 0, no dataset without a checksum" "[ $? -eq 0 ] && ! grep -q 'no checksum' verify.out"
+for dk in chains/model:0 chains/grid_values:0 windows/omega_ball:1 windows/class:2 tasks/final_state:5 samples/count:1 \
+          samples/t:4 samples/r2:7; do
+  d=${dk%:*}
+  cp straight.h5 flipped.h5
+  flip flipped.h5 "$d" "${dk#*:}"
+  "$bin" verify flipped.h5 > verify.out 2>&1
+  rc=$?
+  check "a byte flipped in a chunk of /$d of a finished file: verify exit 2 (got $rc) naming it" \
+    "[ $rc -eq 2 ] && grep -q 'DAMAGED: /$d cannot be read' verify.out"
+done
 
 # Finished work is never discarded silently.
 "$bin" sweep "${sweep[@]}" -o rerun.h5 --max-tasks 10 > /dev/null 2>&1
@@ -91,7 +119,7 @@ start_mpi term.h5 300000
 kill -TERM "$mp"
 wait_mpi "$mp" 60 "$out"
 gone $rank0 $rank1 $rank2
-echo "SIGTERM to mpirun: mpirun exit $rc, master's summary: $(grep -oE '^(ok|FAILED|INTERRUPTED)' term.h5.out || echo none (killed))"
+echo "SIGTERM to mpirun: mpirun exit $rc, master's summary: $(grep -oE '^(ok|FAILED|INTERRUPTED)' term.h5.out || echo 'none, killed')"
 check "SIGTERM to mpirun: exit 1, Open MPI's own (got $rc$([ $mpirun_hung = 1 ] && echo ', mpirun hung: its code unknown'))" \
   "[ $rc -eq 1 ] || [ $mpirun_hung -eq 1 ]"
 check "SIGTERM to mpirun: the .part and the journal are left" "[ -e term.h5.part ] && [ -e term.h5.journal ] && [ ! -e term.h5 ]"
