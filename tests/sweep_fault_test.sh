@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Faults a sweep survives, nothing lost: after kill -9 of the master, of a worker or of mpirun
-# mid-sweep, after a .part cut short (as a write killed half-way leaves it), after a journal
+# Faults a sweep survives, nothing lost: after kill -9 of the master, of a worker (mpirun: 137)
+# or of mpirun mid-sweep, after a .part cut short (as a write killed half-way leaves it), after a journal
 # record cut short, and after the disk filling up (a file-size limit), the same command with
 # --resume completes with a file equal to an uninterrupted run's (h5diff, all but
 # /provenance). A worker that hangs (SIGSTOP) past --task-timeout is given up and its task run
@@ -22,6 +22,9 @@ for who in master worker; do
   gone $rank0 $rank1 $rank2
   check "kill -9 $who: killed mid-sweep (pid '$victim', a .part and no file)" \
     "[ -n '$victim' ] && [ -e '$who.h5.part' ] && [ ! -e '$who.h5' ]"
+  # mpirun ends the job and returns 128 + the signal of the rank killed (when it does not hang).
+  check "kill -9 $who: mpirun exit 137 (got $rc$([ $mpirun_hung = 1 ] && echo ', mpirun hung: its code unknown'))" \
+    "[ $rc -eq 137 ] || [ $mpirun_hung -eq 1 ]"
   resume "$who.h5"
   check "kill -9 $who: --resume exit 0 ($(tail -1 "$who.h5.resume"))" "[ $? -eq 0 ] && [ ! -e '$who.h5.journal' ]"
   check "kill -9 $who: resumed file equals the uninterrupted one" "same '$who.h5' straight.h5"
