@@ -4,6 +4,7 @@
 #   ./setup.sh demo        install, build the program, run the main job: sweeps/paper.toml under mpirun,
 #                          its thresholds and its figures (out/paper*)
 #   ./setup.sh test        install, build, run the default test suite (ctest -L unit)
+#   ./setup.sh docs        install, build the program, build the documentation site offline (build/site)
 #   ./setup.sh test-long   install, build, run the long physics validations (ctest -L long)
 #   ./setup.sh install | build
 #   ./setup.sh peers       also install Boost and SUNDIALS, build astrojax_peers (benchmarks only)
@@ -20,6 +21,9 @@ PACKAGES=(build-essential cmake pkg-config libeigen3-dev libopenmpi-dev openmpi-
 # Only for the work-precision comparison with peer solvers (./setup.sh peers); the product
 # never needs them.
 PEER_PACKAGES=(libboost-dev libsundials-dev)
+# The documentation site (./setup.sh docs) and its tests in the default suite (./setup.sh test):
+# MkDocs, its Material theme, the Markdown extensions and MathJax for the equations, all offline.
+DOCS_PACKAGES=(mkdocs mkdocs-material python3-pymdownx libjs-mathjax)
 # Only for ./setup.sh test-cluster: a Slurm and its authentication, started by the test itself.
 CLUSTER_PACKAGES=(slurm-wlm munge)
 BUILD_DIR=${BUILD_DIR:-build}
@@ -54,11 +58,15 @@ demo() {
   mkdir -p out
   local ranks; ranks=$(( $(nproc) < 2 ? 2 : $(nproc) ))
   local start=$SECONDS
-  # An earlier demo that was interrupted left its finished tasks: continue it.
+  # An earlier demo that was interrupted left its finished tasks: continue it. One that
+  # finished is made again (--force replaces its file).
   local resume=()
   if [ -e out/paper.h5.part ] || [ -e out/paper.h5.journal ]; then
     echo "note: continuing the interrupted main job (out/paper.h5.part)"
     resume=(--resume)
+  elif [ -e out/paper.h5 ]; then
+    echo "note: out/paper.h5 exists from an earlier demo; making it again"
+    resume=(--force)
   fi
   if [ "$(id -u)" -eq 0 ]; then
     echo "note: running as root, where mpirun refuses; running the sweep as one process instead"
@@ -83,11 +91,13 @@ case "${1:-}" in
   install) install ;;
   build) install; build ;;
   demo) install; build astrojax; demo ;;
-  test) install; build; (cd "$BUILD_DIR" && ctest -L unit -j"$(nproc)" --output-on-failure) ;;
+  docs) PACKAGES+=("${DOCS_PACKAGES[@]}"); install; build astrojax
+        tools/build_docs.sh "$BUILD_DIR"/astrojax "$BUILD_DIR"/site ;;
+  test) PACKAGES+=("${DOCS_PACKAGES[@]}"); install; build; (cd "$BUILD_DIR" && ctest -L unit -j"$(nproc)" --output-on-failure) ;;
   peers) PACKAGES+=("${PEER_PACKAGES[@]}"); install
          cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DASTROJAX_PEERS=ON >/dev/null
          cmake --build "$BUILD_DIR" -j"$(nproc)" --target astrojax astrojax_peers ;;
   test-long) install; build; (cd "$BUILD_DIR" && ctest -L long --output-on-failure) ;;
   test-cluster) PACKAGES+=("${CLUSTER_PACKAGES[@]}"); install; build; (cd "$BUILD_DIR" && ctest -L cluster --output-on-failure) ;;
-  *) sed -n '2,9p' "$0" | sed 's/^# \{0,1\}//'; exit 2 ;;
+  *) sed -n '2,11p' "$0" | sed 's/^# \{0,1\}//'; exit 2 ;;
 esac

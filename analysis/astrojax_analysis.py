@@ -69,10 +69,39 @@ def fail(message):
     sys.exit(2)
 
 
+# The newest layout of run and sweep files this library reads (root attribute format_version;
+# 1 when absent): 2 added /resolved (the configuration in force as values) and, in sweeps,
+# /windows/phi_begin (the motor phase at each window start).
+FORMAT_VERSION = 2
+
+
+def format_version(f, path):
+    """The file's format version (1 without the attribute); a newer one than this library
+    reads stops the script, naming both."""
+    v = int(f.attrs.get("format_version", 1))
+    if v > FORMAT_VERSION:
+        fail(f"{path}: file format version {v} is newer than this analysis library reads ({FORMAT_VERSION})")
+    return v
+
+
+def need(f, path, name, what):
+    """Stop when an older file lacks `name`, saying what it is for and how to get it."""
+    if name not in f:
+        fail(f"{path}: the file (format version {format_version(f, path)}) lacks /{name}, {what}; "
+             f"rerun it with this version of astrojax")
+
+
+def resolved(group):
+    """The configuration in force stored as /resolved attributes: {'model.drive_radius': 0.01, ...}."""
+    return {k: (v.decode() if isinstance(v, bytes) else v.item() if hasattr(v, "item") else v)
+            for k, v in group.attrs.items()}
+
+
 def file_kind(path):
     """'sweep' (written by astrojax sweep) or 'run' (astrojax run); exits on anything else."""
     try:
         with h5py.File(path, "r") as f:
+            format_version(f, path)
             if "windows" in f and "samples" in f:
                 return "sweep"
             if "trajectory" in f:
@@ -98,6 +127,7 @@ class Sweep:
             self.cls = w["class"][:]
             self.omega_begin = w["omega_m_begin"][:]
             self.omega_end = w["omega_m_end"][:]
+            self.phi_begin = w["phi_begin"][:] if "phi_begin" in w else None
             self.direction = w["direction"][:]
             self.segment = w["segment"][:]
             layout = ("class", "direction", "segment")
@@ -457,12 +487,6 @@ def read_run(path):
     return out
 
 
-def _string_misfit(r1, L1, phi, R):
-    """mean (|r1 − a|² − L1²)² with the top a = (R cos φ, R sin φ, 0): zero on the string."""
-    d2 = (r1[:, 0] - R * np.cos(phi)) ** 2 + (r1[:, 1] - R * np.sin(phi)) ** 2 + r1[:, 2] ** 2
-    return np.mean((d2 - L1 ** 2) ** 2)
-
-
 def _golden(cost, lo, hi, iterations=80):
     g = (np.sqrt(5) - 1) / 2
     for _ in range(iterations):
@@ -481,25 +505,34 @@ def _scan_and_refine(cost, lo, hi, n):
     return _golden(cost, grid[max(i - 1, 0)], grid[min(i + 1, n - 1)]) if step > 0 else grid[i]
 
 
-def motor_phase(t, omega_m, r1, L1, R):
-    """The motor phase φ(t) of samples that do not store it (a sweep's windows).
-
-    φ(t) = φ0 + ∫ω_m dt (trapezoid; exact on a linear ramp). φ0 follows from the string:
-    the top a = (R cos φ, R sin φ, 0) is at distance L1 = |r1 − a| from the bead, so φ0
-    minimises the misfit of that equation, scanned on 720 phases and refined by golden
-    section.
-    """
+def window_phase(sweep, c, k, s):
+    """The motor phase φ at the samples s of window k of chain c: the file's phase at the
+    window start plus ∫ω_m dt (trapezoid; exact on a linear ramp, as ω_m is)."""
+    if sweep.phi_begin is None:
+        with h5py.File(sweep.path, "r") as f:
+            need(f, sweep.path, "windows/phi_begin", "the motor phase at each window start")
+    t, omega_m = s["t"], s["omega_m"]
+    t0 = sweep_window_start(sweep, c, k)
+    # From the window start to each sample: the first sample is at or just after t0.
     rel = np.concatenate([[0.0], np.cumsum(0.5 * (omega_m[1:] + omega_m[:-1]) * np.diff(t))])
-    if R <= 0:
-        return rel  # no drive circle: every phase gives the same picture
-    return _scan_and_refine(lambda p0: _string_misfit(r1, L1, p0 + rel, R), -PI, PI, 721) + rel
+    w0 = float(sweep.omega_begin[c, k])
+    lead = 0.5 * (w0 + omega_m[0]) * (t[0] - t0)
+    return float(sweep.phi_begin[c, k]) + lead + rel
 
 
-def drive_radius(phi, r1, L1):
-    """The drive radius R of a run file (which stores φ but not R): the R in [0, min L1]
-    that puts the top a(φ) at distance L1 from the bead, scanned in 0.1 mm and refined."""
-    top = float(np.min(L1))
-    return _scan_and_refine(lambda R: _string_misfit(r1, L1, phi, R), 0.0, top, int(top / 1e-4) + 2)
+def sweep_window_start(sweep, c, k):
+    with h5py.File(sweep.path, "r") as f:
+        return float(f["windows"]["t_begin"][c, k])
+
+
+def run_parameter(path, key):
+    """A setting of a run file's configuration in force, e.g. 'model.drive_radius'."""
+    with h5py.File(path, "r") as f:
+        need(f, path, "resolved", "the configuration in force")
+        values = resolved(f["resolved"])
+    if key not in values:
+        fail(f"{path}: /resolved has no {key}")
+    return values[key]
 
 
 def corotating(r, phi):

@@ -98,7 +98,7 @@ def sweep_orbits(args):
         if args.tail:
             keep = s["t"] >= s["t"][-1] - args.tail
             s = {n: v[keep] for n, v in s.items()}
-        s["phi"] = ajx.motor_phase(s["t"], s["omega_m"], s["r1"], s["L1"], R)
+        s["phi"] = ajx.window_phase(sweep, c, k, s)
         wb = sweep.stats["omega_ball"][c, k]
         arrow = {1: "▲", -1: "▼", 0: "●"}[int(sweep.direction[c, k])]
         if args.top:
@@ -134,7 +134,7 @@ def run_orbits(args):
         if keep.sum() < 3:
             ajx.fail(f"{args.input}: fewer than 3 samples in the {tail:g} s before t = {end:g} s")
         s = {n: run[n][keep] for n in ("t", "omega_m", "phi", "L1", "mode", "r1", "r2")}
-        R = ajx.drive_radius(s["phi"], s["r1"], s["L1"])
+        R = float(ajx.run_parameter(args.input, "model.drive_radius"))
         w0, w1 = s["omega_m"][0] / PI, s["omega_m"][-1] / PI
         title = f"t = {s['t'][0]:.1f}–{s['t'][-1]:.1f} s, ω_m {w0:.2f}–{w1:.2f}π rad/s, R = {R * 1000:.3g} mm"
         out.append((title, s, R))

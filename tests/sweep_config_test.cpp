@@ -108,7 +108,7 @@ TEST(SweepConfig, BadSweepFilesNameFileKeyAndRange) {
     std::string key, range;
   } cases[] = {
       {{"protocol.colour=1"}, "protocol.colour", "unknown key"},
-      {{"grid.length=[1.0]"}, "grid.length", "allowed: drive_radius"},
+      {{"grid.length=[1.0]"}, "grid.length", "drive_radius, contact_distance"},
       {{"grid.drive_radius=[0.01, 0.9]"}, "model.drive_radius", "0 <= R < l"},
       {{"grid.drive_radius=[0.01, 0.9]"}, "grid.drive_radius[1]", ""},
       {{"grid.contact_distance={start=0.02,stop=0.04}"}, "grid.contact_distance.num", "missing"},

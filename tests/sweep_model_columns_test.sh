@@ -46,7 +46,7 @@ rc=$?
 check "bad slip rate: exit 2 (got $rc)" "[ $rc -eq 2 ]"
 check "bad slip rate: names the key, the grid point and the range" \
   "grep -q 'model.couple_slip_rate' '$work/bad.out' && grep -qF 'grid.couple_slip_rate[1]' '$work/bad.out' \
-   && grep -q 'Ω_ε > 0' '$work/bad.out'"
+   && grep -qF 'Ω_ε in (0, ∞) rad/s' '$work/bad.out'"
 check "bad slip rate: no file" "[ ! -e '$work/bad.h5' ] && [ ! -e '$work/bad.h5.part' ]"
 
 finish "sweep model columns"

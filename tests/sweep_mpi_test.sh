@@ -44,15 +44,23 @@ check "thresholds: CSV with a header and 8 rows" "[ \$(wc -l < '$work/th.csv') -
 "$bin" thresholds "$work/missing.h5" > /dev/null 2>&1
 check "thresholds of a missing file: exit 2" "[ $? -eq 2 ]"
 cp "$work/one.h5" "$work/re.h5"
-"$bin" classify "$work/re.h5" > "$work/re.out" 2>&1
+"$bin" classify "$work/re.h5" > "$work/re0.out" 2>&1
+check "classify without -o or --force: exit 2, nothing rewritten" "[ $? -eq 2 ] && grep -q 'give -o COPY' '$work/re0.out'"
+"$bin" classify "$work/re.h5" --force > "$work/re.out" 2>&1
 check "classify with the defaults: 0 changed" "grep -q ' 0 changed class' '$work/re.out'"
 for d in class confidence omega_ball rotation_number L1_mean mode_fraction; do
   check "classify reproduces /windows/$d from the stored samples" "h5diff '$work/one.h5' '$work/re.h5' /windows/$d > /dev/null 2>&1"
 done
-"$bin" classify "$work/re.h5" --set fallen_fraction=7 --set on_ball_tol=1e-9 > "$work/re2.out" 2>&1
-check "classify with other settings changes classes" "! grep -q ' 0 changed class' '$work/re2.out'"
-"$bin" classify "$work/re.h5" --set nonsense=1 > /dev/null 2>&1
+"$bin" classify "$work/re.h5" -o "$work/re2.h5" --set classifier.fallen_fraction=7 --set classifier.on_ball_tol=1e-9 > "$work/re2.out" 2>&1
+check "classify -o with other settings changes classes in the copy only" \
+  "! grep -q ' 0 changed class' '$work/re2.out' && h5diff '$work/one.h5' '$work/re.h5' /windows/class > /dev/null 2>&1"
+"$bin" classify "$work/re.h5" -o "$work/re2.h5" > "$work/re3.out" 2>&1
+check "classify -o onto an existing file: exit 2 without --force" "[ $? -eq 2 ] && grep -q 'exists; give --force' '$work/re3.out'"
+"$bin" classify "$work/re.h5" --force --set nonsense=1 > /dev/null 2>&1
 check "classify with an unknown setting: exit 2" "[ $? -eq 2 ]"
+"$bin" classify "$work/re.h5" --force --set fallen_fraction=7 > "$work/re4.out" 2>&1
+check "classify with a key lacking its section: exit 2, the full key suggested" \
+  "[ $? -eq 2 ] && grep -q 'did you mean classifier.fallen_fraction' '$work/re4.out'"
 # The hold mode: the same on 1 and 3 ranks (the seeds' random kicks included).
 "$mpiexec" --oversubscribe -n 1 "$bin" sweep "$src/tests/data/tiny_hold.toml" -o "$work/hold1.h5" -q > /dev/null 2>&1
 rh1=$?

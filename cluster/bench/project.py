@@ -2,7 +2,7 @@
 
 Usage: project.py PAPER_1RANK.h5 QUICK_1WORKER.h5 QUICK_2WORKERS.h5 THROUGHPUT.txt
 
-The model (cluster/README.md, "Scale"). A sweep has C chains of K tasks; a task of g windows
+The model (docs/cluster/index.md, "Scale"). A sweep has C chains of K tasks; a task of g windows
 integrates for tau = g * tau_w on a worker. The master spends s = g * m_w + 1/mu on each task:
 m_w per window to classify, journal and write it (measured on 1 rank: time in on_result), 1/mu to
 receive it and hand out the next (the farm's message throughput mu with a task's output size).

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Measures the figures of cluster/README.md, "Scale", on this machine and projects them:
+# Measures the figures of docs/cluster/index.md, "Scale", on this machine and projects them:
 #  1. the master's throughput with tasks that take no time (farm_throughput), on 2 to 17 ranks
 #     (oversubscribed), with tiny outputs and with outputs the size of a sweep task's;
 #  2. a sweep task's costs on 1 rank: integration per window (tau_w) and the master's work per

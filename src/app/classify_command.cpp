@@ -7,7 +7,10 @@
 #include <utility>
 #include <vector>
 
+#include <filesystem>
+
 #include "app/commands.hpp"
+#include "app/output_paths.hpp"
 #include "app/sweep_file.hpp"
 
 namespace ajx::app {
@@ -21,11 +24,31 @@ int classify_command(const ClassifyArgs& args) {
     return kExitBadInput;
   }
   const std::string used = fmt::format("{}", fmt::join(args.settings, "\n"));
+  // The file to rewrite: a copy at -o, or the input itself when --force says so.
+  std::string target = args.input;
+  try {
+    if (args.output.empty() && !args.force)
+      throw config::ConfigError(fmt::format("{}: classify rewrites the file's classes; give -o COPY for a reclassified "
+                                            "copy, or --force to rewrite it in place", args.input));
+    if (!args.output.empty()) {
+      check_output_path(args.input, "-o", args.output, {args.input}, {});
+      check_not_overwriting(args.input, "-o", args.output, args.force);
+      std::filesystem::copy_file(args.input, args.output, std::filesystem::copy_options::overwrite_existing);
+      target = args.output;
+    }
+  } catch (const config::ConfigError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return kExitBadInput;
+  } catch (const std::filesystem::filesystem_error& e) {
+    std::fprintf(stderr, "error: %s: %s\n", args.input.c_str(), e.what());
+    return kExitBadInput;
+  }
 
   try {
-    io::File f = io::File::open_rw(args.input);
+    io::File f = io::File::open_rw(target);
+    checked_format_version(f, target);
     const auto cls = f.read_int32s("windows/class"), count = f.read_int32s("samples/count");
-    const auto model = f.read_doubles("chains/model");
+    const StoredModels models = read_chain_models(f);
     const auto t = f.read_doubles("samples/t"), om = f.read_doubles("samples/omega_m"), L1 = f.read_doubles("samples/L1");
     const auto T1 = f.read_doubles("samples/T1"), T2 = f.read_doubles("samples/T2"), mode = f.read_doubles("samples/mode");
     const auto r1 = f.read_doubles("samples/r1"), r2 = f.read_doubles("samples/r2");
@@ -33,14 +56,7 @@ int classify_command(const ClassifyArgs& args) {
     SweepFile out(std::move(f), C, W, cap, 0);
     long changed = 0, total = 0;
     for (std::size_t c = 0; c < C; ++c) {
-      physics::Parameters p;
-      p.string_length = model(c, 0);
-      p.bead_mass = model(c, 1);
-      p.ball_mass = model(c, 2);
-      p.drag = model(c, 3);
-      p.gravity = model(c, 6);
-      p.contact_distance = model(c, 8);
-      const sweep::OrbitScales scales = sweep::orbit_scales(p);
+      const sweep::OrbitScales scales = sweep::orbit_scales(models.chains[c]);
       for (std::size_t k = 0; k < W; ++k) {
         const auto n = std::size_t(count(c, k));
         if (cls(c, k) < 0 || n == 0) continue;  // never computed
@@ -69,7 +85,7 @@ int classify_command(const ClassifyArgs& args) {
     io::Group wg = out.file().open_group("windows");
     wg.set_attribute("classifier_settings", used.empty() ? std::string("defaults") : used);
     out.close();
-    std::printf("classified %ld windows again in %s: %ld changed class\n", total, args.input.c_str(), changed);
+    std::printf("classified %ld windows again in %s: %ld changed class\n", total, target.c_str(), changed);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s: %s\n", args.input.c_str(), e.what());
     return kExitBadInput;

@@ -19,6 +19,7 @@ struct RunArgs {
   std::vector<std::string> overrides;  // "key=value"
   std::string output;                  // overrides output.path when non-empty
   bool quiet = false;
+  bool force = false;                  // replace an existing output
   double max_memory = 0;               // [MB] memory budget; 0: half the machine's
   std::string command_line;            // stored in the file for provenance
 };
@@ -69,8 +70,10 @@ struct ThresholdsArgs {
 int thresholds_command(const ThresholdsArgs& args);
 
 struct ClassifyArgs {
-  std::string input;                  // a sweep's HDF5 file, rewritten in place
-  std::vector<std::string> settings;  // "name=value" of ClassifierSettings fields
+  std::string input;                  // a sweep's HDF5 file
+  std::string output;                 // the reclassified copy; empty: rewrite input (needs force)
+  bool force = false;                 // rewrite input in place, or replace an existing output
+  std::vector<std::string> settings;  // "classifier.name=value" of ClassifierSettings fields
 };
 int classify_command(const ClassifyArgs& args);
 
@@ -168,5 +171,12 @@ namespace ajx::app {
 
 // astrojax bench threshold: ω_fall from a short ramp, per method and tolerance -> CSV.
 int bench_threshold_command(const WorkPrecisionArgs& args, double sample_dt);
+
+}  // namespace ajx::app
+
+namespace ajx::app {
+
+// astrojax keys: the configuration reference, plain or as Markdown.
+int keys_command(bool markdown);
 
 }  // namespace ajx::app

@@ -54,7 +54,8 @@ int main(int argc, char** argv) {
       ->required();
   run_cmd->add_option("-s,--set", run.overrides, "Override a key, e.g. --set model.drive_radius=0.005 (repeatable)");
   run_cmd->add_option("-o,--output", run.output, "HDF5 output path (overrides output.path)")->check(non_empty);
-  run_cmd->add_flag("-q,--quiet", run.quiet, "Print only errors");
+  run_cmd->add_flag("-q,--quiet", run.quiet, "No progress or notes: only the one-line result and errors");
+  run_cmd->add_flag("--force", run.force, "Replace an existing output file");
   run_cmd->add_option("--max-memory", run.max_memory,
                       "Memory the run may plan for [MB]; a run whose samples need more is refused before it starts "
                       "(default: half the machine's memory)")
@@ -68,14 +69,14 @@ int main(int argc, char** argv) {
       ->required();
   sweep_cmd->add_option("-s,--set", sweep.overrides, "Override a key, e.g. --set grid.drive_radius=[0.005,0.01]");
   sweep_cmd->add_option("-o,--output", sweep.output, "HDF5 output path (overrides output.path)")->check(non_empty);
-  sweep_cmd->add_flag("-q,--quiet", sweep.quiet, "No progress lines");
+  sweep_cmd->add_flag("-q,--quiet", sweep.quiet, "No progress or notes: only the one-line result and errors");
   sweep_cmd->add_flag("--resume", sweep.resume,
                       "Continue an interrupted sweep from <output>.part (same file and overrides)");
   sweep_cmd->add_flag("--dry-run", sweep.dry_run,
                       "Check the file and print the plan (chains, tasks, simulated seconds, a CPU estimate); run nothing");
   sweep_cmd->add_flag("--force", sweep.force,
-                      "Start afresh even where an interrupted sweep left <output>.part or <output>.journal "
-                      "(their finished tasks are discarded)");
+                      "Replace an existing <output>, or start afresh where an interrupted sweep left "
+                      "<output>.part or <output>.journal (their finished tasks are discarded)");
   sweep_cmd->add_option("--max-tasks", sweep.max_tasks,
                         "Stop after this many task results, as an interruption would (resume later with --resume)")
       ->check(CLI::NonNegativeNumber);
@@ -98,6 +99,12 @@ int main(int argc, char** argv) {
       "verify", "Check a sweep's file, finished or .part, against its own sweep file and its journal; report damage "
                 "(exit 0 intact, 2 damaged)");
   verify_cmd->add_option("file", verify.input, "HDF5 file written by astrojax sweep, or its .part")->required();
+
+  bool keys_markdown = false;
+  CLI::App* keys_cmd = app.add_subcommand(
+      "keys", "List every configuration key with its type, unit, allowed values, default and meaning (the "
+              "configuration reference, made from the parameter table and the key catalogue the reader uses)");
+  keys_cmd->add_flag("--markdown", keys_markdown, "Markdown tables, one per section (the docs' reference page)");
 
   ajx::app::ThresholdsArgs thresholds;
   CLI::App* thresholds_cmd = app.add_subcommand(
@@ -132,10 +139,12 @@ int main(int argc, char** argv) {
   ajx::app::ClassifyArgs classify;
   CLI::App* classify_cmd = app.add_subcommand(
       "classify", "Classify every window of a sweep file again from its stored samples (no integration)");
-  classify_cmd->add_option("file", classify.input, "HDF5 file written by astrojax sweep (rewritten in place)")
-      ->required();
+  classify_cmd->add_option("file", classify.input, "HDF5 file written by astrojax sweep")->required();
+  classify_cmd->add_option("-o,--output", classify.output, "Write the reclassified file here (a copy of the input)");
+  classify_cmd->add_flag("--force", classify.force,
+                         "Without -o: rewrite the input in place; with -o: replace an existing output");
   classify_cmd->add_option("-s,--set", classify.settings,
-                           "A classifier setting, e.g. --set locked_tol=0.05 (see src/sweep/orbit_classifier.hpp)");
+                           "A classifier setting, e.g. --set classifier.locked_tol=0.05 (astrojax keys lists them)");
 
   ajx::app::OrbitsArgs orbits;
   orbits.command_line = command_line;
@@ -267,6 +276,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : ajx::app::kExitBadInput;
   }
+  if (*keys_cmd) return ajx::app::keys_command(keys_markdown);
   if (*run_cmd) return ajx::app::run_command(run);
   if (*verify_cmd) return ajx::app::verify_command(verify);
   if (*thresholds_cmd) return ajx::app::thresholds_command(thresholds);

@@ -21,6 +21,7 @@
 #include "config/config.hpp"
 #include "io/hdf5_file.hpp"
 #include "orbits/continuation.hpp"
+#include "physics/parameter_table.hpp"
 #include "orbits/lagging_orbit.hpp"
 #include "orbits/orbit_families.hpp"
 #include "orbits/orbit_stability.hpp"
@@ -180,44 +181,28 @@ void print_family(const std::vector<Row>& stuck) {
   }
 }
 
-// The brackets of a sweep's chains whose model equals m (every column of chains/model), as
-// `astrojax thresholds` finds them. Older files have the first columns of model_row only, and
-// are matched on those. Throws on a file that is not a sweep's.
-struct OlderModelLayout {
-  std::size_t columns;
-  const char* lacking;  // the parameters such a file does not record
-};
-inline constexpr OlderModelLayout kOlderModelLayouts[] = {
-    {10, "none of the tie clutch's or the pair couple's"},  // before the tie clutch's four columns
-    {14, "none of the pair couple's"},                       // before the pair couple's two
-};
-const OlderModelLayout* older_model_layout(std::size_t columns) {
-  for (const auto& o : kOlderModelLayouts)
-    if (o.columns == columns) return &o;
-  return nullptr;
-}
+// The brackets of a sweep's chains whose model equals m (every parameter the file records in
+// chains/model; older files lack some, and are matched on those they have), as `astrojax
+// thresholds` finds them. Throws on a file that is not a sweep's.
 struct SweepBrackets {
   std::vector<std::size_t> chains;  // the matching chains
-  std::size_t columns_matched = 0;  // of model_row's kModelColumns
+  std::vector<std::string> lacking;  // parameters the file does not record
   std::map<std::string, std::vector<std::optional<sweep::Bracket>>> by_symbol;
 };
 SweepBrackets sweep_brackets(const std::string& path, const physics::Model& m) {
   const io::File f = io::File::open_read(path);
+  checked_format_version(f, path);
   const auto cls = f.read_int32s("windows/class"), dir = f.read_int32s("windows/direction");
   const auto wb = f.read_doubles("windows/omega_m_begin"), we = f.read_doubles("windows/omega_m_end");
-  const auto model = f.read_doubles("chains/model");
-  const auto mine = model_row(m.p);
-  if (model.cols() != mine.size() && !older_model_layout(model.cols()))
-    throw std::runtime_error(fmt::format("chains/model has {} columns, expected {} (or {} in files before the tie "
-                                         "clutch's columns, {} before the pair couple's)",
-                                         model.cols(), mine.size(), kOlderModelLayouts[0].columns,
-                                         kOlderModelLayouts[1].columns));
+  const StoredModels models = read_chain_models(f);
   SweepBrackets out;
-  out.columns_matched = model.cols();
+  out.lacking = models.lacking;
   for (std::size_t c = 0; c < cls.rows(); ++c) {
     bool same = true;
-    for (std::size_t j = 0; same && j < out.columns_matched; ++j)
-      same = std::abs(model(c, j) - mine[j]) <= 1e-12 * std::abs(mine[j]);
+    for (const std::string& key : models.present) {
+      const double mine = physics::parameter(m.p, key);
+      same = same && std::abs(physics::parameter(models.chains[c], key) - mine) <= 1e-12 * std::abs(mine);
+    }
     if (!same) continue;
     std::vector<sweep::ClassedWindow> w;
     for (std::size_t k = 0; k < cls.cols(); ++k)
@@ -490,9 +475,9 @@ int orbits_command(const OrbitsArgs& args) {
         return kExitBadInput;
       }
       std::printf("\nagainst the sweep %s (%zu chains with this model):\n", args.compare.c_str(), sb.chains.size());
-      if (const OlderModelLayout* o = older_model_layout(sb.columns_matched))
-        std::printf("  (the file records %zu of the %zu model parameters, %s; matched on those)\n",
-                    sb.columns_matched, kModelColumns, o->lacking);
+      if (!sb.lacking.empty())
+        std::printf("  (the file records %zu of the %zu model parameters, not %s; matched on those)\n",
+                    kModelColumns - sb.lacking.size(), kModelColumns, fmt::format("{}", fmt::join(sb.lacking, ", ")).c_str());
       for (const auto& t : pred->thresholds)
         for (std::size_t i = 0; i < sb.chains.size(); ++i) {
           const auto& b = sb.by_symbol[t.symbol][i];
@@ -522,6 +507,7 @@ int orbits_command(const OrbitsArgs& args) {
       std::error_code ec;
       if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path(), ec);
       io::File f = io::File::create_temporary(out);
+      write_format(f, "orbits");
       write_provenance(f, args.command_line, cfg);
       write_table(f.create_group("orbits"), table);
       if (!points.empty()) {

@@ -67,4 +67,11 @@ void check_output_path(std::string_view source, std::string_view key, const std:
     refuse(fmt::format("cannot write '{}': no file can be made in '{}' ({})", path, dir.string(), why));
 }
 
+void check_not_overwriting(std::string_view source, std::string_view key, const std::string& path, bool force) {
+  std::error_code ec;
+  if (!force && fs::exists(path, ec))
+    throw config::ConfigError(fmt::format("{}: key '{}': '{}' exists; give --force to replace it, or another -o",
+                                          source, key, path));
+}
+
 }  // namespace ajx::app

@@ -16,4 +16,8 @@ namespace ajx::app {
 void check_output_path(std::string_view source, std::string_view key, const std::string& path,
                        const std::vector<std::string>& inputs, const std::vector<std::string>& siblings);
 
+// Refuses (config::ConfigError) an output `path` that exists already, unless `force`: a file
+// made earlier is never replaced by accident.
+void check_not_overwriting(std::string_view source, std::string_view key, const std::string& path, bool force);
+
 }  // namespace ajx::app

@@ -1,15 +1,48 @@
 // What every file the program writes records about how it was made: the program, its version
-// and git commit (set by CMake at configure time), the command line, and the configuration
-// verbatim with its source and overrides.
+// and git commit (set by CMake at configure time), the command line, the configuration verbatim
+// with its source and overrides, and the configuration in force as values (/resolved), under a
+// format name and version that readers check.
 #pragma once
 #include <fmt/format.h>
 
 #include <string>
 
+#include <cstdint>
+#include <stdexcept>
+#include <variant>
+
 #include "config/config.hpp"
+#include "config/resolved.hpp"
 #include "io/hdf5_file.hpp"
 
 namespace ajx::app {
+
+// The layout version of run and sweep files (root attribute format_version):
+//   1  (no attribute) before the resolved configuration;
+//   2  /resolved holds every model parameter, layer, integrator setting and the start as
+//      attributes keyed "model.drive_radius", ...; root attribute `format` says "run" or "sweep".
+inline constexpr std::int64_t kFileFormatVersion = 2;
+
+inline void write_format(io::File& f, std::string_view kind) {
+  f.set_attribute("format", kind);
+  f.set_attribute("format_version", kFileFormatVersion);
+}
+
+inline void write_resolved(io::Group& g, const config::CommonConfig& cfg) {
+  for (const config::Setting& s : config::resolved_settings(cfg))
+    std::visit([&](const auto& v) { g.set_attribute(s.key, v); }, s.value);
+}
+
+// The format version of a file this program reads, 1 when it has none; a newer one than this
+// program writes is refused, naming both.
+inline std::int64_t checked_format_version(const io::File& f, const std::string& path) {
+  if (!f.has_attribute("format_version")) return 1;
+  const std::int64_t v = f.read_int64_attribute("format_version");
+  if (v > kFileFormatVersion)
+    throw std::runtime_error(fmt::format("{}: file format version {} is newer than this program reads ({}); "
+                                         "use the astrojax that wrote it", path, v, kFileFormatVersion));
+  return v;
+}
 
 inline void write_provenance(io::File& f, const std::string& command_line, const config::CommonConfig& cfg) {
   f.set_attribute("program", "astrojax-explorer");
@@ -19,6 +52,8 @@ inline void write_provenance(io::File& f, const std::string& command_line, const
   auto config = f.write_string_dataset("config", cfg.source_text);
   config.set_attribute("source", cfg.source_name);
   config.set_attribute("overrides", fmt::format("{}", fmt::join(cfg.overrides, "\n")));
+  io::Group resolved = f.create_group("resolved");
+  write_resolved(resolved, cfg);
 }
 
 }  // namespace ajx::app

@@ -140,6 +140,7 @@ void check_run_size(const config::RunConfig& cfg, double duration, double max_me
 void write_run(io::File& f, const std::string& command_line, const config::RunConfig& cfg,
                const physics::MotorSchedule& schedule, const Trajectory& traj, const sim::RunSummary& sum,
                const physics::State& state, double wall, std::optional<double> start_projection) {
+  write_format(f, "run");
   write_provenance(f, command_line, cfg);
   io::Group tg = f.create_group("trajectory");
   traj.write(tg);
@@ -206,6 +207,7 @@ int run_command(const RunArgs& args) {
     if (!args.output.empty()) cfg.output.path = args.output;
     check_output_path(cfg.source_name, "output.path", cfg.output.path,
                       {args.config_path}, {".part"});
+    check_not_overwriting(cfg.source_name, "output.path", cfg.output.path, args.force);
     paper = sim::paper_variant(cfg.run.method);
     schedule = physics::MotorSchedule(cfg.schedule);
     check_run_size(cfg, schedule.duration(), args.max_memory);
@@ -253,8 +255,7 @@ int run_command(const RunArgs& args) {
     return kExitOutputFailed;
   }
 
-  if (!args.quiet || !sum.ok())
-    std::printf(
+  std::printf(
         "%s  final mode %s  ω_ball %.5f rad/s (%.4fπ) over the last %.3g s  energy residual %.2e  "
         "drift %.1e m  steps %ld  wall %.3f s  -> %s\n",
         sum.ok() ? "ok" : ("FAILED: " + sum.failure).c_str(), std::string(physics::to_string(state.contact.mode)).c_str(),
@@ -262,10 +263,10 @@ int run_command(const RunArgs& args) {
         std::min(cfg.run.omega_window, 0.5 * schedule.duration()), sum.energy.relative(), sum.max_drift,
         sum.steps, wall, cfg.output.path.c_str());
   for (const sim::Violation& v : sum.violations)
-    if (v.count > 0)
+    if (v.count > 0 && !args.quiet)
       std::printf("  layer assumption violated: %s: %ld times, first at t = %.6f s, worst %.3e %s\n", v.what.c_str(),
                   v.count, v.first_time, v.worst, v.unit.c_str());
-  if (sum.chatter > 0)
+  if (sum.chatter > 0 && !args.quiet)
     std::printf("  chattering resolved %ld times (first at t = %.6f s): switch band widened, impacts made plastic\n",
                 sum.chatter, sum.first_chatter);
   return sum.ok() ? 0 : kExitRunFailed;

@@ -168,6 +168,7 @@ int sweep_command(const SweepArgs& args) {
   if (master && error.empty()) {
     try {
       check_output_path(cfg.source_name, "output.path", cfg.output_path, {args.config_path}, {".part", ".journal"});
+      if (!args.resume) check_not_overwriting(cfg.source_name, "output.path", cfg.output_path, args.force);
       if (!args.resume && !args.force) check_no_unfinished_sweep(cfg, part_path, journal_path);
       if (args.resume) {
         if (!std::filesystem::exists(part_path) && !std::filesystem::exists(journal_path)) {

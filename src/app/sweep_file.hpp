@@ -12,7 +12,11 @@
 #include <string>
 #include <vector>
 
+#include <sstream>
+#include <stdexcept>
+#include "app/provenance.hpp"
 #include "config/config.hpp"
+#include "physics/parameter_table.hpp"
 #include "io/hdf5_file.hpp"
 #include "app/sweep_result.hpp"
 #include "sweep/orbit_classifier.hpp"
@@ -23,15 +27,40 @@ namespace ajx::app {
 
 inline constexpr double kNotComputed = std::numeric_limits<double>::quiet_NaN();
 
-// One row of /chains/model: the parameters a sweep's chain ran with, in the order of the
-// dataset's "columns" attribute (the tie clutch's four, then the pair couple's two last).
-// Files written before the tie clutch's columns have the first 10, before the couple's 14.
-inline constexpr std::size_t kModelColumns = 16;
-inline std::array<double, kModelColumns> model_row(const physics::Parameters& p) {
-  return {p.string_length,  p.bead_mass,         p.ball_mass,          p.drag,         p.mu_static,
-          p.mu_kinetic,     p.gravity,           p.drive_radius,       p.contact_distance, p.top_stop,
-          p.tie_static_torque, p.tie_kinetic_torque, p.tie_inertia, p.tie_damping,
-          p.couple_torque,  p.couple_slip_rate};
+// /chains/model holds one row per chain: every model parameter, in the order of the parameter
+// table (physics/parameter_table.hpp), named with units in the dataset's "columns" attribute.
+inline constexpr std::size_t kModelColumns = std::size(physics::kParameters);
+
+// /chains/model read back by column name: each chain's parameters (the defaults where the file
+// has no such column: files of format 1 hold the first 10 or 14 columns), with the names of
+// the columns present and of the parameters the file lacks.
+struct StoredModels {
+  std::vector<physics::Parameters> chains;
+  std::vector<std::string> present, lacking;
+};
+inline StoredModels read_chain_models(const io::File& f) {
+  const io::Dataset ds = f.open_dataset("chains/model");
+  const auto model = ds.read_doubles();
+  std::vector<const physics::ParameterInfo*> cols;
+  std::stringstream names(ds.read_string_attribute("columns"));
+  StoredModels out;
+  for (std::string name; std::getline(names, name, ',');) {
+    name = name.substr(0, name.find(" ["));
+    const physics::ParameterInfo* info = physics::find_parameter(name);
+    if (!info) throw std::runtime_error(fmt::format("chains/model: unknown column '{}'", name));
+    cols.push_back(info);
+    out.present.push_back(name);
+  }
+  if (cols.size() != model.cols())
+    throw std::runtime_error(fmt::format("chains/model: {} columns but {} column names", model.cols(), cols.size()));
+  for (const physics::ParameterInfo& info : physics::kParameters)
+    if (std::find(out.present.begin(), out.present.end(), info.key) == out.present.end()) out.lacking.emplace_back(info.key);
+  for (std::size_t c = 0; c < model.rows(); ++c) {
+    physics::Parameters p;
+    for (std::size_t j = 0; j < cols.size(); ++j) p.*cols[j]->field = model(c, j);
+    out.chains.push_back(p);
+  }
+  return out;
 }
 
 // The sweep's file on rank 0, written while the sweep runs: every result dataset is made at
@@ -49,9 +78,11 @@ class SweepFile {
   // A new file: the configuration, the layout and the empty result datasets.
   void create(const config::SweepConfig& cfg, const sweep::SweepPlan& plan) {
     const auto& spans = plan.spans;
+    write_format(f_, "sweep");
     auto config = f_.write_string_dataset("config", cfg.source_text);
     config.set_attribute("source", cfg.source_name);
     config.set_attribute("overrides", joined_overrides(cfg));
+    write_resolved_parts(cfg);
     write_chains(cfg, plan);
     write_window_layout(plan.setups);
     io::Group wg = f_.open_group("windows");
@@ -202,18 +233,30 @@ class SweepFile {
     for (const auto& g : plan.points) {
       values.insert(values.end(), g.values.begin(), g.values.end());
       const physics::Parameters& p = g.model.p;
-      const auto row = model_row(p);
+      const auto row = physics::parameter_row(p);
       model.insert(model.end(), row.begin(), row.end());
     }
     if (!names.empty())
       cg.write_dataset("grid_values", std::span<const double>(values), io::Dims{C_, names.size()})
           .set_attribute("description", "each chain's value on each grid axis; NaN where its group has no such axis");
     cg.write_dataset("model", std::span<const double>(model), io::Dims{C_, kModelColumns})
-        .set_attribute("columns", "string_length [m],bead_mass [kg],ball_mass [kg],drag [kg/s],mu_static,mu_kinetic,"
-                                  "gravity [m/s^2],drive_radius [m],contact_distance [m],top_stop [m],"
-                                  "tie_static_torque [N m],tie_kinetic_torque [N m],tie_inertia [kg m^2],"
-                                  "tie_damping [N m s],couple_torque [N m],couple_slip_rate [rad/s]");
+        .set_attribute("columns", physics::parameter_columns());
     if (!cfg.parts.empty()) write_groups(cfg, plan);
+  }
+
+  // The configuration in force as values (provenance.hpp): /resolved for a plain file; for a
+  // file of parts, /resolved/0, /1, ... one per (group, variant) with its names, and
+  // /chains/part saying which a chain ran. A [grid] axis sets its chains' parameters, which
+  // /chains/model holds.
+  void write_resolved_parts(const config::SweepConfig& cfg) {
+    io::Group rg = f_.create_group("resolved");
+    if (cfg.parts.empty()) return write_resolved(rg, cfg);
+    for (std::size_t i = 0; i < cfg.parts.size(); ++i) {
+      io::Group pg = rg.create_group(fmt::format("{}", i));
+      pg.set_attribute("group", cfg.parts[i].group);
+      pg.set_attribute("variant", cfg.parts[i].variant);
+      write_resolved(pg, cfg.parts[i]);
+    }
   }
 
   // A grouped file: each chain's group and model variant, by index into the names (attributes
@@ -225,10 +268,11 @@ class SweepFile {
       if (it == list.end()) it = list.insert(list.end(), name);
       return std::int32_t(it - list.begin());
     };
-    std::vector<std::int32_t> group, variant, seed;
+    std::vector<std::int32_t> group, variant, seed, part_of;
     std::vector<double> omega;
     for (std::size_t c = 0; c < C_; ++c) {
       const config::SweepConfig& part = cfg.parts[plan.part[c]];
+      part_of.push_back(std::int32_t(plan.part[c]));
       const std::size_t g = groups.size();
       group.push_back(index(groups, part.group));
       if (groups.size() > g) purposes.push_back(part.group_purpose);
@@ -248,16 +292,22 @@ class SweepFile {
     cg.write_dataset("start_seed", std::span<const std::int32_t>(seed))
         .set_attribute("names", fmt::format("{}", fmt::join(seeds, "\n")));
     cg.write_dataset("start_omega", std::span<const double>(omega)).set_attribute("units", "rad/s");
+    cg.write_dataset("part", std::span<const std::int32_t>(part_of))
+        .set_attribute("description", "the (group, variant) part each chain ran: its configuration is /resolved/<part>");
   }
 
   void write_window_layout(const std::vector<sweep::ChainSetup>& setups) {
     io::Group wg = f_.create_group("windows");
     std::vector<double> tb(C_ * W_, kNotComputed), te(C_ * W_, kNotComputed), wb(C_ * W_, kNotComputed), we(C_ * W_, kNotComputed);
+    std::vector<double> phase(C_ * W_, kNotComputed);
     std::vector<std::int32_t> dir(C_ * W_, 0), seg(C_ * W_, -1);
-    for (std::size_t c = 0; c < C_; ++c)
+    for (std::size_t c = 0; c < C_; ++c) {
+      const physics::MotorSchedule motor(setups[c].protocol.schedule);
       for (std::size_t k = 0; k < setups[c].protocol.windows.size(); ++k) {
         const auto& w = setups[c].protocol.windows[k];
         const std::size_t i = c * W_ + k;
+        double omega = 0.0, omega_dot = 0.0;
+        motor.phase(w.t_begin, phase[i], omega, omega_dot);
         tb[i] = w.t_begin;
         te[i] = w.t_end;
         wb[i] = w.omega_begin;
@@ -265,6 +315,7 @@ class SweepFile {
         dir[i] = w.direction;
         seg[i] = w.segment;
       }
+    }
     const io::Dims dims{C_, W_};
     const auto put = [&](const char* name, const std::vector<double>& v, const char* unit, const char* what) {
       auto d = wg.write_dataset(name, std::span<const double>(v), dims);
@@ -275,6 +326,7 @@ class SweepFile {
     put("t_end", te, "s", "window end");
     put("omega_m_begin", wb, "rad/s", "motor ω_m at the window start");
     put("omega_m_end", we, "rad/s", "motor ω_m at the window end");
+    put("phi_begin", phase, "rad", "motor phase φ at the window start; inside the window φ = phi_begin + ∫ω_m dt");
     wg.write_dataset("direction", std::span<const std::int32_t>(dir), dims)
         .set_attribute("description", "+1 ω_m rising, -1 falling (ramp or staircase), 0 a single held level");
     wg.write_dataset("segment", std::span<const std::int32_t>(seg), dims)

@@ -69,6 +69,7 @@ struct RefineSource {
 RefineSource open_refine_source(const std::string& path, std::size_t chains, std::size_t windows) {
   RefineSource src;
   io::File f = io::File::open_read(path);
+  checked_format_version(f, path);
   const io::Dataset config = f.open_dataset("config");
   const config::SweepConfig cfg = config::parse_sweep_config(
       config.read_string(), config.read_string_attribute("source"), lines(config.read_string_attribute("overrides")));
@@ -660,6 +661,7 @@ int thresholds_command(const ThresholdsArgs& args) {
   std::vector<std::optional<Onset>> onsets;
   try {
     const io::File f = io::File::open_read(args.input);
+    checked_format_version(f, args.input);
     sw = read_sweep_windows(f);
     for (std::size_t c = 0; c < sw.chains.size(); ++c) onsets.push_back(flower_onset(f, sw, c, args.onset_span));
   } catch (const std::exception& e) {

@@ -31,9 +31,9 @@ bool same_values(const std::vector<double>& a, const std::vector<double>& b) {
 
 // The layout datasets that the sweep file alone determines.
 constexpr const char* kLayout[] = {"chains/grid_values", "chains/model",          "chains/group",
-                                   "chains/variant",     "chains/start_seed",     "chains/start_omega",
+                                   "chains/variant",     "chains/start_seed",     "chains/start_omega", "chains/part",
                                    "windows/t_begin",    "windows/t_end",         "windows/omega_m_begin",
-                                   "windows/omega_m_end", "windows/direction",    "windows/segment",
+                                   "windows/omega_m_end", "windows/phi_begin", "windows/direction",    "windows/segment",
                                    "tasks/chain",        "tasks/index",           "tasks/t_begin",
                                    "tasks/t_end"};
 
@@ -106,6 +106,7 @@ int verify_command(const VerifyArgs& args) {
   std::vector<std::string> damaged, notes;
   try {
     const io::File f = io::File::open_read(args.input);
+    checked_format_version(f, args.input);
     check_layout(f, damaged);
     check_results(f, damaged, notes);
     const auto status = f.read_int32s("tasks/status").data;

@@ -9,10 +9,13 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <span>
 #include <sstream>
 #include <toml++/toml.h>
 
 #include "config/did_you_mean.hpp"
+#include "config/key_catalogue.hpp"
+#include "physics/parameter_table.hpp"
 #include "numerics/stepper.hpp"
 #include "orbits/continuation.hpp"
 #include "sim/paper_scheme.hpp"
@@ -27,7 +30,7 @@ namespace {
 class Reader {
  public:
   Reader(const toml::table& t, std::string prefix, std::string_view file)
-      : t_(t), prefix_(std::move(prefix)), file_(file) {}
+      : t_(t), prefix_(std::move(prefix)), section_(generic_section(prefix_)), file_(file) {}
 
   [[noreturn]] void fail(std::string_view key, std::string_view what) const {
     throw ConfigError(fmt::format("{}: key '{}': {}", file_, full(key), what));
@@ -36,11 +39,18 @@ class Reader {
   bool has(std::string_view key) const { return t_.contains(key); }
   const toml::table& table() const { return t_; }
   // A key read elsewhere, not to be reported as unknown.
-  void known(std::string_view key) { used_.insert(std::string(key)); }
+  void known(std::string_view key) {
+    if (const KeyInfo* k = find_key(section_, key)) note_read(*k);  // a catalogue key read by hand
+    used_.insert(std::string(key));
+  }
 
   // A number within [lo, hi] (open ends when the flags say so).
   double number(std::string_view key, double fallback, double lo, double hi, bool lo_open = false,
                 bool hi_open = false) {
+    const KeyInfo& doc = documented(key);
+    if (!std::isnan(doc.lo) && (doc.lo != lo || doc.hi != hi || doc.lo_open != lo_open || doc.hi_open != hi_open))
+      throw std::logic_error(fmt::format("key '{}' of [{}] is read with the range {}{}, {}{} but documented as {}", key,
+                                         section_, lo_open ? "(" : "[", lo, hi, hi_open ? ")" : "]", doc.allowed));
     used_.insert(std::string(key));
     const toml::node* n = t_.get(key);
     if (!n) return fallback;
@@ -62,6 +72,7 @@ class Reader {
     return long(v);
   }
   std::string word(std::string_view key, std::string fallback, const std::vector<std::string>& allowed) {
+    documented(key);
     used_.insert(std::string(key));
     const toml::node* n = t_.get(key);
     if (!n) return fallback;
@@ -72,6 +83,7 @@ class Reader {
     return v;
   }
   std::string text(std::string_view key, std::string fallback) {
+    documented(key);
     used_.insert(std::string(key));
     const toml::node* n = t_.get(key);
     if (!n) return fallback;
@@ -79,6 +91,7 @@ class Reader {
     return *n->value<std::string>();
   }
   bool boolean(std::string_view key, bool fallback) {
+    documented(key);
     used_.insert(std::string(key));
     const toml::node* n = t_.get(key);
     if (!n) return fallback;
@@ -86,6 +99,7 @@ class Reader {
     return *n->value<bool>();
   }
   physics::Vec3 vec3(std::string_view key, double bound) {
+    documented(key);
     used_.insert(std::string(key));
     const toml::array* a = t_.get_as<toml::array>(key);
     if (!a || a->size() != 3) fail(key, "expected an array of 3 numbers");
@@ -109,8 +123,18 @@ class Reader {
   }
 
  private:
+  // Every key read is in the catalogue (key_catalogue.hpp): the reference lists what is read.
+  const KeyInfo& documented(std::string_view key) const {
+    const KeyInfo* k = find_key(section_, key);
+    if (!k)
+      throw std::logic_error(fmt::format("key '{}' of [{}] is read but missing from the key catalogue", key, section_));
+    note_read(*k);
+    return *k;
+  }
+
   const toml::table& t_;
   std::string prefix_;
+  std::string section_;  // the catalogue's name of the prefix
   std::string_view file_;
   std::set<std::string> used_;
 };
@@ -205,43 +229,11 @@ std::vector<physics::DriveSegment> parse_schedule(const toml::table& root, std::
 }
 
 // [model], [layers], [integrator] and [initial]: shared by every command.
-// The [model] numbers and their ranges, shared by [model] and the [grid] axes that set them
-// (ranges that depend on each other are physics::validate's).
-struct ModelNumber {
-  std::string_view key;
-  double physics::Parameters::*field;
-  double lo, hi;
-  bool lo_open, hi_open;
-};
-constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr ModelNumber kModelNumbers[] = {
-    {"string_length", &physics::Parameters::string_length, 0.0, 100.0, true, false},
-    {"bead_mass", &physics::Parameters::bead_mass, 0.0, kInf, true, true},
-    {"ball_mass", &physics::Parameters::ball_mass, 0.0, kInf, true, true},
-    {"drag", &physics::Parameters::drag, 0.0, kInf, false, true},
-    {"mu_static", &physics::Parameters::mu_static, 0.0, kInf, false, true},
-    {"mu_kinetic", &physics::Parameters::mu_kinetic, 0.0, kInf, false, true},
-    {"gravity", &physics::Parameters::gravity, 0.0, kInf, false, true},
-    {"drive_radius", &physics::Parameters::drive_radius, 0.0, kInf, false, true},
-    {"contact_distance", &physics::Parameters::contact_distance, 0.0, kInf, true, true},
-    {"top_stop", &physics::Parameters::top_stop, 0.0, kInf, false, true},
-    {"tie_static_torque", &physics::Parameters::tie_static_torque, 0.0, kInf, false, true},
-    {"tie_kinetic_torque", &physics::Parameters::tie_kinetic_torque, 0.0, kInf, false, true},
-    {"tie_inertia", &physics::Parameters::tie_inertia, 0.0, kInf, true, true},
-    {"tie_damping", &physics::Parameters::tie_damping, 0.0, kInf, false, true},
-    {"couple_torque", &physics::Parameters::couple_torque, 0.0, kInf, false, true},
-    {"couple_slip_rate", &physics::Parameters::couple_slip_rate, 0.0, kInf, true, true},
-};
-
-// "model.key: v is out of range; allowed (lo, hi]" for the first number of `p` outside its range.
-std::optional<physics::ParameterIssue> model_number_issue(const physics::Parameters& p) {
-  for (const ModelNumber& m : kModelNumbers) {
-    const double v = p.*m.field;
-    if (std::isfinite(v) && (m.lo_open ? v > m.lo : v >= m.lo) && (m.hi_open ? v < m.hi : v <= m.hi)) continue;
-    return physics::ParameterIssue{fmt::format("model.{}", m.key), v,
-                                    fmt::format("{}{}, {}{}", m.lo_open ? "(" : "[", m.lo, m.hi, m.hi_open ? ")" : "]")};
-  }
-  return std::nullopt;
+// A word of `words` (an enum's names in enum order) read as that enum.
+template <class Enum>
+Enum enum_word(Reader& r, std::string_view key, Enum fallback, std::span<const std::string_view> words) {
+  const std::string w = r.word(key, std::string(words[std::size_t(fallback)]), {words.begin(), words.end()});
+  return Enum(std::find(words.begin(), words.end(), w) - words.begin());
 }
 
 void parse_common(const toml::table& root, std::string_view file, CommonConfig& c) {
@@ -252,7 +244,7 @@ void parse_common(const toml::table& root, std::string_view file, CommonConfig& 
     physics::Parameters& p = c.model.p;
     tie_torques_given = r.has("tie_static_torque") && r.has("tie_kinetic_torque");
     couple_torque_given = r.has("couple_torque");
-    for (const ModelNumber& m : kModelNumbers)
+    for (const physics::ParameterInfo& m : physics::kParameters)
       p.*m.field = r.number(m.key, p.*m.field, m.lo, m.hi, m.lo_open, m.hi_open);
     r.reject_unknown();
     for (const auto& issue : physics::validate(c.model))
@@ -261,25 +253,19 @@ void parse_common(const toml::table& root, std::string_view file, CommonConfig& 
   }
   {
     Reader r(subtable(root, "layers", file), "layers", file);
-    const std::string fr = r.word("friction", "stick_slip", {"none", "kinetic", "stick_slip", "regularised"});
-    c.model.layers.friction = fr == "none"         ? physics::Friction::None
-                              : fr == "kinetic"    ? physics::Friction::Kinetic
-                              : fr == "stick_slip" ? physics::Friction::StickSlip
-                                                   : physics::Friction::Regularised;
-    c.model.layers.regularisation = r.number("regularisation", c.model.layers.regularisation, 0.0, 1e3, true);
-    c.model.layers.top_stop = r.boolean("top_stop", true);
-    c.model.layers.slack = r.boolean("slack", true);
-    c.model.layers.restitution = r.number("restitution", 0.0, 0.0, 1.0);
-    const std::string law = r.word("friction_law", "capstan", {"capstan", "point_contact"});
-    c.model.layers.friction_law =
-        law == "capstan" ? physics::FrictionLaw::Capstan : physics::FrictionLaw::PointContact;
-    c.model.layers.bottom_stop = r.boolean("bottom_stop", true);
-    c.model.layers.tie_clutch = r.word("tie", "rigid", {"rigid", "clutch"}) == "clutch";
+    physics::Layers& L = c.model.layers;
+    L.friction = enum_word(r, "friction", L.friction, physics::friction_words());
+    L.friction_law = enum_word(r, "friction_law", L.friction_law, physics::friction_law_words());
+    L.pair_couple = enum_word(r, "pair_couple", L.pair_couple, physics::pair_couple_words());
+    L.tie_clutch = enum_word(r, "tie", int(L.tie_clutch), physics::tie_words()) == 1;
+    L.bottom_stop = r.boolean("bottom_stop", L.bottom_stop);
+    L.top_stop = r.boolean("top_stop", L.top_stop);
+    L.slack = r.boolean("slack", L.slack);
+    for (const physics::LayerInfo& info : physics::layer_table())
+      if (info.kind == physics::LayerInfo::Kind::Number)
+        L.*info.number = r.number(info.key, L.*info.number, info.lo, info.hi, info.lo_open);
     if (c.model.layers.tie_clutch && !tie_torques_given)
       r.fail("tie", "\"clutch\" needs model.tie_static_torque and model.tie_kinetic_torque (τ_s >= τ_k >= 0 [N m])");
-    c.model.layers.pair_couple = r.word("pair_couple", "none", {"none", "motor_clutch"}) == "motor_clutch"
-                                     ? physics::PairCouple::MotorClutch
-                                     : physics::PairCouple::None;
     if (c.model.layers.pair_couple == physics::PairCouple::MotorClutch && !couple_torque_given)
       r.fail("pair_couple", "\"motor_clutch\" needs model.couple_torque (τ_c >= 0 [N m])");
     r.reject_unknown();
@@ -445,32 +431,12 @@ RunConfig load_run_config(const std::string& path, const std::vector<std::string
 
 namespace {
 
-// The [grid] axes that set a model parameter of each grid point; the other axis, ramp_rate,
-// sets the protocol's ramps. τ_s, τ_k, c_a are the tie clutch's (physics/tie.hpp); τ_c, Ω_ε
-// the pair couple's (physics/pair_couple.hpp).
-struct GridParameter {
-  std::string_view key;
-  void (*set)(physics::Parameters&, double);
-};
+// The [grid] axes: the model parameters the table marks as axes (physics/parameter_table.hpp),
+// and ramp_rate, which sets the protocol's ramps.
 constexpr std::string_view kRampRateAxis = "ramp_rate";
-constexpr GridParameter kGridParameters[] = {
-    {"drive_radius", [](physics::Parameters& p, double v) { p.drive_radius = v; }},
-    {"contact_distance", [](physics::Parameters& p, double v) { p.contact_distance = v; }},
-    {"string_length", [](physics::Parameters& p, double v) { p.string_length = v; }},
-    {"mass", [](physics::Parameters& p, double v) { p.bead_mass = p.ball_mass = v; }},
-    {"mu_static", [](physics::Parameters& p, double v) { p.mu_static = v; }},
-    {"mu_kinetic", [](physics::Parameters& p, double v) { p.mu_kinetic = v; }},
-    {"drag", [](physics::Parameters& p, double v) { p.drag = v; }},
-    {"tie_static_torque", [](physics::Parameters& p, double v) { p.tie_static_torque = v; }},
-    {"tie_kinetic_torque", [](physics::Parameters& p, double v) { p.tie_kinetic_torque = v; }},
-    {"tie_damping", [](physics::Parameters& p, double v) { p.tie_damping = v; }},
-    {"couple_torque", [](physics::Parameters& p, double v) { p.couple_torque = v; }},
-    {"couple_slip_rate", [](physics::Parameters& p, double v) { p.couple_slip_rate = v; }},
-};
-const GridParameter* grid_parameter(std::string_view key) {
-  for (const auto& axis : kGridParameters)
-    if (axis.key == key) return &axis;
-  return nullptr;
+bool is_grid_parameter(std::string_view key) {
+  const physics::ParameterInfo* p = physics::find_parameter(key);
+  return p ? p->grid_axis : physics::find_alias(key) != nullptr;
 }
 
 // A value list: an array of numbers, or {start, stop, num} (num >= 1, both ends included).
@@ -626,12 +592,12 @@ void read_sweep_tables(const toml::table& root, SweepConfig& c, double chains_be
   }
   for (const auto& [k, v] : subtable(root, "grid", file)) {
     const std::string key(k.str());
-    if (key != kRampRateAxis && !grid_parameter(key)) {
-      std::vector<std::string_view> allowed;
-      for (const auto& axis : kGridParameters) allowed.push_back(axis.key);
-      allowed.push_back(kRampRateAxis);
+    if (key != kRampRateAxis && !is_grid_parameter(key)) {
+      std::vector<std::string> allowed = physics::grid_parameter_keys();
+      allowed.emplace_back(kRampRateAxis);
       throw ConfigError(fmt::format("{}: key 'grid.{}': unknown key; allowed: {}", file, key, fmt::join(allowed, ", ")));
     }
+    if (const KeyInfo* doc = find_key("grid", key)) note_read(*doc);
     c.grid.push_back({key, value_list(v, "grid." + key, file)});
   }
   {
@@ -866,8 +832,8 @@ std::vector<GridPoint> expand_grid(const SweepConfig& c) {
       const double v = c.grid[a].values[at[a]];
       g.values.push_back(v);
       const std::string& k = c.grid[a].key;
-      if (const GridParameter* axis = grid_parameter(k)) {
-        axis->set(g.model.p, v);
+      if (is_grid_parameter(k)) {
+        physics::set_parameter(g.model.p, k, v);
       } else {  // ramp_rate
         if (!(v > 0.0 && v <= 1e4))  // as protocol.segment[i].rate
           throw ConfigError(fmt::format("{}: key 'grid.ramp_rate[{}]': {} is out of range; allowed (0, 10000] rad/s²",
@@ -876,8 +842,7 @@ std::vector<GridPoint> expand_grid(const SweepConfig& c) {
           if (seg.kind == sweep::Segment::Kind::Ramp) seg.ramp.rate = v;
       }
     }
-    std::vector<physics::ParameterIssue> issues = physics::validate(g.model);  // in the physics' words first
-    if (auto issue = model_number_issue(g.model.p)) issues.push_back(*issue);  // then the ranges of [model]
+    const std::vector<physics::ParameterIssue> issues = physics::validate(g.model);
     for (const auto& issue : issues) {
       std::string where;
       for (std::size_t a = 0; a < c.grid.size(); ++a) where += fmt::format(" grid.{}[{}]", c.grid[a].key, at[a]);

@@ -7,42 +7,43 @@
 #include <limits>
 #include <stdexcept>
 
+#include "physics/parameter_table.hpp"
+
 namespace ajx::orbits {
 
+// ω and the closure's s*, then the model parameters the table marks (physics/parameter_table.hpp).
 const std::vector<std::string>& continuation_parameters() {
-  static const std::vector<std::string> names{"omega",     "s",         "drive_radius", "contact_distance",
-                                              "string_length", "mass", "bead_mass", "ball_mass",
-                                              "drag",      "gravity"};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n{"omega", "s"};
+    for (std::string& k : physics::continuation_parameter_keys()) n.push_back(std::move(k));
+    return n;
+  }();
   return names;
 }
 
 namespace {
-// The field `name` of pb (OrbitProblem or const OrbitProblem).
-template <class Problem>
-auto* parameter_slot(Problem& pb, std::string_view name) {
-  auto& p = pb.model.p;
-  if (name == "omega") return &pb.omega;
-  if (name == "s") return &pb.s_star;
-  if (name == "drive_radius") return &p.drive_radius;
-  if (name == "contact_distance") return &p.contact_distance;
-  if (name == "string_length") return &p.string_length;
-  if (name == "mass" || name == "bead_mass") return &p.bead_mass;
-  if (name == "ball_mass") return &p.ball_mass;
-  if (name == "drag") return &p.drag;
-  if (name == "gravity") return &p.gravity;
-  std::string allowed;
-  for (const auto& n : continuation_parameters()) allowed += (allowed.empty() ? "" : ", ") + n;
-  throw std::invalid_argument("unknown continuation parameter '" + std::string(name) + "'; allowed: " + allowed);
+void check_known(std::string_view name) {
+  const auto& names = continuation_parameters();
+  if (std::find(names.begin(), names.end(), name) == names.end()) {
+    std::string allowed;
+    for (const auto& n : names) allowed += (allowed.empty() ? "" : ", ") + n;
+    throw std::invalid_argument("unknown continuation parameter '" + std::string(name) + "'; allowed: " + allowed);
+  }
 }
 }  // namespace
 
 double parameter_value(const OrbitProblem& pb, std::string_view name) {
-  return *parameter_slot(pb, name);
+  check_known(name);
+  if (name == "omega") return pb.omega;
+  if (name == "s") return pb.s_star;
+  return physics::parameter(pb.model.p, name);
 }
 
 void set_parameter(OrbitProblem& pb, std::string_view name, double value) {
-  *parameter_slot(pb, name) = value;
-  if (name == "mass") pb.model.p.ball_mass = value;  // m1 = m2
+  check_known(name);
+  if (name == "omega") pb.omega = value;
+  else if (name == "s") pb.s_star = value;
+  else physics::set_parameter(pb.model.p, name, value);
 }
 
 std::string_view to_string(EventKind k) {

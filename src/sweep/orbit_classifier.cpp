@@ -508,11 +508,16 @@ ClassifierSettings parse_classifier_settings(const std::vector<std::string>& nam
   S settings;
   for (const std::string& kv : name_values) {
     const auto eq = kv.find('=');
-    const std::string key = kv.substr(0, eq);
+    // Keys are "classifier.NAME", as every --set names its section.
+    constexpr std::string_view kSection = "classifier.";
+    const std::string full = kv.substr(0, eq);
+    if (full.rfind(kSection, 0) != 0)
+      throw std::invalid_argument(fmt::format("{}: expected classifier.NAME=value (did you mean classifier.{}?)", kv, kv));
+    const std::string key = full.substr(kSection.size());
     std::string names;
     bool found = false;
     for (const auto& [name, member] : tunable) {
-      names += std::string(names.empty() ? "" : ", ") + name;
+      names += std::string(names.empty() ? "" : ", ") + "classifier." + name;
       if (key != name) continue;
       double v = std::numeric_limits<double>::quiet_NaN();
       try {

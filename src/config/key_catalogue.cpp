@@ -1,0 +1,273 @@
+#include "config/key_catalogue.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <limits>
+#include <regex>
+
+#include "numerics/stepper.hpp"
+#include "orbits/continuation.hpp"
+#include "physics/parameter_table.hpp"
+#include "sim/table1_starts.hpp"
+
+namespace ajx::config {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kOmegaMax = 2000.0;  // as the reader's bound on every ω_m [rad/s]
+
+std::string number_text(double v) { return std::isinf(v) ? "∞" : fmt::format("{}", v); }
+std::string range_text(double lo, double hi, bool lo_open, bool hi_open) {
+  return fmt::format("{}{}, {}{}", lo_open ? "(" : "[", number_text(lo), number_text(hi), hi_open ? ")" : "]");
+}
+
+// A number with a fixed range.
+KeyInfo num(std::string section, std::string key, std::string unit, double lo, double hi, bool lo_open, bool hi_open,
+            std::string fallback, std::string doc, std::string type = "number") {
+  KeyInfo k{std::move(section), std::move(key), std::move(type), std::move(unit), range_text(lo, hi, lo_open, hi_open),
+            std::move(fallback), std::move(doc)};
+  k.lo = lo, k.hi = hi, k.lo_open = lo_open, k.hi_open = hi_open;
+  return k;
+}
+// A whole number (the reader's count(): closed range).
+KeyInfo whole(std::string section, std::string key, double lo, double hi, std::string fallback, std::string doc) {
+  return num(std::move(section), std::move(key), "", lo, hi, false, false, std::move(fallback), std::move(doc),
+             "whole number");
+}
+// Anything else: its allowed values in words.
+KeyInfo other(std::string section, std::string key, std::string type, std::string unit, std::string allowed,
+              std::string fallback, std::string doc) {
+  return {std::move(section), std::move(key), std::move(type), std::move(unit), std::move(allowed),
+          std::move(fallback), std::move(doc)};
+}
+
+std::string joined(const std::vector<std::string>& words) { return fmt::format("{}", fmt::join(words, ", ")); }
+
+std::vector<std::string> integrator_methods() {
+  std::vector<std::string> out;
+  std::string names(numerics::stepper_names());
+  for (std::size_t a = 0; a < names.size();) {
+    std::size_t b = names.find(',', a);
+    if (b == std::string::npos) b = names.size();
+    std::string w = names.substr(a, b - a);
+    w.erase(0, w.find_first_not_of(' '));
+    out.push_back(w);
+    a = b + 1;
+  }
+  out.insert(out.end(), {"paper", "paper_corrected"});
+  return out;
+}
+
+std::vector<KeyInfo> physics_keys() {
+  std::vector<KeyInfo> out;
+  for (const physics::ParameterInfo& p : physics::kParameters) {
+    KeyInfo k = num("model", std::string(p.key), std::string(p.unit), p.lo, p.hi, p.lo_open, p.hi_open,
+                    fmt::format("{}", p.default_value()), fmt::format("{}: {}", p.symbol, p.doc));
+    if (!p.depends.empty()) k.allowed += fmt::format(", {}", p.depends);
+    out.push_back(std::move(k));
+  }
+  for (const physics::LayerInfo& l : physics::layer_table()) {
+    using K = physics::LayerInfo::Kind;
+    if (l.kind == K::Number)
+      out.push_back(num("layers", std::string(l.key), std::string(l.unit), l.lo, l.hi, l.lo_open, false,
+                        l.default_value(), std::string(l.doc)));
+    else
+      out.push_back(other("layers", std::string(l.key), l.kind == K::Word ? "word" : "boolean", "", l.range(),
+                          l.default_value(), std::string(l.doc)));
+  }
+  return out;
+}
+
+std::vector<KeyInfo> build() {
+  std::vector<KeyInfo> k = physics_keys();
+  const std::string w = fmt::format("{}", kOmegaMax);
+  // [integrator]
+  k.push_back(other("integrator", "method", "word", "", joined(integrator_methods()), "dop853",
+                    "the integrator; paper and paper_corrected are the source paper's two-step scheme as printed "
+                    "and with its drag's sign corrected"));
+  k.push_back(num("integrator", "rtol", "", 1e-15, 1.0, false, true, "1e-10", "relative tolerance of the adaptive methods"));
+  k.push_back(num("integrator", "atol", "", 0.0, 1.0, true, false, "1e-12", "absolute tolerance of the adaptive methods"));
+  k.push_back(num("integrator", "step", "s", 0.0, 0.1, true, false, "0.0005",
+                  "step of the fixed-step methods (euler, rk4, radau_iia, paper); the paper used 1/2000 s"));
+  {
+    KeyInfo m = num("integrator", "max_step", "s", 0.0, 10.0, true, false, "\"auto\"",
+                    "\"auto\": each step bounded by h <= (k + 1)/Ω from the guards' rates (k = event_samples), so "
+                    "that no guard crosses zero unseen inside a step; a number: a fixed bound instead, the guard "
+                    "bound off");
+    m.type = "number or \"auto\"";
+    m.allowed = "\"auto\" or " + m.allowed;
+    k.push_back(std::move(m));
+  }
+  k.push_back(whole("integrator", "event_samples", 0, 16, "3 with max_step = \"auto\", else 0",
+                    "guard samples inside each step, on the dense output"));
+  k.push_back(other("integrator", "axes", "word", "", "rotating, lab, auto", "rotating",
+                    "the axes integrated in: turning with the motor, the lab's, or chosen per run; input, output "
+                    "and samples are in the lab axes either way; a clutch tie always uses lab"));
+  k.push_back(num("integrator", "projection_tol", "m", 0.0, 1e-3, true, false, "1e-12",
+                  "constraint drift |C| (or |J v − b| [m/s]) that triggers a projection onto the string"));
+  k.push_back(whole("integrator", "max_events", 1, 1e12, "1000000", "bound on mode switches and impacts per run"));
+  k.push_back(num("integrator", "omega_window", "s", 0.0, 1e7, true, false, "10",
+                  "ω_ball of a run's summary is averaged over its last window of this length"));
+  k.push_back(num("integrator", "rest_speed", "m/s", 0.0, 1.0, false, false, "0.001",
+                  "re-taut impacts slower than this are plastic (ends Zeno bouncing)"));
+  k.push_back(whole("integrator", "chatter_switches", 2, 1e6, "50", "this many mode switches ..."));
+  k.push_back(num("integrator", "chatter_window", "s", 0.0, 1e3, true, false, "0.001",
+                  "... within this time count as chattering (reported as a violation)"));
+  // [initial]
+  k.push_back(other("initial", "preset", "word", "", "hanging, explicit, table1, pair", "hanging",
+                    "the start: hanging (at rest on the bottom ball), explicit (r1, r2, v1, v2, mode), table1 "
+                    "(a two-step start of the paper's Table 1) or pair (two positions, at t = 0 and t = step)"));
+  k.push_back(other("initial", "orbit", "word", "", joined(sim::table1_orbits()), "circular1",
+                    "preset = \"table1\": which of the paper's starts"));
+  k.push_back(num("initial", "omega", "rad/s", 0.0, kOmegaMax, false, false, "ω_m(0)",
+                  "preset = \"table1\": the circular starts' rate θ = ω h"));
+  for (const char* v : {"r1", "r2"})
+    k.push_back(other("initial", v, "3-vector", "m", "each component in [−10 l, 10 l]", "",
+                      fmt::format("preset = \"explicit\" or \"pair\": position of the {} at t = 0",
+                                  v[1] == '1' ? "bead" : "bottom ball")));
+  for (const char* v : {"r1_next", "r2_next"})
+    k.push_back(other("initial", v, "3-vector", "m", "each component in [−10 l, 10 l]", "",
+                      fmt::format("preset = \"pair\": position of the {} at t = step",
+                                  v[1] == '1' ? "bead" : "bottom ball")));
+  for (const char* v : {"v1", "v2"})
+    k.push_back(other("initial", v, "3-vector", "m/s", "each component in [−1000, 1000]", "[0, 0, 0]",
+                      fmt::format("preset = \"explicit\": velocity of the {}", v[1] == '1' ? "bead" : "bottom ball")));
+  k.push_back(other("initial", "mode", "word", "", "sliding, bottom_stop, stuck, slack", "sliding",
+                    "preset = \"explicit\": the contact mode at t = 0"));
+  k.push_back(other("initial", "length_tolerance", "number", "m", "(0, 0.1 l]", "1e-06",
+                    "accepted |L1 + L2 − l| of an explicit start before it is projected onto the string"));
+  k.push_back(num("initial", "tie_slip_rate", "rad/s", -1e4, 1e4, false, false, "held",
+                  "with tie = \"clutch\" and preset = \"explicit\": the tie starts slipping at χ = φ(0) with this χ̇"));
+  // [[schedule]] (astrojax run)
+  k.push_back(other("schedule", "kind", "word", "", "hold, ramp", "", "a held ω_m, or a linear ramp of ω_m"));
+  k.push_back(num("schedule", "omega", "rad/s", 0.0, kOmegaMax, false, false, "", "kind = \"hold\": ω_m held"));
+  k.push_back(num("schedule", "duration", "s", 0.0, 1e7, true, false, "",
+                  "length of the hold; for a ramp, instead of rate"));
+  k.push_back(num("schedule", "from", "rad/s", 0.0, kOmegaMax, false, false, "", "kind = \"ramp\": ω_m at its start"));
+  k.push_back(num("schedule", "to", "rad/s", 0.0, kOmegaMax, false, false, "", "kind = \"ramp\": ω_m at its end"));
+  k.push_back(num("schedule", "rate", "rad/s^2", 0.0, 1e4, true, false, "", "kind = \"ramp\": |dω_m/dt|, instead of duration"));
+  // [output]
+  k.push_back(other("output", "path", "text", "", "a writable file path", "out/run.h5 (run), out/sweep.h5 (sweep)",
+                    "the HDF5 file written; -o overrides it"));
+  k.push_back(num("output", "sample_interval", "s", 0.0, 1e6, true, false, "0.01", "astrojax run: the sampling step"));
+  // [protocol] (astrojax sweep)
+  k.push_back(num("protocol", "start_omega", "rad/s", 0.0, kOmegaMax, false, false, "0", "ω_m at t = 0"));
+  k.push_back(other("protocol", "start_seed", "word", "", "hanging, circular_high, locked_orbit", "hanging",
+                    "the state at t = 0, a seed state at start_omega"));
+  k.push_back(whole("protocol", "windows_per_task", 1, 1e6, "10", "windows per farm task (the unit of work and of resume)"));
+  k.push_back(num("protocol", "sample_rate", "1/s", 0.0, 1e5, true, false, "100", "samples stored per second of every window"));
+  k.push_back(other("protocol", "segment", "array of tables", "", "at least one", "",
+                    "the protocol's segments, [[protocol.segment]], run in order"));
+  k.push_back(other("protocol.segment", "kind", "word", "", "ramp, steps", "",
+                    "a ramp of ω_m measured in windows, or a staircase of held levels"));
+  k.push_back(num("protocol.segment", "from", "rad/s", 0.0, kOmegaMax, false, false, "0", "ω_m at the segment's start"));
+  k.push_back(num("protocol.segment", "to", "rad/s", 0.0, kOmegaMax, false, false, "0", "ω_m at the segment's end"));
+  k.push_back(num("protocol.segment", "rate", "rad/s^2", 0.0, 1e4, true, false, "", "kind = \"ramp\": |dω_m/dt|"));
+  k.push_back(num("protocol.segment", "window", "s", 0.0, 1e6, true, false, "5", "kind = \"ramp\": length of a classified window"));
+  k.push_back(whole("protocol.segment", "num", 1, 1e5, "1", "kind = \"steps\": number of levels, both ends included"));
+  k.push_back(num("protocol.segment", "settle", "s", 0.0, 1e6, false, false, "0", "kind = \"steps\": transient at each level"));
+  k.push_back(num("protocol.segment", "measure", "s", 0.0, 1e6, true, false, "0", "kind = \"steps\": the classified window at each level"));
+  k.push_back(num("protocol.segment", "step_rate", "rad/s^2", 0.0, 1e4, true, false, "1",
+                  "kind = \"steps\": |dω_m/dt| between levels"));
+  // [hold] (astrojax sweep, instead of [protocol])
+  k.push_back(other("hold", "omega", "list", "rad/s", fmt::format("each in [0, {}]", w), "",
+                    "the held ω_m values: a list or {start, stop, num}"));
+  k.push_back(num("hold", "settle", "s", 0.0, 1e6, false, false, "60", "transient before the measured window"));
+  k.push_back(num("hold", "measure", "s", 0.0, 1e6, true, false, "10", "the measured window"));
+  k.push_back(other("hold", "seeds", "list of words", "", "hanging, circular_high, locked_orbit", "[\"hanging\"]",
+                    "the seed states each ω_m starts from"));
+  k.push_back(whole("hold", "perturbations", 0, 1000, "0", "extra copies of each seed with random velocity kicks"));
+  k.push_back(num("hold", "perturbation", "m/s", 0.0, 10.0, true, false, "0.01", "size of a kick"));
+  k.push_back(num("hold", "sample_rate", "1/s", 0.0, 1e5, true, false, "100", "samples stored per second of every window"));
+  // [grid]: each axis a list of values or {start, stop, num}.
+  for (const std::string& axis : physics::grid_parameter_keys()) {
+    const physics::ParameterInfo* p = physics::find_parameter(axis);
+    const physics::ParameterAlias* a = p ? nullptr : physics::find_alias(axis);
+    k.push_back(other("grid", axis, "list", std::string(p ? p->unit : a->unit),
+                      p ? p->range() + (p->depends.empty() ? "" : fmt::format(", {}", p->depends)) : "as model.bead_mass",
+                      "", fmt::format("sets model.{} of each chain{}", axis, a ? fmt::format(" ({})", a->doc) : "")));
+  }
+  k.push_back(other("grid", "ramp_rate", "list", "rad/s^2", "each in (0, 10000]", "",
+                    "sets the rate of every ramp segment of each chain"));
+  k.push_back(num("grid.*", "start", "", -1e12, 1e12, false, false, "0", "{start, stop, num}: the first value"));
+  k.push_back(num("grid.*", "stop", "", -1e12, 1e12, false, false, "0", "{start, stop, num}: the last value"));
+  k.push_back(whole("grid.*", "num", 1, 1e5, "1", "{start, stop, num}: how many values, both ends included"));
+  // [variant.NAME] and [[group]] (astrojax sweep)
+  k.push_back(other("variant", "label", "text", "", "non-empty", "", "what the model variant is, for tables and figures; "
+                    "a variant may also hold [model], [layers], [integrator] and [initial] tables"));
+  k.push_back(other("group", "name", "text", "", "1 to 40 letters, digits, '_' or '-'", "", "the chain group's name"));
+  k.push_back(other("group", "purpose", "text", "", "non-empty", "", "why its chains are there; a group may also hold "
+                    "[model], [layers], [integrator], [initial], [protocol] or [hold], and [grid] tables"));
+  k.push_back(other("group", "variants", "list of words", "", "names of [variant.NAME] tables", "every variant",
+                    "the variants the group runs with"));
+  // [orbits] (astrojax orbits)
+  k.push_back(other("orbits", "omega", "number or list", "rad/s", "each in (0, 2000]", "", "the ω_m of the table"));
+  k.push_back(whole("orbits", "s_points", 2, 10000, "81", "points along the string of the table at each ω"));
+  k.push_back(other("orbits", "continue", "word", "", joined(orbits::continuation_parameters()), "",
+                    "the parameter a branch is continued in"));
+  k.push_back(other("orbits", "range", "[lo, hi]", "", "lo < hi", "", "the continued parameter's interval"));
+  k.push_back(other("orbits", "s", "number or list", "m", "each between the stops", "", "the bead's arc lengths s* of the table"));
+  return k;
+}
+
+}  // namespace
+
+const std::vector<KeyInfo>& key_catalogue() {
+  static const std::vector<KeyInfo> keys = build();
+  return keys;
+}
+
+std::string generic_section(std::string_view prefix) {
+  std::string s = std::regex_replace(std::string(prefix), std::regex(R"(\[[0-9]+\])"), "");
+  if (s.rfind("variant.", 0) == 0) {  // variant.NAME or variant.NAME.model
+    const std::size_t dot = s.find('.', 8);
+    return dot == std::string::npos ? "variant" : s.substr(dot + 1);
+  }
+  if (s.rfind("grid.", 0) == 0 || s.rfind("hold.omega", 0) == 0 || s.rfind("orbits.", 0) == 0) return "grid.*";
+  return s;
+}
+
+const KeyInfo* find_key(std::string_view section, std::string_view key) {
+  const std::string g = generic_section(section);
+  for (const KeyInfo& k : key_catalogue())
+    if (k.section == g && k.key == key) return &k;
+  return nullptr;
+}
+
+namespace {
+std::set<std::string>& read_set() {
+  static std::set<std::string> keys;
+  return keys;
+}
+}  // namespace
+
+void note_read(const KeyInfo& k) { read_set().insert(k.section + "." + k.key); }
+std::vector<std::string> keys_read() { return {read_set().begin(), read_set().end()}; }
+
+std::string key_reference_markdown() {
+  std::string out;
+  std::string section;
+  for (const KeyInfo& k : key_catalogue()) {
+    if (k.section != section) {
+      section = k.section;
+      const std::string title = section == "schedule" || section == "protocol.segment" || section == "group"
+                                    ? fmt::format("`[[{}]]`", section)
+                                : section == "variant" ? std::string("`[variant.NAME]`")
+                                : section == "grid.*"
+                                    ? std::string("A value list `{start, stop, num}` (a [grid] axis, hold.omega, orbits.omega, orbits.s)")
+                                    : fmt::format("`[{}]`", section);
+      out += fmt::format("\n## {}\n\n| key | type | unit | allowed | default | meaning |\n|---|---|---|---|---|---|\n",
+                         title);
+    }
+    auto cell = [](std::string s) {  // a table cell: no bare | inside
+      for (std::size_t i = 0; (i = s.find('|', i)) != std::string::npos; i += 2) s.replace(i, 1, "\\|");
+      return s;
+    };
+    out += fmt::format("| `{}` | {} | {} | {} | {} | {} |\n", k.key, k.type, k.unit.empty() ? "" : k.unit,
+                       cell(k.allowed), k.fallback.empty() ? "" : cell(k.fallback), cell(k.doc));
+  }
+  return out;
+}
+
+}  // namespace ajx::config
