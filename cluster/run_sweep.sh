@@ -14,8 +14,10 @@
 #   in flight and exits with 4. The script then requeues the job (scontrol requeue) when the
 #   job is requeueable, or says how to resubmit it.
 # Exit codes: those of astrojax sweep (0 ok, 1 internal error, 2 bad input, 3 tasks failed,
-# 4 interrupted, 5 output not writable: disk full). Only 4 is requeued: the others would fail
-# again the same way (5 resumes with --resume once the disk has room).
+# 4 interrupted, 5 output not writable: disk full; docs/reference/exit-codes.md). Only 4 is
+# requeued: the others would fail again the same way (5 resumes with --resume once the disk has
+# room). After a stop signal, a launcher's code other than 0, 2, 3 and 5 with the sweep's .part
+# or journal left (mpirun's 1 when it got the SIGTERM itself) counts as 4.
 set -uo pipefail
 
 if [ $# -lt 2 ]; then sed -n '2,20p' "$0"; exit 2; fi
@@ -66,6 +68,16 @@ while true; do
 done
 trap - USR1 TERM
 log "astrojax sweep exited with $rc"
+# Open MPI's mpirun returns 1 for a job it was told to terminate (SIGTERM or SIGINT reaching
+# mpirun itself, as scancel and Slurm's time limit deliver them to every process of the job),
+# whatever its ranks return, and SIGKILLs the ranks a second later. A stop this script was
+# asked for that leaves the sweep's .part or journal behind is an interruption all the same:
+# the journal holds every finished task, so --resume continues it.
+if [ $stopping -eq 1 ] && [ $rc -ne 0 ] && [ $rc -ne 2 ] && [ $rc -ne 3 ] && [ $rc -ne 5 ] &&
+   { [ -e "$output.part" ] || [ -e "$output.journal" ]; }; then
+  log "the launcher's $rc is that of a job stopped by a signal, and the sweep's .part or journal is there: interrupted (4)"
+  rc=4
+fi
 
 if [ $rc -eq 4 ]; then
   if [ $stopping -eq 1 ] && [ -n "${SLURM_JOB_ID:-}" ] && [ "${ASTROJAX_REQUEUE:-1}" = 1 ]; then

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <cstdlib>
@@ -590,5 +591,52 @@ TEST_F(Hdf5FileTest, Float32ChunksEncodedOutsideHdf5ReadBackAsTheFloatsWritten) 
       EXPECT_TRUE(std::isnan(a.data[12 + i])) << i;
     else
       EXPECT_EQ(a.data[12 + i], double(v[i])) << i;
+  }
+}
+
+TEST_F(Hdf5FileTest, AByteChangedOnDiskFailsItsChecksum) {
+  // Whole arrays, filled datasets without deflate and appendable tables carry a Fletcher32 per
+  // chunk: one byte changed in the stored values makes the read throw instead of returning a
+  // wrong value. The values are found in the file by their bytes (they are stored raw).
+  const fs::path p = file("sums.h5");
+  const auto values = [](double base) {
+    std::vector<double> v(30);
+    for (std::size_t i = 0; i < v.size(); ++i) v[i] = base + 0.125 * double(i);
+    return v;
+  };
+  const std::vector<double> whole = values(1234.5), filled = values(-777.25), table = values(4242.75);
+  {
+    File f = File::create(p);
+    f.write_dataset("whole", std::span<const double>(whole), Dims{10, 3});
+    f.create_filled("filled", {2, 30}, DType::Float64, 0.0, {1, 30})
+        .write_region({1, 0}, {1, 30}, std::span<const double>(filled));
+    Group g = f.create_group("g");
+    auto t = AppendableTable::create(g, "table", 3, DType::Float64, {.chunk_rows = 16});
+    t.append_rows(std::span<const double>(table));
+    EXPECT_TRUE(f.create_filled("deflated", {2, 8}, DType::Float64, 0.0, {1, 8}, 4).checksummed());
+    f.close();
+  }
+  std::vector<char> bytes;
+  {
+    std::ifstream in(p, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  for (const auto& [name, v] : {std::pair{"whole", whole}, {"filled", filled}, {"g/table", table}}) {
+    SCOPED_TRACE(name);
+    EXPECT_TRUE(File::open_read(p).open_dataset(name).checksummed());
+    EXPECT_EQ(File::open_read(p).read_doubles(name).data.size() % v.size(), 0u);
+    const char* first = reinterpret_cast<const char*>(&v[7]);
+    const auto at = std::search(bytes.begin(), bytes.end(), first, first + sizeof(double));
+    ASSERT_NE(at, bytes.end());
+    std::vector<char> flipped = bytes;
+    flipped[std::size_t(at - bytes.begin()) + 3] ^= 0x10;
+    const fs::path q = file(std::string("flipped_") + (name[0] == 'g' ? "table" : name) + ".h5");
+    std::ofstream(q, std::ios::binary).write(flipped.data(), std::streamsize(flipped.size()));
+    try {
+      (void)File::open_read(q).read_doubles(name);
+      ADD_FAILURE() << "a changed byte was read back without an error";
+    } catch (const Hdf5Error& e) {
+      EXPECT_NE(std::string(e.what()).find("Fletcher32"), std::string::npos) << e.what();
+    }
   }
 }

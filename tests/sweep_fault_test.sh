@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Faults a sweep survives, nothing lost: after kill -9 of the master, of a worker or of mpirun
-# mid-sweep, after a .part cut short (as a write killed half-way leaves it), after a journal
+# Faults a sweep survives, nothing lost: after kill -9 of the master, of a worker (mpirun: 137)
+# or of mpirun mid-sweep, after a .part cut short (as a write killed half-way leaves it), after a journal
 # record cut short, and after the disk filling up (a file-size limit), the same command with
 # --resume completes with a file equal to an uninterrupted run's (h5diff, all but
 # /provenance). A worker that hangs (SIGSTOP) past --task-timeout is given up and its task run
@@ -18,10 +18,13 @@ for who in master worker; do
   start_mpi "$who.h5" 400000
   case $who in master) victim=$rank0 ;; worker) victim=$rank1 ;; esac
   kill -9 "$victim"
-  wait "$mp" 2> /dev/null
+  wait_mpi "$mp" 60 "$out"
   gone $rank0 $rank1 $rank2
   check "kill -9 $who: killed mid-sweep (pid '$victim', a .part and no file)" \
     "[ -n '$victim' ] && [ -e '$who.h5.part' ] && [ ! -e '$who.h5' ]"
+  # mpirun ends the job and returns 128 + the signal of the rank killed (when it does not hang).
+  check "kill -9 $who: mpirun exit 137 (got $rc$([ $mpirun_hung = 1 ] && echo ', mpirun hung: its code unknown'))" \
+    "[ $rc -eq 137 ] || [ $mpirun_hung -eq 1 ]"
   resume "$who.h5"
   check "kill -9 $who: --resume exit 0 ($(tail -1 "$who.h5.resume"))" "[ $? -eq 0 ] && [ ! -e '$who.h5.journal' ]"
   check "kill -9 $who: resumed file equals the uninterrupted one" "same '$who.h5' straight.h5"
@@ -31,7 +34,7 @@ done
 # locked by the running master); once they are gone the file is complete or resumable.
 start_mpi mpirun.h5 100000  # early: the ranks that outlive mpirun are still writing when the resume starts
 kill -9 "$mp"
-wait "$mp" 2> /dev/null
+wait "$mp" 2> /dev/null  # mpirun itself, killed: ends at once
 resume mpirun.h5
 rc=$?
 alive=0; kill -0 "$rank0" 2> /dev/null && alive=1
@@ -63,8 +66,7 @@ p=$!
 for _ in $(seq 1000); do [ -e full.h5.journal ] && break; sleep 0.01; done
 limit=$(($(size straight.h5) / 2))
 prlimit --pid $p --fsize=$limit:$limit
-wait $p
-rc=$?
+wait_for $p 120
 check "disk full: exit 5 with the reason and how to resume (got $rc)" \
   "[ $rc -eq 5 ] && grep -q 'too large\|No space' full.out && grep -q -- '--resume' full.out"
 "$bin" sweep "${sweep[@]}" -o full.h5 --resume > full.resume 2>&1

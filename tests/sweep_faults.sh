@@ -24,12 +24,60 @@ start_mpi() {
 }
 # Waits until the given pids are gone (the ranks of a killed job).
 gone() { for p in "$@"; do for _ in $(seq 100); do kill -0 "$p" 2> /dev/null || break; sleep 0.1; done; done; }
-resume() { "$mpiexec" --oversubscribe -n 3 "$bin" sweep "${sweep[@]}" -o "$1" --resume > "$1.resume" 2>&1; }
+# The children of $1 that have not exited (a rank that exited and is not reaped yet is a zombie).
+live_children() { for c in $(pgrep -P "$1"); do [ "$(awk '{print $3}' "/proc/$c/stat" 2> /dev/null)" = Z ] || echo "$c"; done; }
+
+# Waits for a launcher started in the background ($1: its pid) for at most $2 s, with the
+# master's output in $3, and sets rc. Every wait on an mpirun goes through here, so that no
+# test can hang:
+# - it ends: rc is its exit code;
+# - it stays waiting 10 s after every rank it started has exited (Open MPI's mpirun here does,
+#   about 1 run in 6): killed, and rc read from the master's summary line, which the master
+#   printed before it exited (ok 0, FAILED 3, INTERRUPTED 4, none 99); mpirun_hung=1;
+# - it still runs after $2 s: killed with its ranks; rc 124.
+wait_mpi() {
+  local pid=$1 limit=$2 out=$3 idle=0 n
+  mpirun_hung=0
+  for n in $(seq $((limit * 10))); do
+    kill -0 "$pid" 2> /dev/null || break
+    if [ -z "$(live_children "$pid")" ]; then idle=$((idle + 1)); else idle=0; fi
+    [ $idle -ge 100 ] && break
+    sleep 0.1
+  done
+  if ! kill -0 "$pid" 2> /dev/null; then
+    wait "$pid"; rc=$?
+  elif [ $idle -ge 100 ]; then
+    echo "mpirun still waiting 10 s after its ranks exited: killed, the code read from the summary"
+    kill -KILL "$pid" 2> /dev/null; wait "$pid" 2> /dev/null
+    mpirun_hung=1
+    case "$(grep -oE '^(ok|FAILED|INTERRUPTED)  ' "$out" | tail -1)" in
+      "ok  ") rc=0 ;; "FAILED  ") rc=3 ;; "INTERRUPTED  ") rc=4 ;; *) rc=99 ;;
+    esac
+  else
+    echo "still running after $limit s: killed"
+    local kids; kids=$(pgrep -P "$pid")
+    kill -KILL $kids "$pid" 2> /dev/null; wait "$pid" 2> /dev/null
+    rc=124
+  fi
+}
+# Waits for a background process that is not a launcher ($1) for at most $2 s and sets rc (124
+# and killed if it still runs).
+wait_for() {
+  for _ in $(seq $(($2 * 10))); do kill -0 "$1" 2> /dev/null || break; sleep 0.1; done
+  if kill -0 "$1" 2> /dev/null; then echo "still running after $2 s: killed"; kill -KILL "$1"; wait "$1" 2> /dev/null; rc=124
+  else wait "$1"; rc=$?; fi
+}
+# Resumes the sweep of start_mpi into $1 on 3 ranks (at most 120 s); its exit code is the
+# function's and rc's.
+resume() {
+  "$mpiexec" --oversubscribe -n 3 "$bin" sweep "${sweep[@]}" -o "$1" --resume > "$1.resume" 2>&1 &
+  wait_mpi $! 120 "$1.resume"
+  return $rc
+}
 
 # SIGSTOPs rank 2 of the job start_mpi started and waits up to $1 s for the master to end (sets
-# master_ended 0/1 and waited [s]); then lets mpirun end (its MPI_Abort ends the job; once,
-# Open MPI's mpirun here stayed waiting for the stopped rank) and rank 2 go on, so that nothing
-# is left behind; sets rc to mpirun's exit code.
+# master_ended 0/1 and waited [s]); then lets mpirun end (its MPI_Abort ends the job) and rank 2
+# go on, so that nothing is left behind; sets rc to mpirun's exit code (wait_mpi).
 stop_rank2() {
   kill -STOP "$rank2"
   local t0=$(date +%s)
@@ -37,18 +85,6 @@ stop_rank2() {
   waited=$(($(date +%s) - t0)); master_ended=1; kill -0 "$rank0" 2> /dev/null && master_ended=0
   for _ in $(seq 100); do kill -0 "$mp" 2> /dev/null || break; sleep 0.1; done
   kill -CONT "$rank2" 2> /dev/null
-  # Open MPI's mpirun here sometimes stays waiting after every rank has exited (about 1 run in
-  # 6); then it is killed and the job's code is read from the master's summary line, which
-  # the master printed before the abort (ok 0, FAILED 3, INTERRUPTED 4).
-  for _ in $(seq 100); do kill -0 "$mp" 2> /dev/null || break; sleep 0.1; done
-  if kill -0 "$mp" 2> /dev/null; then
-    echo "mpirun still waiting 10 s after its ranks ended: killed, the code read from the summary"
-    kill -KILL "$mp" 2> /dev/null; wait "$mp" 2> /dev/null
-    case "$(grep -oE '^(ok|FAILED|INTERRUPTED)  ' "$out" | tail -1)" in
-      "ok  ") rc=0 ;; "FAILED  ") rc=3 ;; "INTERRUPTED  ") rc=4 ;; *) rc=99 ;;
-    esac
-  else
-    wait "$mp"; rc=$?
-  fi
+  wait_mpi "$mp" 30 "$out"
   gone $rank2
 }

@@ -3,6 +3,8 @@
 // bug, an MPI failure), 2 bad input (refused before any work, nothing written), 3 the
 // integration failed (file written, marked failed), 4 interrupted (resumable: --resume),
 // 5 the output could not be written while running (disk full; resumable once fixed).
+// (mpirun sent SIGTERM or SIGINT itself returns 1 whatever the ranks return:
+// docs/reference/exit-codes.md.)
 #pragma once
 #include <string>
 #include <vector>

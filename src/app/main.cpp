@@ -42,7 +42,9 @@ int main(int argc, char** argv) {
   app.footer("Exit codes (also of mpirun, which returns rank 0's): 0 done; 1 internal error (a bug, an MPI failure); "
              "2 bad input, refused before any work, nothing written; 3 done, but some integrations or tasks failed "
              "(marked in the file); 4 interrupted, resumable with --resume; 5 the output could not be written while "
-             "running (disk full, file too large), resumable with --resume once the cause is fixed.");
+             "running (disk full, file too large), resumable with --resume once the cause is fixed. mpirun itself sent "
+             "SIGTERM or SIGINT (Ctrl-C) returns 1 whatever the ranks return; the sweep's .part and journal are "
+             "resumable (stop with SIGUSR1 to get 4). See docs/reference/exit-codes.md.");
   std::string command_line;
   for (int i = 0; i < argc; ++i) command_line += (i ? " " : "") + std::string(argv[i]);
 

@@ -514,28 +514,44 @@ std::vector<sweep::Segment> parse_protocol(const toml::table& root, std::string_
 
 namespace {
 
-// The chains of a sweep: the grid's points, times (hold) the held ω_m, seeds and perturbations.
-void check_chain_count(const SweepConfig& c) {
+// The chains of a sweep (or of one part of a grouped one): the grid's points, times (hold) the
+// held ω_m, seeds and perturbations; `factors` (if given) says where they come from.
+double chain_count(const SweepConfig& c, std::vector<std::string>* factors = nullptr) {
   double chains = 1.0;
-  std::vector<std::string> factors;
   for (const auto& axis : c.grid) {
     chains *= double(axis.values.size());
-    factors.push_back(fmt::format("grid.{}: {}", axis.key, axis.values.size()));
+    if (factors) factors->push_back(fmt::format("grid.{}: {}", axis.key, axis.values.size()));
   }
   if (c.hold) {
     chains *= double(c.hold->omega.size()) * double(c.hold->seeds.size()) * double(c.hold->perturbations + 1);
-    factors.push_back(fmt::format("hold.omega: {}, hold.seeds: {}, hold.perturbations + 1: {}", c.hold->omega.size(),
-                                  c.hold->seeds.size(), c.hold->perturbations + 1));
+    if (factors)
+      factors->push_back(fmt::format("hold.omega: {}, hold.seeds: {}, hold.perturbations + 1: {}", c.hold->omega.size(),
+                                     c.hold->seeds.size(), c.hold->perturbations + 1));
   }
+  return chains;
+}
+
+// At most kMaxChains in one part and in all parts together (`before`: the chains of the parts
+// read before this one).
+void check_chain_count(const SweepConfig& c, double before) {
+  std::vector<std::string> factors;
+  const double chains = chain_count(c, &factors);
+  const std::string_view key = c.grid.empty() ? "hold" : "grid";
   if (chains > double(kMaxChains))
     throw ConfigError(fmt::format("{}: key '{}': the sweep has {:.0f} chains ({}); allowed at most {}", c.source_name,
-                                  c.grid.empty() ? "hold" : "grid", chains, fmt::join(factors, ", "), kMaxChains));
+                                  key, chains, fmt::join(factors, ", "), kMaxChains));
+  if (before + chains > double(kMaxChains))
+    throw ConfigError(fmt::format("{}: key '{}': the sweep's parts have {:.0f} chains in total ({:.0f} in the parts "
+                                  "before this one, {:.0f} in this one: {}); allowed at most {} in total",
+                                  c.source_name, key, before + chains, before, chains, fmt::join(factors, ", "),
+                                  kMaxChains));
 }
 
 
 // The tables of one sweep (a plain file, or one part of a grouped one) after [model],
 // [layers], [integrator] and [initial]: [protocol] or [hold], [grid], [output].
-void read_sweep_tables(const toml::table& root, SweepConfig& c) {
+// `chains_before`: the chains of the parts of a grouped sweep read before this one.
+void read_sweep_tables(const toml::table& root, SweepConfig& c, double chains_before = 0.0) {
   const std::string_view file = c.source_name;
   if (root.contains("hold")) {
     if (root.contains("protocol"))
@@ -589,7 +605,7 @@ void read_sweep_tables(const toml::table& root, SweepConfig& c) {
     c.output_path = r.text("path", c.output_path);
     r.reject_unknown();
   }
-  check_chain_count(c);  // before the grid is expanded: a sweep too large to hold is refused, not run out of memory
+  check_chain_count(c, chains_before);  // before the grid is expanded: a sweep too large to hold is refused, not run out of memory
   expand_grid(c);  // every grid point is checked before any work
   if (c.hold) return;
   try {
@@ -752,6 +768,7 @@ SweepConfig parse_grouped_sweep(toml::table root, std::string_view text, std::st
   toml::table base = root;
   base.erase("variant");
   base.erase("group");
+  double chains = 0.0;  // in the parts read so far
   for (std::size_t gi = 0; gi < groups.size(); ++gi)
     for (const std::string& vname : groups[gi].variants) {
       const VariantSpec& v = *std::find_if(variants.begin(), variants.end(), [&](const VariantSpec& x) { return x.name == vname; });
@@ -764,7 +781,8 @@ SweepConfig parse_grouped_sweep(toml::table root, std::string_view text, std::st
       part.source_text = text;
       part.overrides = overrides;
       parse_common(proot, part.source_name, part);
-      read_sweep_tables(proot, part);
+      read_sweep_tables(proot, part, chains);
+      chains += chain_count(part);
       part.group = g.name;
       part.group_purpose = g.purpose;
       part.variant = v.name;

@@ -114,7 +114,8 @@ std::vector<GridPoint> expand_grid(const SweepConfig& c);
 
 // The most chains a sweep may have: its plan and file layout are held in memory on rank 0
 // (about 1 kB a chain), and a grid that multiplies past this is a typing error more often than
-// a plan. Checked before the grid is expanded.
+// a plan. Checked before the grid is expanded, for each part of a grouped sweep and for all its
+// parts together.
 inline constexpr std::size_t kMaxChains = 1'000'000;
 
 SweepConfig parse_sweep_config(std::string_view text, std::string_view source_name,

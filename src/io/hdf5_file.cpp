@@ -24,6 +24,10 @@ using detail::Handle;
 
 namespace {
 
+// The largest chunk of a checksummed whole array (write_dataset): a read of one element
+// decodes and checks its whole chunk.
+constexpr std::size_t kChecksumChunkBytes = std::size_t(1) << 20;
+
 // What a failing call was acting on, for the error message.
 struct Where {
   std::string_view file;
@@ -266,7 +270,10 @@ auto with_attribute(const Object& obj, std::string_view name, Fn&& fn) {
   return fn(Source{attr.get(), true, w});
 }
 
-// Create a contiguous dataset and write all of it.
+// Create a dataset and write all of it. A non-empty array is chunked (whole rows, up to
+// kChecksumChunkBytes a chunk) with HDF5's Fletcher32 checksum on each chunk, so that a byte
+// changed on disk makes the read fail instead of returning a wrong value; an empty array or a
+// scalar cannot be chunked and is stored contiguous.
 Handle create_and_write(const Group& g, std::string_view path, const std::string& full_path, const void* data,
                         std::size_t n, const Dims& dims, hid_t file_type, hid_t mem_type) {
   Where w{g.file_name(), full_path};
@@ -275,9 +282,17 @@ Handle create_and_write(const Group& g, std::string_view path, const std::string
                                             g.file_name(), n, fmt::join(dims, ", ")));
   }
   Handle space = make_space(dims, w);
+  Handle dcpl = own(H5Pcreate(H5P_DATASET_CREATE), Kind::PropertyList, "H5Pcreate", w);
+  if (n > 0 && !dims.empty()) {
+    auto chunk = to_hsize(dims);
+    const std::size_t row_bytes = H5Tget_size(file_type) * (n / dims[0]);
+    chunk[0] = std::clamp<hsize_t>(kChecksumChunkBytes / row_bytes, 1, dims[0]);
+    check(H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()), "H5Pset_chunk", w);
+    check(H5Pset_fletcher32(dcpl.get()), "H5Pset_fletcher32", w);
+  }
   Handle lcpl = intermediate_lcpl(w);
   std::string p(path);
-  Handle ds = own(H5Dcreate2(g.native_handle(), p.c_str(), file_type, space.get(), lcpl.get(), H5P_DEFAULT, H5P_DEFAULT),
+  Handle ds = own(H5Dcreate2(g.native_handle(), p.c_str(), file_type, space.get(), lcpl.get(), dcpl.get(), H5P_DEFAULT),
                   Kind::Dataset, "H5Dcreate2", w);
   if (n > 0) check(H5Dwrite(ds.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "H5Dwrite", w);
   return ds;
@@ -444,6 +459,17 @@ Dims Dataset::dims() const {
   return space_dims(space.get(), w);
 }
 
+bool Dataset::checksummed() const {
+  Where w{file_name(), path_};
+  Handle dcpl = own(H5Dget_create_plist(handle_.get()), Kind::PropertyList, "H5Dget_create_plist", w);
+  unsigned flags = 0;
+  std::size_t n = 0;
+  const auto has = [&](H5Z_filter_t f) {
+    return H5Pget_filter_by_id2(dcpl.get(), f, &flags, &n, nullptr, 0, nullptr, nullptr) >= 0;
+  };
+  return has(H5Z_FILTER_FLETCHER32) || has(H5Z_FILTER_DEFLATE);  // (HDF5's error printing is off)
+}
+
 Array<double> Dataset::read_doubles() const { return read_numeric<double>(Source{handle_.get(), false, {file_name(), path_}}); }
 
 Array<std::int64_t> Dataset::read_int64s() const {
@@ -531,6 +557,10 @@ Dataset Group::create_filled(std::string_view path, const Dims& dims, DType dtyp
   if (deflate > 0) {
     check(H5Pset_shuffle(dcpl.get()), "H5Pset_shuffle", w);
     check(H5Pset_deflate(dcpl.get(), static_cast<unsigned>(std::min(deflate, 9))), "H5Pset_deflate", w);
+  } else {
+    // Uncompressed chunks get a Fletcher32 each; a deflated chunk is checked by its zlib
+    // stream's Adler-32 (and is written whole by write_chunk, which bypasses HDF5's filters).
+    check(H5Pset_fletcher32(dcpl.get()), "H5Pset_fletcher32", w);
   }
   Handle lcpl = intermediate_lcpl(w);
   std::string p(path);
@@ -801,6 +831,7 @@ AppendableTable AppendableTable::create(Group& parent, std::string_view path, st
     check(H5Pset_shuffle(dcpl.get()), "H5Pset_shuffle", w);
     check(H5Pset_deflate(dcpl.get(), static_cast<unsigned>(options.deflate)), "H5Pset_deflate", w);
   }
+  check(H5Pset_fletcher32(dcpl.get()), "H5Pset_fletcher32", w);  // a changed byte fails the read
   Handle lcpl = intermediate_lcpl(w);
   std::string p(path);
   Handle ds = own(H5Dcreate2(parent.native_handle(), p.c_str(), file_type_of(dtype), space.get(), lcpl.get(),

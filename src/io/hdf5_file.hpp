@@ -136,6 +136,9 @@ class Dataset : public Object {
   Dataset() = default;
 
   Dims dims() const;
+  // Whether its chunks carry a checksum HDF5 checks on every read: Fletcher32, or deflate
+  // (the zlib stream's Adler-32).
+  bool checksummed() const;
   Array<double> read_doubles() const;
   Array<std::int64_t> read_int64s() const;
   Array<std::int32_t> read_int32s() const;
@@ -177,6 +180,8 @@ class Group : public Object {
   Group require_group(std::string_view path);  // open, or create if missing
 
   // Whole arrays, row-major; the product of dims must equal data.size() (dims {} = scalar).
+  // A non-empty array is stored in chunks that carry HDF5's Fletcher32 checksum: a byte changed
+  // on disk makes its read throw Hdf5Error ("data error detected by Fletcher32 checksum").
   Dataset write_dataset(std::string_view path, std::span<const double> data, const Dims& dims);
   Dataset write_dataset(std::string_view path, std::span<const std::int64_t> data, const Dims& dims);
   Dataset write_dataset(std::string_view path, std::span<const std::int32_t> data, const Dims& dims);
@@ -188,7 +193,8 @@ class Group : public Object {
   Dataset write_string_dataset(std::string_view path, std::string_view text);
   // A chunked dataset of shape `dims` whose unwritten elements read as `fill` (NaN marks
   // results not computed yet), written later with Dataset::write_region. `chunk` has the
-  // rank of `dims`; deflate 0 (none) to 9.
+  // rank of `dims`; deflate 0 (none) to 9. Without deflate every chunk carries a Fletcher32
+  // checksum; with it, the zlib stream's Adler-32 checks the chunk.
   Dataset create_filled(std::string_view path, const Dims& dims, DType dtype, double fill, const Dims& chunk,
                         int deflate = 0);
 
