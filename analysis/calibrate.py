@@ -15,7 +15,7 @@ within 2 σ_J of the best (σ_J propagated from the σ(ω0)) span its uncertaint
 sensitivities ∂ω0_k/∂R and ∂ω0_k/∂d are differences to the neighbouring grid values.
 
 A threshold whose slope b moves it by more than 3 σ over the rates swept depends on the ramp:
-the report says so (a transient rather than a quasi-static bifurcation, model.md).
+the report says so (a transient rather than a quasi-static bifurcation; docs/guide/thresholds.md, "Bifurcation or time limit").
 
 usage: /usr/bin/python3 analysis/calibrate.py out/calibration.h5 -o out/calibration.md [--csv out/calibration.csv]
 """

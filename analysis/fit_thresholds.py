@@ -13,7 +13,7 @@ Residuals r_k = (ω_k − paper_k) / paper_k for
                     way up ("nearly constant", the paper); σ = --plateau-sigma.
 With --protocol holds, ω1, ω2 and ω_fall come instead from one sweep held level by level,
 sweeps/table1_staircase.toml (its grid dropped, one chain per evaluation, about 20 s of CPU):
-the quasi-static thresholds, which ramps pass late (README, "ω2 and the flower orbits").
+the quasi-static thresholds, which ramps pass late (docs/reports/reproduction-evidence.md, "ω2 and the flower orbits").
 The sweeps are temporary copies of the shipped files with segments dropped or extended
 (the shipped files stay unchanged); each parameter vector is run through them with
 `astrojax sweep -q --set ...`, at most --jobs (2) at a time, and read with
@@ -80,11 +80,11 @@ MODEL_KEYS = {
     "tie_inertia": (0.0, True, math.inf, "kg m²"), "tie_damping": (0.0, False, math.inf, "N m s"),
     "couple_torque": (0.0, False, math.inf, "N m"), "couple_slip_rate": (0.0, True, math.inf, "rad/s"),
 }
-# The set of README "One parameter set for the whole protocol";
+# The set of docs/reports/reproduction-evidence.md, "One parameter set for the whole protocol";
 # every evaluation sets all of these, then --fixed, then the fitted ones.
 BASE = {"drive_radius": 0.015, "contact_distance": 0.035, "tie_static_torque": 1.5e-3,
         "tie_kinetic_torque": 1.35e-3, "tie_damping": 2e-6}
-# Default parameter vector: start and bounds (README's τ scan; the lead's c_a runs).
+# Default parameter vector: start and bounds (the τ scan of docs/reports/reproduction-evidence.md; the lead's c_a runs).
 DEFAULT_PARAMS = {
     "drive_radius": (0.015, 0.005, 0.02),
     "contact_distance": (0.035, 0.015, 0.05),

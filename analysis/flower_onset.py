@@ -19,7 +19,7 @@ Near a supercritical Hopf bifurcation the limit cycle's amplitude obeys a² = k 
     linear and solved for every trial ω_H, ω_H by a scan and golden section;
   - σ(ω_H) where χ² has risen by one (scaled by the reduced χ² when it exceeds one);
   - the torque the tie passes there, τ_H = τ_k + c_a (ω_H − ω_ball), with ω_ball the lagging
-    orbit's at the last circular level (model.md's clutch: τ_k + c_a (ω_m − χ̇) while slipping).
+    orbit's at the last circular level (the tie clutch of docs/physics/model.md: τ_k + c_a (ω_m − χ̇) while slipping).
 Also: the classifier's own bracket (the last lagging level to the first flower level on the way
 up), whether the way down returns to a circle at the same level (no hysteresis: a soft, i.e.
 supercritical, onset), and the largest |dE/dt| / P_drag over the flower windows (≈ 0: the motor

@@ -11,7 +11,7 @@ stuck family at s, continued in ω as the lag of the slipping tie (orbits/laggin
 The paper: ω_fall = 3.24π, and between ω1 and ω2 the balls lag at ω_ball ≈ 4.8π up to ω2,
 where the lag ends in a flower: on this model's lag that is the Hopf point, so ω_ball at ω2 is
 the ceiling. Neither number depends on τ_k (it only picks where on the branch the lag sits at a
-given ω_m) and the Hopf point barely on c_a (README "The lag's ceiling").
+given ω_m) and the Hopf point barely on c_a (docs/reports/reproduction-evidence.md, "The lag's ceiling").
 
 usage: /usr/bin/python3 analysis/lag_limits.py -o out/lag_limits.md [--radii 0.015] [--distances 0.035]
                                                [--s 0.40:0.62:0.02]

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Model adequacy: which layers of physics each threshold and orbit type of the paper needs.
 
-For every layer set (the [layers] keys of the configuration, README "Configuration"), runs
+For every layer set (the [layers] keys of the configuration, docs/reference/configuration.md), runs
 the built astrojax on the files of sweeps/adequacy/ at one representative (R, d):
   - `astrojax sweep ramp.toml`: the paper's up/down/up protocol; `astrojax thresholds --csv`
     brackets ω_rise, ω_fall, ω1 and ω2 (the only place thresholds are found);
@@ -15,7 +15,7 @@ the built astrojax on the files of sweeps/adequacy/ at one representative (R, d)
     so there is no ω2 there);
   - `astrojax sweep sweeps/table1_staircase.toml --set grid.tie_damping=[2e-6]`: the paper's
     second half held level by level from Table 1's orbit (100 s a level, up through ω1 to 18π,
-    back down through ω_fall), one chain at the one parameter set's c_a (README, "One
+    back down through ω_fall), one chain at the one parameter set's c_a (docs/reports/reproduction-evidence.md, "One
     parameter set for the whole protocol"; the tie keys do nothing without the clutch);
     `astrojax thresholds` brackets held ω1, ω2 and ω_fall, `--sequence-csv` gives the runs of
     one class per leg (with a lagging orbit's ω_ball plateau), and flower_onset.analyse the Hopf
@@ -58,7 +58,7 @@ TOLERANCE = 0.05  # "reproduced": within 5 % of the paper
 
 # The tie is named in every set: the staircase file ties the string with the clutch.
 FULL = {"friction": "stick_slip", "slack": "true", "top_stop": "true", "bottom_stop": "true", "tie": "rigid"}
-# The layer beyond the paper's model (README, "The tie clutch"), at the torques of the README's
+# The layer beyond the paper's model (docs/reports/reproduction-evidence.md, "The tie clutch"), at the torques of the docs/reports/reproduction-evidence.md's
 # one parameter set, which was found at this script's point (R = 15 mm, d = 3.5 cm).
 CLUTCH = dict(FULL, tie="clutch", **{"model.tie_static_torque": "1.5e-3", "model.tie_kinetic_torque": "1.35e-3",
                                     "model.tie_damping": "2e-6"})

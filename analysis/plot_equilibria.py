@@ -27,7 +27,7 @@ import numpy as np  # noqa: E402
 
 from astrojax_analysis import CLASS_COLOURS  # noqa: E402  the sweep's class colours
 
-PAPER = {"ω_rise": 12.63, "ω_fall": 3.24, "ω1": 4.80, "ω2": 15.00}  # [π rad/s], shared/model.md
+PAPER = {"ω_rise": 12.63, "ω_fall": 3.24, "ω1": 4.80, "ω2": 15.00}  # [π rad/s], the paper's measured thresholds
 CASES = ["stuck", "bottom_stop", "frictionless", "cone_up", "cone_down"]
 CASE_COLOURS = ["tab:blue", "tab:grey", "tab:green", "tab:orange", "tab:red"]
 EVENT_MARKERS = {

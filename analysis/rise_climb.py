@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """The bead's climbs off the bottom ball in `astrojax run` files: where each starts, why, how
-far it goes and why it ends (README, "The rise from rest").
+far it goes and why it ends (docs/reports/reproduction-evidence.md, "The rise from rest").
 
 Before the climb the balls sit on the bottom-stop orbit the ramp picked up (the bottom ball
 whirls around the bead at ω_m on the opposite side of the axis, the lower segment nearly
@@ -18,7 +18,7 @@ horizontal). For each climb (a stretch of samples off the bottom stop, mode ≠ 
 Then the energy ledger of run_ledger.py in --window windows from --before seconds before the
 first onset to --after seconds after it.
 
-With the diagnostic layer pair_couple = "motor_clutch" (src/physics/pair_couple.hpp; README, "A
+With the diagnostic layer pair_couple = "motor_clutch" (src/physics/pair_couple.hpp; docs/reports/reproduction-evidence.md, "A
 couple on the pair") it also prints, per climb, the pair's phase against the motor (the azimuth
 of r2 − r1 minus φ: its largest excursion from the onset over the climb, and its change to the
 end of the climb) and the couple's work on the balls, recomputed from the samples as the layer

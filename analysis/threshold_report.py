@@ -67,8 +67,8 @@ def markdown(path, rows, sweep, seq=()):
     lines += [f"- {k}: `{v}`" for k, v in facts if v]
     lines += [f"- chains: {sweep.n_chains}" + (f", grid axes: {', '.join(sweep.axes)}" if sweep.axes else ""),
               f"- made by `astrojax thresholds {path}{f' --refine {factor}' if factor else ''}"
-              f"{' --hold T' if any(r.get('verdict') for r in rows) else ''}`; definitions in README "
-              "(\"Thresholds and reclassification\", \"Bifurcation or time limit\").",
+              f"{' --hold T' if any(r.get('verdict') for r in rows) else ''}`; definitions in docs/guide/thresholds.md "
+              "(\"Bifurcation or time limit\") and docs/physics/orbit-classes.md.",
               "", "## Every chain", "",
               table_row("chain", "parameters", "threshold", "bracket [π rad/s]", "midpoint [π rad/s]",
                         "paper [π rad/s]", "relative difference", *refine_head),

@@ -718,13 +718,13 @@ class flower_onset(unittest.TestCase):
         lev = {o: v for o, v in flower_onset.levels(sweep, 0).items() if o >= 12.0}
         cls = {o: {leg: sweep.class_names[sweep.cls[0, w]] for leg, w in v.items()} for o, v in lev.items()}
         for o, legs in cls.items():
-            # ω_H = 15.3π for this set (README), and the classifier names the flower once its
+            # ω_H = 15.3π for this set (docs/reports/reproduction-evidence.md), and the classifier names the flower once its
             # radius oscillates by several per cent, 0.6-1.2π above ω_H: 16π is still a circle.
             want = "flower" if o >= 17.0 else "lagging-circular"
             for leg, got in legs.items():
                 self.assertEqual(got, want, f"{leg} at {o}π")  # the same class up and down: no hysteresis
         # Sustained: a flower decaying at the drag rate would have dE/dt/P_drag ≈ −1; over a
-        # 20 s window an orbit the motor feeds stays within m/(2 c_D T) = 0.26 (README, hold
+        # 20 s window an orbit the motor feeds stays within m/(2 c_D T) = 0.26 (docs/reports/reproduction-evidence.md, hold
         # verdicts).
         bound = 0.018 / (2 * 1.7245e-3 * 20.0)
         for o, v in lev.items():
@@ -878,7 +878,7 @@ class lag_limits(unittest.TestCase):
     """analysis/lag_limits.py: ω_fall(s) and the lag's ceiling from `astrojax orbits --lag`."""
 
     def test_both_rise_with_the_bead_position(self):
-        # The claim of README "The lag's ceiling": along the string, ω_fall(s) (the stuck
+        # The claim of docs/reports/reproduction-evidence.md, "The lag's ceiling": along the string, ω_fall(s) (the stuck
         # family's entry into the cone) and the highest stable lag both grow with s, so the bead
         # position that lowers one lowers the other. Three positions, about 1 s.
         out = data("lag_limits.md")

@@ -1,5 +1,5 @@
 // A figure a physics test measures: recorded as a test property (in ctest's XML) and printed
-// as "measured KEY: VALUE", the line the README and the notes quote.
+// as "measured KEY: VALUE", the line the docs and the notes quote.
 #pragma once
 #include <gtest/gtest.h>
 

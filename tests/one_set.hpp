@@ -1,4 +1,4 @@
-// The one parameter set of README "One parameter set for the whole protocol": the tie clutch at
+// The one parameter set of docs/reports/reproduction-evidence.md, "One parameter set for the whole protocol": the tie clutch at
 // R = 15 mm, d = 3.5 cm, τ_s = 1.5e-3 N m, τ_k = 1.35e-3 N m, c_a = 2e-6 N m s.
 #pragma once
 #include "physics/model.hpp"

@@ -37,7 +37,7 @@ kill -9 "$mp"
 wait "$mp" 2> /dev/null  # mpirun itself, killed: ends at once
 resume mpirun.h5
 rc=$?
-alive=0; kill -0 "$rank0" 2> /dev/null && alive=1
+alive=0; running "$rank0" && alive=1
 check "kill -9 mpirun: a resume while the old master runs is refused (exit $rc, master alive $alive)" \
   "[ $rc -eq 2 ] && grep -q 'in use by another running sweep\|mpirun.h5 is complete' mpirun.h5.resume || [ $alive -eq 0 ]"
 gone $rank0 $rank1 $rank2

@@ -7,6 +7,9 @@ sweep=("$src/sweeps/quick.toml" -q --set protocol.windows_per_task=1 --set "grid
        --set integrator.method=rk4 --set integrator.step=1e-4)
 same() { for g in /config /chains /windows /samples /tasks; do h5diff "$1" "$2" "$g" > /dev/null 2>&1 || return 1; done; }
 size() { stat -c %s "$1" 2> /dev/null || echo 0; }
+# Whether process $1 runs: exists and is not a zombie (a rank whose mpirun died is reparented,
+# and its new parent may not reap it at once; kill -0 answers for a zombie too).
+running() { local st; st=$(awk '{print $3}' "/proc/$1/stat" 2> /dev/null); [ -n "$st" ] && [ "$st" != Z ]; }
 # The MPI rank of process $1.
 rank_of() { tr '\0' '\n' < "/proc/$1/environ" 2> /dev/null | sed -n 's/^OMPI_COMM_WORLD_RANK=//p'; }
 # Starts the sweep on 3 ranks into $1 and waits until its journal holds more than $2 bytes
@@ -81,8 +84,8 @@ resume() {
 stop_rank2() {
   kill -STOP "$rank2"
   local t0=$(date +%s)
-  for _ in $(seq $(($1 * 10))); do kill -0 "$rank0" 2> /dev/null || break; sleep 0.1; done
-  waited=$(($(date +%s) - t0)); master_ended=1; kill -0 "$rank0" 2> /dev/null && master_ended=0
+  for _ in $(seq $(($1 * 10))); do running "$rank0" || break; sleep 0.1; done
+  waited=$(($(date +%s) - t0)); master_ended=1; running "$rank0" && master_ended=0
   for _ in $(seq 100); do kill -0 "$mp" 2> /dev/null || break; sleep 0.1; done
   kill -CONT "$rank2" 2> /dev/null
   wait_mpi "$mp" 30 "$out"

@@ -1,4 +1,4 @@
-// The HDF5 file of a sweep (layout in README, "Sweep output"): made at the start with every
+// The HDF5 file of a sweep (layout: docs/reference/file-format.md): made at the start with every
 // result "not computed", filled task by task, reopened to resume or to reclassify.
 #pragma once
 #include <array>

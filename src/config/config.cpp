@@ -288,7 +288,7 @@ void parse_common(const toml::table& root, std::string_view file, CommonConfig& 
     c.run.integ.tol.atol = r.number("atol", 1e-12, 0.0, 1.0, true);
     c.run.integ.h_fixed = r.number("step", 5e-4, 0.0, 0.1, true);
     // max_step: "auto" (the default) bounds each step by the guards' time scale, h <= 1/Ω
-    // (sim/step_bound.hpp, measured: README "A step bound from the guards' time scales"); a
+    // (sim/step_bound.hpp, measured: docs/reports/accuracy-and-speed.md, "A step bound from the guards' time scales"); a
     // number is a fixed bound instead.
     const toml::node* max_step = r.has("max_step") ? subtable(root, "integrator", file).get("max_step") : nullptr;
     c.run.guard_step_bound = !max_step || max_step->is_string();
@@ -302,7 +302,7 @@ void parse_common(const toml::table& root, std::string_view file, CommonConfig& 
       c.run.integ.h_max = r.number("max_step", 0.05, 0.0, 10.0, true);
     }
     // event_samples: guard samples inside each step on the dense output; with "auto" the bound
-    // becomes h <= (event_samples + 1)/Ω (sim/step_bound.hpp; measured: README "Guard samples
+    // becomes h <= (event_samples + 1)/Ω (sim/step_bound.hpp; measured: docs/reports/accuracy-and-speed.md, "Guard samples
     // inside the step"). With a fixed max_step none by default (each step would take them all).
     {
       const double k =
@@ -310,7 +310,7 @@ void parse_common(const toml::table& root, std::string_view file, CommonConfig& 
       if (k != std::floor(k)) r.fail("event_samples", fmt::format("{} is not a whole number; allowed 0, 1, ..., 16", k));
       c.run.integ.event_samples = int(k);
     }
-    // The integrator's axes (physics/rotating_axes.hpp): measured, README "Accuracy and speed".
+    // The integrator's axes (physics/rotating_axes.hpp): measured, docs/reports/accuracy-and-speed.md.
     const std::string axes = r.word("axes", "rotating", {"rotating", "lab", "auto"});
     c.run.axes = axes == "lab" ? sim::Axes::Lab : axes == "auto" ? sim::Axes::Auto : sim::Axes::Rotating;
     c.run.projection_tol = r.number("projection_tol", 1e-12, 0.0, 1e-3, true);

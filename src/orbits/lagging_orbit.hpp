@@ -16,7 +16,7 @@
 // freedom). Turning all of (q1, q2, θ) about z is a symmetry (the clutch's torque does not
 // depend on χ), so one eigenvalue is exactly zero; it is factored out and the other nine decide.
 // Their leading pair crossing Re λ = 0 as τ grows is the Hopf point τ_H where the lag turns
-// into a flower (README "ω2 and the flower orbits").
+// into a flower (docs/reports/reproduction-evidence.md, "ω2 and the flower orbits").
 #pragma once
 #include <Eigen/Core>
 #include <vector>

@@ -1,7 +1,7 @@
 // The pair couple (the diagnostic layer `pair_couple = "motor_clutch"`, off by default): a pure
 // couple about ẑ between the two balls, like kinetic friction between the motor's rotation and
 // the lower segment's rotation about the axis. It asks what torque on the pair the climb from
-// rest would need (README, "A couple on the pair"); it is not a model of a part of the Astrojax.
+// rest would need (docs/reports/reproduction-evidence.md, "A couple on the pair"); it is not a model of a part of the Astrojax.
 //   d2 = r2 − r1, ḋ2 = v2 − v1, ρ² = d2x² + d2y² (the lower segment's horizontal length²);
 //   β̇ = ẑ·(d2 × ḋ2)/ρ²                     the lower segment's spin about z;
 //   w = (ω_m ρ² − ẑ·(d2 × ḋ2)) / (ρ² + (ε L2)²) = (ω_m − β̇) ρ²/(ρ² + (ε L2)²),  ε = 1e-3:

@@ -18,13 +18,13 @@ using physics::State;
 
 // The axes the integrator sees (physics/rotating_axes.hpp). Rotating: the lab state expressed
 // in axes turning with the motor, where a locked orbit is a fixed point (measured faster at
-// equal accuracy: README, "Accuracy and speed"); the run's input, output and samples stay lab.
+// equal accuracy: docs/reports/accuracy-and-speed.md); the run's input, output and samples stay lab.
 // Auto: decided at the start of each run (each sweep window) from the state, see
 // corotates() (sim/step_bound.hpp).
 enum class Axes { Lab, Rotating, Auto };
 
 struct RunOptions {
-  std::string method = "dop853";       // the measured recommendation (README, "Accuracy and speed")
+  std::string method = "dop853";       // the measured recommendation (docs/reports/accuracy-and-speed.md)
   Axes axes = Axes::Rotating;          // the measured recommendation, as method
   // [integrator] max_step = "auto": adaptive steps also bounded by h <= (k + 1)/Ω (k = integ.
   // event_samples guard samples inside each step), Ω the fastest rate
@@ -36,8 +36,8 @@ struct RunOptions {
     numerics::IntegrateOptions o;
     o.h_max = 10.0;
     // Three guard samples inside each step, so "auto" allows h <= 4/Ω: the fewest at which the
-    // evaluations of every work-precision scene stop falling, to rtol 1e-2 (README "Guard
-    // samples inside the step").
+    // evaluations of every work-precision scene stop falling, to rtol 1e-2 (docs/reports/
+    // accuracy-and-speed.md, "Guard samples inside the step").
     o.event_samples = 3;
     return o;
   }();

@@ -28,8 +28,8 @@ inline constexpr double kRadiansPerStep = 1.0;
 //   link under the weight and the orbit's centrifugal load per unit mass,
 //   g_eff = √(g² + (max_i θ̇_i² ρ_i)²).
 // Ω = max(Ω_rel, Ω_swing). The guarantee is relative to each oscillation's own amplitude, so
-// the rate is not weighted by how small that amplitude is (README "A step bound from the guards'
-// time scales": weighting would hide the string's pull in tests/step_bound_test.cpp).
+// the rate is not weighted by how small that amplitude is (docs/reports/accuracy-and-speed.md,
+// "A step bound from the guards' time scales": weighting would hide the string's pull in tests/step_bound_test.cpp).
 double guard_rate(const physics::Parameters& p, const physics::TopKinematics& top, const numerics::Vec& y);
 
 // h ≤ (event_samples + 1) kRadiansPerStep / Ω [s]: guard samples (the step's ends and its
