@@ -236,130 +236,141 @@ Enum enum_word(Reader& r, std::string_view key, Enum fallback, std::span<const s
   return Enum(std::find(words.begin(), words.end(), w) - words.begin());
 }
 
+// [model]: each number in its range (the parameter table), then the bounds between them.
+void parse_model(const toml::table& root, std::string_view file, CommonConfig& c) {
+  Reader r(subtable(root, "model", file), "model", file);
+  physics::Parameters& p = c.model.p;
+  for (const physics::ParameterInfo& m : physics::kParameters)
+    p.*m.field = r.number(m.key, p.*m.field, m.lo, m.hi, m.lo_open, m.hi_open);
+  r.reject_unknown();
+  for (const auto& issue : physics::validate(c.model))
+    throw ConfigError(fmt::format("{}: key '{}': {} is out of range; allowed {}", file, issue.key,
+                                  issue.value, issue.allowed));
+}
+
+// [layers]: the words and numbers of the layer table; a clutch tie and the pair couple need their torques in [model].
+void parse_layers(const toml::table& root, std::string_view file, CommonConfig& c) {
+  const toml::table& model = subtable(root, "model", file);
+  const bool tie_torques_given = model.contains("tie_static_torque") && model.contains("tie_kinetic_torque");
+  const bool couple_torque_given = model.contains("couple_torque");
+  Reader r(subtable(root, "layers", file), "layers", file);
+  physics::Layers& L = c.model.layers;
+  L.friction = enum_word(r, "friction", L.friction, physics::friction_words());
+  L.friction_law = enum_word(r, "friction_law", L.friction_law, physics::friction_law_words());
+  L.pair_couple = enum_word(r, "pair_couple", L.pair_couple, physics::pair_couple_words());
+  L.tie_clutch = enum_word(r, "tie", int(L.tie_clutch), physics::tie_words()) == 1;
+  L.bottom_stop = r.boolean("bottom_stop", L.bottom_stop);
+  L.top_stop = r.boolean("top_stop", L.top_stop);
+  L.slack = r.boolean("slack", L.slack);
+  for (const physics::LayerInfo& info : physics::layer_table())
+    if (info.kind == physics::LayerInfo::Kind::Number)
+      L.*info.number = r.number(info.key, L.*info.number, info.lo, info.hi, info.lo_open);
+  if (c.model.layers.tie_clutch && !tie_torques_given)
+    r.fail("tie", "\"clutch\" needs model.tie_static_torque and model.tie_kinetic_torque (τ_s >= τ_k >= 0 [N m])");
+  if (c.model.layers.pair_couple == physics::PairCouple::MotorClutch && !couple_torque_given)
+    r.fail("pair_couple", "\"motor_clutch\" needs model.couple_torque (τ_c >= 0 [N m])");
+  r.reject_unknown();
+}
+
+// [integrator]: the method, its tolerances or step, and the step bound from the guards.
+void parse_integrator(const toml::table& root, std::string_view file, CommonConfig& c) {
+  Reader r(subtable(root, "integrator", file), "integrator", file);
+  std::vector<std::string> methods;
+  std::stringstream ss{std::string(numerics::stepper_names())};
+  for (std::string w; std::getline(ss, w, ',');) {
+    w.erase(0, w.find_first_not_of(' '));
+    methods.push_back(w);
+  }
+  // The paper's own two-step scheme (sim/paper_scheme.hpp): its own simulation path.
+  methods.insert(methods.end(), {"paper", "paper_corrected"});
+  c.run.method = r.word("method", c.run.method, methods);
+  if (sim::paper_variant(c.run.method))
+    for (const auto& [key, need] : sim::paper_scheme_conflicts(c.model))
+      throw ConfigError(fmt::format("{}: key '{}': integrator.method = \"{}\" needs {}", file, key, c.run.method, need));
+  c.run.integ.tol.rtol = r.number("rtol", 1e-10, 1e-15, 1.0, false, true);
+  c.run.integ.tol.atol = r.number("atol", 1e-12, 0.0, 1.0, true);
+  c.run.integ.h_fixed = r.number("step", 5e-4, 0.0, 0.1, true);
+  // max_step: "auto" (the default) bounds each step by the guards' time scale, h <= 1/Ω
+  // (sim/step_bound.hpp, measured: docs/reports/accuracy-and-speed.md, "A step bound from the guards' time scales"); a
+  // number is a fixed bound instead.
+  const toml::node* max_step = r.has("max_step") ? subtable(root, "integrator", file).get("max_step") : nullptr;
+  c.run.guard_step_bound = !max_step || max_step->is_string();
+  if (c.run.guard_step_bound) {
+    r.known("max_step");
+    if (max_step && max_step->value<std::string>() != "auto")
+      r.fail("max_step", fmt::format("'{}' is not allowed; allowed: \"auto\" or a number in (0, 10] s",
+                                     *max_step->value<std::string>()));
+    c.run.integ.h_max = 10.0;
+  } else {
+    c.run.integ.h_max = r.number("max_step", 0.05, 0.0, 10.0, true);
+  }
+  // event_samples: guard samples inside each step on the dense output; with "auto" the bound
+  // becomes h <= (event_samples + 1)/Ω (sim/step_bound.hpp; measured: docs/reports/accuracy-and-speed.md, "Guard samples
+  // inside the step"). With a fixed max_step none by default (each step would take them all).
+  {
+    const double k =
+        r.number("event_samples", c.run.guard_step_bound ? c.run.integ.event_samples : 0, 0.0, 16.0);
+    if (k != std::floor(k)) r.fail("event_samples", fmt::format("{} is not a whole number; allowed 0, 1, ..., 16", k));
+    c.run.integ.event_samples = int(k);
+  }
+  // The integrator's axes (physics/rotating_axes.hpp): measured, docs/reports/accuracy-and-speed.md.
+  const std::string axes = r.word("axes", "rotating", {"rotating", "lab", "auto"});
+  c.run.axes = axes == "lab" ? sim::Axes::Lab : axes == "auto" ? sim::Axes::Auto : sim::Axes::Rotating;
+  c.run.projection_tol = r.number("projection_tol", 1e-12, 0.0, 1e-3, true);
+  c.run.max_events = r.count("max_events", 1000000, 1.0, 1e12);
+  c.run.omega_window = r.number("omega_window", 10.0, 0.0, 1e7, true);
+  c.run.rest_speed = r.number("rest_speed", c.run.rest_speed, 0.0, 1.0);
+  c.run.chatter_switches = int(r.count("chatter_switches", c.run.chatter_switches, 2.0, 1e6));
+  c.run.chatter_window = r.number("chatter_window", c.run.chatter_window, 0.0, 1e3, true);
+  r.reject_unknown();
+}
+
+// [initial]: the start: hanging, explicit, or a two-step pair (table1, pair).
+void parse_initial(const toml::table& root, std::string_view file, CommonConfig& c) {
+  Reader r(subtable(root, "initial", file), "initial", file);
+  c.initial.preset = r.word("preset", "hanging", {"hanging", "explicit", "table1", "pair"});
+  // Two-step starts (sim/paper_scheme.hpp): positions at t = 0 and at t = integrator.step.
+  if (c.initial.preset == "table1") {
+    c.initial.orbit = r.word("orbit", "circular1", sim::table1_orbits());
+    c.initial.orbit_omega = r.number("omega", NAN, 0.0, kOmegaMax);  // the circular orbits' θ = ω h
+  }
+  if (c.initial.preset == "pair") {
+    const double bound = 10.0 * c.model.p.string_length;
+    for (const char* k : {"r1", "r2", "r1_next", "r2_next"})
+      if (!r.has(k)) r.fail(k, "missing: \"pair\" needs r1, r2 (at t = 0) and r1_next, r2_next (at t = integrator.step) [m]");
+    c.initial.r1 = r.vec3("r1", bound);
+    c.initial.r2 = r.vec3("r2", bound);
+    c.initial.r1_next = r.vec3("r1_next", bound);
+    c.initial.r2_next = r.vec3("r2_next", bound);
+  }
+  if (c.initial.preset == "hanging" && !c.model.layers.bottom_stop)
+    r.fail("preset", "'hanging' rests the bead on the bottom ball and needs layers.bottom_stop = true");
+  if (c.initial.preset == "explicit") {
+    const double bound = 10.0 * c.model.p.string_length;
+    c.initial.r1 = r.vec3("r1", bound);
+    c.initial.r2 = r.vec3("r2", bound);
+    c.initial.v1 = r.has("v1") ? r.vec3("v1", 1e3) : physics::Vec3::Zero();
+    c.initial.v2 = r.has("v2") ? r.vec3("v2", 1e3) : physics::Vec3::Zero();
+    const std::string mode = r.word("mode", "sliding", {"sliding", "bottom_stop", "stuck", "slack"});
+    c.initial.mode = mode == "sliding"       ? physics::Mode::Sliding
+                     : mode == "bottom_stop" ? physics::Mode::BottomStop
+                     : mode == "stuck"       ? physics::Mode::Stuck
+                                             : physics::Mode::Slack;
+    c.initial.length_tolerance =
+        r.number("length_tolerance", c.initial.length_tolerance, 0.0, 0.1 * c.model.p.string_length, true);
+    if (r.has("tie_slip_rate")) {
+      if (!c.model.layers.tie_clutch) r.fail("tie_slip_rate", "needs layers.tie = \"clutch\"");
+      c.initial.tie_slip_rate = r.number("tie_slip_rate", 0.0, -1e4, 1e4);
+    }
+  }
+  r.reject_unknown();
+}
+
 void parse_common(const toml::table& root, std::string_view file, CommonConfig& c) {
-  bool tie_torques_given = false;
-  bool couple_torque_given = false;
-  {  // [model]: ranges that depend on each other are checked by physics::validate below.
-    Reader r(subtable(root, "model", file), "model", file);
-    physics::Parameters& p = c.model.p;
-    tie_torques_given = r.has("tie_static_torque") && r.has("tie_kinetic_torque");
-    couple_torque_given = r.has("couple_torque");
-    for (const physics::ParameterInfo& m : physics::kParameters)
-      p.*m.field = r.number(m.key, p.*m.field, m.lo, m.hi, m.lo_open, m.hi_open);
-    r.reject_unknown();
-    for (const auto& issue : physics::validate(c.model))
-      throw ConfigError(fmt::format("{}: key '{}': {} is out of range; allowed {}", file, issue.key,
-                                    issue.value, issue.allowed));
-  }
-  {
-    Reader r(subtable(root, "layers", file), "layers", file);
-    physics::Layers& L = c.model.layers;
-    L.friction = enum_word(r, "friction", L.friction, physics::friction_words());
-    L.friction_law = enum_word(r, "friction_law", L.friction_law, physics::friction_law_words());
-    L.pair_couple = enum_word(r, "pair_couple", L.pair_couple, physics::pair_couple_words());
-    L.tie_clutch = enum_word(r, "tie", int(L.tie_clutch), physics::tie_words()) == 1;
-    L.bottom_stop = r.boolean("bottom_stop", L.bottom_stop);
-    L.top_stop = r.boolean("top_stop", L.top_stop);
-    L.slack = r.boolean("slack", L.slack);
-    for (const physics::LayerInfo& info : physics::layer_table())
-      if (info.kind == physics::LayerInfo::Kind::Number)
-        L.*info.number = r.number(info.key, L.*info.number, info.lo, info.hi, info.lo_open);
-    if (c.model.layers.tie_clutch && !tie_torques_given)
-      r.fail("tie", "\"clutch\" needs model.tie_static_torque and model.tie_kinetic_torque (τ_s >= τ_k >= 0 [N m])");
-    if (c.model.layers.pair_couple == physics::PairCouple::MotorClutch && !couple_torque_given)
-      r.fail("pair_couple", "\"motor_clutch\" needs model.couple_torque (τ_c >= 0 [N m])");
-    r.reject_unknown();
-  }
-  {
-    Reader r(subtable(root, "integrator", file), "integrator", file);
-    std::vector<std::string> methods;
-    std::stringstream ss{std::string(numerics::stepper_names())};
-    for (std::string w; std::getline(ss, w, ',');) {
-      w.erase(0, w.find_first_not_of(' '));
-      methods.push_back(w);
-    }
-    // The paper's own two-step scheme (sim/paper_scheme.hpp): its own simulation path.
-    methods.insert(methods.end(), {"paper", "paper_corrected"});
-    c.run.method = r.word("method", c.run.method, methods);
-    if (sim::paper_variant(c.run.method))
-      for (const auto& [key, need] : sim::paper_scheme_conflicts(c.model))
-        throw ConfigError(fmt::format("{}: key '{}': integrator.method = \"{}\" needs {}", file, key, c.run.method, need));
-    c.run.integ.tol.rtol = r.number("rtol", 1e-10, 1e-15, 1.0, false, true);
-    c.run.integ.tol.atol = r.number("atol", 1e-12, 0.0, 1.0, true);
-    c.run.integ.h_fixed = r.number("step", 5e-4, 0.0, 0.1, true);
-    // max_step: "auto" (the default) bounds each step by the guards' time scale, h <= 1/Ω
-    // (sim/step_bound.hpp, measured: docs/reports/accuracy-and-speed.md, "A step bound from the guards' time scales"); a
-    // number is a fixed bound instead.
-    const toml::node* max_step = r.has("max_step") ? subtable(root, "integrator", file).get("max_step") : nullptr;
-    c.run.guard_step_bound = !max_step || max_step->is_string();
-    if (c.run.guard_step_bound) {
-      r.known("max_step");
-      if (max_step && max_step->value<std::string>() != "auto")
-        r.fail("max_step", fmt::format("'{}' is not allowed; allowed: \"auto\" or a number in (0, 10] s",
-                                       *max_step->value<std::string>()));
-      c.run.integ.h_max = 10.0;
-    } else {
-      c.run.integ.h_max = r.number("max_step", 0.05, 0.0, 10.0, true);
-    }
-    // event_samples: guard samples inside each step on the dense output; with "auto" the bound
-    // becomes h <= (event_samples + 1)/Ω (sim/step_bound.hpp; measured: docs/reports/accuracy-and-speed.md, "Guard samples
-    // inside the step"). With a fixed max_step none by default (each step would take them all).
-    {
-      const double k =
-          r.number("event_samples", c.run.guard_step_bound ? c.run.integ.event_samples : 0, 0.0, 16.0);
-      if (k != std::floor(k)) r.fail("event_samples", fmt::format("{} is not a whole number; allowed 0, 1, ..., 16", k));
-      c.run.integ.event_samples = int(k);
-    }
-    // The integrator's axes (physics/rotating_axes.hpp): measured, docs/reports/accuracy-and-speed.md.
-    const std::string axes = r.word("axes", "rotating", {"rotating", "lab", "auto"});
-    c.run.axes = axes == "lab" ? sim::Axes::Lab : axes == "auto" ? sim::Axes::Auto : sim::Axes::Rotating;
-    c.run.projection_tol = r.number("projection_tol", 1e-12, 0.0, 1e-3, true);
-    c.run.max_events = r.count("max_events", 1000000, 1.0, 1e12);
-    c.run.omega_window = r.number("omega_window", 10.0, 0.0, 1e7, true);
-    c.run.rest_speed = r.number("rest_speed", c.run.rest_speed, 0.0, 1.0);
-    c.run.chatter_switches = int(r.count("chatter_switches", c.run.chatter_switches, 2.0, 1e6));
-    c.run.chatter_window = r.number("chatter_window", c.run.chatter_window, 0.0, 1e3, true);
-    r.reject_unknown();
-  }
-  {
-    Reader r(subtable(root, "initial", file), "initial", file);
-    c.initial.preset = r.word("preset", "hanging", {"hanging", "explicit", "table1", "pair"});
-    // Two-step starts (sim/paper_scheme.hpp): positions at t = 0 and at t = integrator.step.
-    if (c.initial.preset == "table1") {
-      c.initial.orbit = r.word("orbit", "circular1", sim::table1_orbits());
-      c.initial.orbit_omega = r.number("omega", NAN, 0.0, kOmegaMax);  // the circular orbits' θ = ω h
-    }
-    if (c.initial.preset == "pair") {
-      const double bound = 10.0 * c.model.p.string_length;
-      for (const char* k : {"r1", "r2", "r1_next", "r2_next"})
-        if (!r.has(k)) r.fail(k, "missing: \"pair\" needs r1, r2 (at t = 0) and r1_next, r2_next (at t = integrator.step) [m]");
-      c.initial.r1 = r.vec3("r1", bound);
-      c.initial.r2 = r.vec3("r2", bound);
-      c.initial.r1_next = r.vec3("r1_next", bound);
-      c.initial.r2_next = r.vec3("r2_next", bound);
-    }
-    if (c.initial.preset == "hanging" && !c.model.layers.bottom_stop)
-      r.fail("preset", "'hanging' rests the bead on the bottom ball and needs layers.bottom_stop = true");
-    if (c.initial.preset == "explicit") {
-      const double bound = 10.0 * c.model.p.string_length;
-      c.initial.r1 = r.vec3("r1", bound);
-      c.initial.r2 = r.vec3("r2", bound);
-      c.initial.v1 = r.has("v1") ? r.vec3("v1", 1e3) : physics::Vec3::Zero();
-      c.initial.v2 = r.has("v2") ? r.vec3("v2", 1e3) : physics::Vec3::Zero();
-      const std::string mode = r.word("mode", "sliding", {"sliding", "bottom_stop", "stuck", "slack"});
-      c.initial.mode = mode == "sliding"       ? physics::Mode::Sliding
-                       : mode == "bottom_stop" ? physics::Mode::BottomStop
-                       : mode == "stuck"       ? physics::Mode::Stuck
-                                               : physics::Mode::Slack;
-      c.initial.length_tolerance =
-          r.number("length_tolerance", c.initial.length_tolerance, 0.0, 0.1 * c.model.p.string_length, true);
-      if (r.has("tie_slip_rate")) {
-        if (!c.model.layers.tie_clutch) r.fail("tie_slip_rate", "needs layers.tie = \"clutch\"");
-        c.initial.tie_slip_rate = r.number("tie_slip_rate", 0.0, -1e4, 1e4);
-      }
-    }
-    r.reject_unknown();
-  }
+  parse_model(root, file, c);
+  parse_layers(root, file, c);
+  parse_integrator(root, file, c);
+  parse_initial(root, file, c);
 }
 
 // The file parsed, syntax errors with their line and column.

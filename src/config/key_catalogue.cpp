@@ -80,10 +80,8 @@ std::vector<KeyInfo> physics_keys() {
   return out;
 }
 
-std::vector<KeyInfo> build() {
-  std::vector<KeyInfo> k = physics_keys();
-  const std::string w = fmt::format("{}", kOmegaMax);
-  // [integrator]
+// [integrator]
+void integrator_keys(std::vector<KeyInfo>& k) {
   k.push_back(other("integrator", "method", "word", "", joined(integrator_methods()), "dop853",
                     "the integrator; paper and paper_corrected are the source paper's two-step scheme as printed "
                     "and with its drag's sign corrected"));
@@ -115,7 +113,10 @@ std::vector<KeyInfo> build() {
   k.push_back(whole("integrator", "chatter_switches", 2, 1e6, "50", "this many mode switches ..."));
   k.push_back(num("integrator", "chatter_window", "s", 0.0, 1e3, true, false, "0.001",
                   "... within this time count as chattering (reported as a violation)"));
-  // [initial]
+}
+
+// [initial]
+void initial_keys(std::vector<KeyInfo>& k) {
   k.push_back(other("initial", "preset", "word", "", "hanging, explicit, table1, pair", "hanging",
                     "the start: hanging (at rest on the bottom ball), explicit (r1, r2, v1, v2, mode), table1 "
                     "(a two-step start of the paper's Table 1) or pair (two positions, at t = 0 and t = step)"));
@@ -140,7 +141,10 @@ std::vector<KeyInfo> build() {
                     "accepted |L1 + L2 − l| of an explicit start before it is projected onto the string"));
   k.push_back(num("initial", "tie_slip_rate", "rad/s", -1e4, 1e4, false, false, "held",
                   "with tie = \"clutch\" and preset = \"explicit\": the tie starts slipping at χ = φ(0) with this χ̇"));
-  // [[schedule]] (astrojax run)
+}
+
+// [[schedule]] (astrojax run)
+void schedule_keys(std::vector<KeyInfo>& k) {
   k.push_back(other("schedule", "kind", "word", "", "hold, ramp", "", "a held ω_m, or a linear ramp of ω_m"));
   k.push_back(num("schedule", "omega", "rad/s", 0.0, kOmegaMax, false, false, "", "kind = \"hold\": ω_m held"));
   k.push_back(num("schedule", "duration", "s", 0.0, 1e7, true, false, "",
@@ -148,11 +152,17 @@ std::vector<KeyInfo> build() {
   k.push_back(num("schedule", "from", "rad/s", 0.0, kOmegaMax, false, false, "", "kind = \"ramp\": ω_m at its start"));
   k.push_back(num("schedule", "to", "rad/s", 0.0, kOmegaMax, false, false, "", "kind = \"ramp\": ω_m at its end"));
   k.push_back(num("schedule", "rate", "rad/s^2", 0.0, 1e4, true, false, "", "kind = \"ramp\": |dω_m/dt|, instead of duration"));
-  // [output]
+}
+
+// [output]
+void output_keys(std::vector<KeyInfo>& k) {
   k.push_back(other("output", "path", "text", "", "a writable file path", "out/run.h5 (run), out/sweep.h5 (sweep)",
                     "the HDF5 file written; -o overrides it"));
   k.push_back(num("output", "sample_interval", "s", 0.0, 1e6, true, false, "0.01", "astrojax run: the sampling step"));
-  // [protocol] (astrojax sweep)
+}
+
+// [protocol] (astrojax sweep)
+void protocol_keys(std::vector<KeyInfo>& k) {
   k.push_back(num("protocol", "start_omega", "rad/s", 0.0, kOmegaMax, false, false, "0", "ω_m at t = 0"));
   k.push_back(other("protocol", "start_seed", "word", "", "hanging, circular_high, locked_orbit", "hanging",
                     "the state at t = 0, a seed state at start_omega"));
@@ -171,8 +181,11 @@ std::vector<KeyInfo> build() {
   k.push_back(num("protocol.segment", "measure", "s", 0.0, 1e6, true, false, "0", "kind = \"steps\": the classified window at each level"));
   k.push_back(num("protocol.segment", "step_rate", "rad/s^2", 0.0, 1e4, true, false, "1",
                   "kind = \"steps\": |dω_m/dt| between levels"));
-  // [hold] (astrojax sweep, instead of [protocol])
-  k.push_back(other("hold", "omega", "list", "rad/s", fmt::format("each in [0, {}]", w), "",
+}
+
+// [hold] (astrojax sweep, instead of [protocol])
+void hold_keys(std::vector<KeyInfo>& k) {
+  k.push_back(other("hold", "omega", "list", "rad/s", fmt::format("each in [0, {}]", kOmegaMax), "",
                     "the held ω_m values: a list or {start, stop, num}"));
   k.push_back(num("hold", "settle", "s", 0.0, 1e6, false, false, "60", "transient before the measured window"));
   k.push_back(num("hold", "measure", "s", 0.0, 1e6, true, false, "10", "the measured window"));
@@ -181,7 +194,10 @@ std::vector<KeyInfo> build() {
   k.push_back(whole("hold", "perturbations", 0, 1000, "0", "extra copies of each seed with random velocity kicks"));
   k.push_back(num("hold", "perturbation", "m/s", 0.0, 10.0, true, false, "0.01", "size of a kick"));
   k.push_back(num("hold", "sample_rate", "1/s", 0.0, 1e5, true, false, "100", "samples stored per second of every window"));
-  // [grid]: each axis a list of values or {start, stop, num}.
+}
+
+// [grid]: each axis a list of values or {start, stop, num}.
+void grid_keys(std::vector<KeyInfo>& k) {
   for (const std::string& axis : physics::grid_parameter_keys()) {
     const physics::ParameterInfo* p = physics::find_parameter(axis);
     const physics::ParameterAlias* a = p ? nullptr : physics::find_alias(axis);
@@ -194,7 +210,10 @@ std::vector<KeyInfo> build() {
   k.push_back(num("grid.*", "start", "", -1e12, 1e12, false, false, "0", "{start, stop, num}: the first value"));
   k.push_back(num("grid.*", "stop", "", -1e12, 1e12, false, false, "0", "{start, stop, num}: the last value"));
   k.push_back(whole("grid.*", "num", 1, 1e5, "1", "{start, stop, num}: how many values, both ends included"));
-  // [variant.NAME] and [[group]] (astrojax sweep)
+}
+
+// [variant.NAME] and [[group]] (astrojax sweep)
+void group_keys(std::vector<KeyInfo>& k) {
   k.push_back(other("variant", "label", "text", "", "non-empty", "", "what the model variant is, for tables and figures; "
                     "a variant may also hold [model], [layers], [integrator] and [initial] tables"));
   k.push_back(other("group", "name", "text", "", "1 to 40 letters, digits, '_' or '-'", "", "the chain group's name"));
@@ -202,18 +221,32 @@ std::vector<KeyInfo> build() {
                     "[model], [layers], [integrator], [initial], [protocol] or [hold], and [grid] tables"));
   k.push_back(other("group", "variants", "list of words", "", "names of [variant.NAME] tables", "every variant",
                     "the variants the group runs with"));
-  // [orbits] (astrojax orbits)
+}
+
+// [orbits] (astrojax orbits)
+void orbits_keys(std::vector<KeyInfo>& k) {
   k.push_back(other("orbits", "omega", "number or list", "rad/s", "each in (0, 2000]", "", "the ω_m of the table"));
   k.push_back(whole("orbits", "s_points", 2, 10000, "81", "points along the string of the table at each ω"));
   k.push_back(other("orbits", "continue", "word", "", joined(orbits::continuation_parameters()), "",
                     "the parameter a branch is continued in"));
   k.push_back(other("orbits", "range", "[lo, hi]", "", "lo < hi", "", "the continued parameter's interval"));
   k.push_back(other("orbits", "s", "number or list", "m", "each between the stops", "", "the bead's arc lengths s* of the table"));
-  // The classifier's settings: not in files, but given to classify as --set classifier.NAME=value.
+}
+
+// The classifier's settings: not in files, but given to classify as --set classifier.NAME=value.
+void classifier_keys(std::vector<KeyInfo>& k) {
   const sweep::ClassifierSettings defaults;
   for (const sweep::ClassifierSettingInfo& c : sweep::classifier_setting_table())
     k.push_back(num("classifier", std::string(c.name), std::string(c.unit), 0.0, kInf, true, true,
                     fmt::format("{}", defaults.*c.field), std::string(c.doc)));
+}
+
+// Every section's keys, in the order of a file's tables.
+std::vector<KeyInfo> build() {
+  std::vector<KeyInfo> k = physics_keys();
+  for (auto add : {integrator_keys, initial_keys, schedule_keys, output_keys, protocol_keys, hold_keys, grid_keys,
+                   group_keys, orbits_keys, classifier_keys})
+    add(k);
   return k;
 }
 
