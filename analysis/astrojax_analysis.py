@@ -128,6 +128,7 @@ class Sweep:
             self.omega_begin = w["omega_m_begin"][:]
             self.omega_end = w["omega_m_end"][:]
             self.phi_begin = w["phi_begin"][:] if "phi_begin" in w else None
+            self.t_begin = w["t_begin"][:]
             self.direction = w["direction"][:]
             self.segment = w["segment"][:]
             layout = ("class", "direction", "segment")
@@ -512,17 +513,12 @@ def window_phase(sweep, c, k, s):
         with h5py.File(sweep.path, "r") as f:
             need(f, sweep.path, "windows/phi_begin", "the motor phase at each window start")
     t, omega_m = s["t"], s["omega_m"]
-    t0 = sweep_window_start(sweep, c, k)
+    t0 = float(sweep.t_begin[c, k])
     # From the window start to each sample: the first sample is at or just after t0.
     rel = np.concatenate([[0.0], np.cumsum(0.5 * (omega_m[1:] + omega_m[:-1]) * np.diff(t))])
     w0 = float(sweep.omega_begin[c, k])
     lead = 0.5 * (w0 + omega_m[0]) * (t[0] - t0)
     return float(sweep.phi_begin[c, k]) + lead + rel
-
-
-def sweep_window_start(sweep, c, k):
-    with h5py.File(sweep.path, "r") as f:
-        return float(f["windows"]["t_begin"][c, k])
 
 
 def run_parameter(path, key):

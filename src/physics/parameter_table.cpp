@@ -63,13 +63,6 @@ std::vector<std::string> continuation_parameter_keys() {
   return out;
 }
 
-std::optional<ParameterIssue> range_issue(const Parameters& p) {
-  for (const ParameterInfo& info : kParameters)
-    if (!info.in_range(p.*info.field))
-      return ParameterIssue{fmt::format("model.{}", info.key), p.*info.field, info.range()};
-  return std::nullopt;
-}
-
 std::vector<double> parameter_row(const Parameters& p) {
   std::vector<double> row;
   row.reserve(std::size(kParameters));

@@ -99,9 +99,6 @@ double parameter(const Parameters& p, std::string_view key);
 std::vector<std::string> grid_parameter_keys();
 std::vector<std::string> continuation_parameter_keys();
 
-// The first parameter outside its own range (not the cross-parameter ones), with its range.
-std::optional<ParameterIssue> range_issue(const Parameters& p);
-
 // One row of /chains/model: every parameter, in table order.
 std::vector<double> parameter_row(const Parameters& p);
 // "string_length [m],bead_mass [kg],...": the column names of that row, with units.
