@@ -73,7 +73,7 @@ struct Reach {
 }
 
 sweep::SweepPlan chain11_plan() {
-  return sweep::make_plan(config::parse_sweep_config(kChain11, "grazing_slack_test"));
+  return config::make_plan(config::parse_sweep_config(kChain11, "grazing_slack_test"));
 }
 
 }  // namespace

@@ -19,14 +19,12 @@
 #include <vector>
 
 namespace fs = std::filesystem;
-using ajx::io::AppendableTable;
 using ajx::io::Dataset;
 using ajx::io::Dims;
 using ajx::io::DType;
 using ajx::io::File;
 using ajx::io::Group;
 using ajx::io::Hdf5Error;
-using ajx::io::TableOptions;
 
 namespace {
 
@@ -215,178 +213,6 @@ TEST_F(Hdf5FileTest, DatasetArgumentAndDuplicateErrors) {
   EXPECT_NE(msg.find("not a string"), std::string::npos) << msg;
 }
 
-TEST_F(Hdf5FileTest, AppendableTableGrowsAcrossManyAppends) {
-  const fs::path p = file("table.h5");
-  constexpr std::size_t kRows = 5000;
-  {
-    File f = File::create(p);
-    Group traj = f.create_group("trajectory");
-    auto r1 = AppendableTable::create(traj, "r1", 3, DType::Float64, TableOptions{.chunk_rows = 64, .deflate = 4});
-    r1.set_attribute("units", "m");
-    auto mode = AppendableTable::create(traj, "mode", 1, DType::Int8, {.chunk_rows = 100, .flat = true});
-    auto idx = AppendableTable::create(traj, "idx", 2, DType::Int32, {.chunk_rows = 7});
-    auto big = AppendableTable::create(traj, "big", 1, DType::Int64, {.chunk_rows = 16, .flat = true});
-    EXPECT_EQ(r1.path(), "/trajectory/r1");
-    for (std::size_t i = 0; i < kRows; ++i) {
-      const double x = static_cast<double>(i);
-      r1.append_row(std::array<double, 3>{x, 2 * x, -x});
-      mode.append_row(std::array<std::int8_t, 1>{static_cast<std::int8_t>(i % 3)});
-    }
-    // Blocks of rows, including an empty block.
-    std::vector<std::int32_t> block;
-    for (std::int32_t i = 0; i < 100; ++i) {
-      block.push_back(i);
-      block.push_back(-i);
-    }
-    idx.append_rows(block);
-    idx.append_rows(std::span<const std::int32_t>{});
-    idx.append_rows(std::span<const std::int32_t>(block).first(10));
-    big.append_row(std::array<std::int64_t, 1>{std::int64_t{1} << 40});
-    EXPECT_EQ(r1.rows(), kRows);
-    EXPECT_EQ(r1.cols(), 3u);
-    EXPECT_EQ(idx.rows(), 105u);
-    EXPECT_EQ(mode.dtype(), DType::Int8);
-
-    // Readable mid-stream once flushed.
-    r1.flush();
-    EXPECT_EQ(r1.pending_rows(), 0u);
-    EXPECT_EQ(r1.dims(), (Dims{kRows, 3}));
-
-    // Wrong widths are argument errors and change nothing.
-    EXPECT_THROW(r1.append_row(std::array<double, 2>{1, 2}), std::invalid_argument);
-    EXPECT_THROW(r1.append_rows(std::array<double, 4>{1, 2, 3, 4}), std::invalid_argument);
-    EXPECT_EQ(r1.rows(), kRows);
-
-    EXPECT_THROW(AppendableTable::create(traj, "bad", 0, DType::Float64), std::invalid_argument);
-    EXPECT_THROW(AppendableTable::create(traj, "bad", 2, DType::Float64, {.flat = true}), std::invalid_argument);
-    std::string msg = error_message([&] { AppendableTable::create(traj, "r1", 3, DType::Float64); });
-    EXPECT_NE(msg.find("H5Dcreate2 failed for '/trajectory/r1'"), std::string::npos) << msg;
-  }
-  {
-    File f = File::open_read(p);
-    auto r1 = f.read_doubles("trajectory/r1");
-    ASSERT_EQ(r1.dims, (Dims{kRows, 3}));
-    for (std::size_t i = 0; i < kRows; ++i) {
-      const double x = static_cast<double>(i);
-      ASSERT_EQ(r1(i, 0), x);
-      ASSERT_EQ(r1(i, 1), 2 * x);
-      ASSERT_EQ(r1(i, 2), -x);
-    }
-    EXPECT_EQ(f.open_dataset("trajectory/r1").read_string_attribute("units"), "m");
-    auto mode = f.read_int32s("trajectory/mode");
-    ASSERT_EQ(mode.dims, (Dims{kRows}));
-    for (std::size_t i = 0; i < kRows; ++i) ASSERT_EQ(mode.data[i], static_cast<std::int32_t>(i % 3));
-    auto idx = f.read_int32s("trajectory/idx");
-    ASSERT_EQ(idx.dims, (Dims{105, 2}));
-    EXPECT_EQ(idx(99, 0), 99);
-    EXPECT_EQ(idx(99, 1), -99);
-    EXPECT_EQ(idx(104, 0), 4);
-    EXPECT_EQ(f.read_int64s("trajectory/big").data, (std::vector<std::int64_t>{std::int64_t{1} << 40}));
-  }
-  {
-    // Reopen read-write and continue appending.
-    File f = File::open_rw(p);
-    Group traj = f.open_group("trajectory");
-    auto r1 = AppendableTable::open(traj, "r1");
-    EXPECT_EQ(r1.rows(), kRows);
-    EXPECT_EQ(r1.cols(), 3u);
-    EXPECT_EQ(r1.dtype(), DType::Float64);
-    r1.append_rows(std::vector<double>{1, 1, 1, 2, 2, 2});
-    auto mode = AppendableTable::open(traj, "mode");
-    EXPECT_EQ(mode.dtype(), DType::Int8);
-    EXPECT_EQ(mode.cols(), 1u);
-    mode.append_row(std::array<double, 1>{2.0});  // converted to int8 on write
-    std::string msg = error_message([&] { f.write_dataset("fixed", std::vector<double>{1}); AppendableTable::open(f, "fixed"); });
-    EXPECT_NE(msg.find("not extendible"), std::string::npos) << msg;
-  }
-  File f = File::open_read(p);
-  auto r1 = f.read_doubles("trajectory/r1");
-  ASSERT_EQ(r1.dims, (Dims{kRows + 2, 3}));
-  EXPECT_EQ(r1(kRows + 1, 2), 2.0);
-  EXPECT_EQ(f.read_int32s("trajectory/mode").data.back(), 2);
-  EXPECT_EQ(f.read_int32s("trajectory/mode").dims, (Dims{kRows + 1}));
-}
-
-TEST_F(Hdf5FileTest, BufferedRowsReachTheFileOnFlushCloseCommitAndDestruction) {
-  const fs::path p = file("buffered.h5");
-  AppendableTable outlives;  // destroyed after its File: harmless
-  {
-    File f = File::create(p);
-    auto t = AppendableTable::create(f, "t", 2, DType::Float64, {.chunk_rows = 8, .buffer_rows = 100});
-    auto through = AppendableTable::create(f, "through", 2, DType::Float64, {.buffer_rows = 0});
-    for (int i = 0; i < 10; ++i) {
-      t.append_row(std::array<double, 2>{1.0 * i, 0.5});
-      through.append_row(std::array<double, 2>{1.0 * i, 0.5});
-    }
-    EXPECT_EQ(t.rows(), 10u);
-    EXPECT_EQ(t.pending_rows(), 10u);
-    EXPECT_EQ(f.open_dataset("t").dims(), (Dims{0, 2}));  // not written yet
-    EXPECT_EQ(through.pending_rows(), 0u);
-    EXPECT_EQ(f.open_dataset("through").dims(), (Dims{10, 2}));  // written through
-    f.flush();  // flushes the file's tables
-    EXPECT_EQ(t.pending_rows(), 0u);
-    EXPECT_EQ(f.open_dataset("t").dims(), (Dims{10, 2}));
-
-    // Reaching buffer_rows writes; a block larger than the buffer goes straight through.
-    for (int i = 10; i < 110; ++i) t.append_row(std::array<double, 2>{1.0 * i, 0.5});
-    EXPECT_EQ(t.pending_rows(), 0u);
-    EXPECT_EQ(f.open_dataset("t").dims(), (Dims{110, 2}));
-    std::vector<double> block(2 * 250, 7.0);
-    t.append_rows(block);
-    EXPECT_EQ(t.pending_rows(), 0u);
-    EXPECT_EQ(t.rows(), 360u);
-
-    // Mixed element types in one buffer: each run is written with its own conversion.
-    t.append_row(std::array<std::int32_t, 2>{-1, -2});
-    t.append_row(std::array<double, 2>{3.5, 4.5});
-    t.append_row(std::array<std::int8_t, 2>{5, 6});
-    EXPECT_EQ(t.rows(), 363u);
-
-    // Moved tables stay known to the file.
-    AppendableTable moved = std::move(t);
-    moved.append_row(std::array<double, 2>{8.0, 9.0});
-    outlives = AppendableTable::create(f, "outlives", 1, DType::Int32, {.flat = true});
-    outlives.append_row(std::array<std::int32_t, 1>{42});
-    f.close();  // writes pending rows of every live table
-    EXPECT_THROW(outlives.append_row(std::array<std::int32_t, 1>{43}), Hdf5Error);
-  }
-  {
-    File f = File::open_read(p);
-    auto t = f.read_doubles("t");
-    ASSERT_EQ(t.dims, (Dims{364, 2}));
-    EXPECT_EQ(t(109, 0), 109.0);
-    EXPECT_EQ(t(359, 1), 7.0);
-    EXPECT_EQ(t(360, 0), -1.0);
-    EXPECT_EQ(t(361, 1), 4.5);
-    EXPECT_EQ(t(362, 0), 5.0);
-    EXPECT_EQ(t(363, 1), 9.0);
-    EXPECT_EQ(f.read_int32s("outlives").data, (std::vector<std::int32_t>{42}));
-  }
-  // Destruction of the File (no explicit close) writes pending rows too, whatever the order.
-  {
-    File f = File::open_rw(p);
-    auto t = AppendableTable::open(f, "t");
-    t.append_row(std::array<double, 2>{10.0, 11.0});
-    auto f2 = std::move(f);
-  }
-  EXPECT_EQ(File::open_read(p).read_doubles("t").dims, (Dims{365, 2}));
-  {
-    File f = File::open_rw(p);
-    AppendableTable t = AppendableTable::open(f, "t");
-    t.append_row(std::array<double, 2>{12.0, 13.0});
-  }  // table destroyed first
-  EXPECT_EQ(File::open_read(p).read_doubles("t").dims, (Dims{366, 2}));
-  // And commit() of a temporary file.
-  const fs::path q = file("committed.h5");
-  {
-    File f = File::create_temporary(q);
-    auto t = AppendableTable::create(f, "x", 1, DType::Int64, {.flat = true});
-    for (std::int64_t i = 0; i < 5; ++i) t.append_row(std::array<std::int64_t, 1>{i});
-    f.commit();
-  }
-  EXPECT_EQ(File::open_read(q).read_int64s("x").data, (std::vector<std::int64_t>{0, 1, 2, 3, 4}));
-}
-
 TEST_F(Hdf5FileTest, OpeningMissingFileThrowsWithPath) {
   const fs::path p = file("does_not_exist.h5");
   for (auto open : {&File::open_read, &File::open_rw}) {
@@ -427,12 +253,11 @@ TEST_F(Hdf5FileTest, TemporaryFileWithoutCommitLeavesNothing) {
     EXPECT_TRUE(f.is_temporary());
     EXPECT_EQ(f.disk_path(), part);
     EXPECT_EQ(f.final_path(), p);
-    auto t = AppendableTable::create(f, "trajectory/r1", 3, DType::Float64);
-    t.append_row(std::array<double, 3>{1, 2, 3});
+    auto t = f.write_dataset("trajectory/r1", std::vector<double>{1, 2, 3}, {1, 3});
     f.flush();
     EXPECT_TRUE(fs::exists(part));
     EXPECT_FALSE(fs::exists(p));
-  }  // destroyed without commit (table outlives the file here: harmless)
+  }  // destroyed without commit (the dataset outlives the file here: harmless)
   EXPECT_FALSE(fs::exists(part));
   EXPECT_FALSE(fs::exists(p));
 
@@ -463,8 +288,9 @@ TEST_F(Hdf5FileTest, TemporaryFileCommitRenames) {
   const fs::path part = file("run.h5.part");
   {
     File f = File::create_temporary(p);
-    auto r1 = AppendableTable::create(f, "trajectory/r1", 3, DType::Float64, {.chunk_rows = 4});
-    for (int i = 0; i < 10; ++i) r1.append_row(std::array<double, 3>{1.0 * i, 0, 0});
+    std::vector<double> rows;
+    for (int i = 0; i < 10; ++i) rows.insert(rows.end(), {1.0 * i, 0, 0});
+    auto r1 = f.write_dataset("trajectory/r1", std::span<const double>(rows), {10, 3});
     f.write_string_dataset("config", "x = 1");
     File moved = std::move(f);  // ownership of the temporary moves with the object
     moved.commit();
@@ -472,8 +298,8 @@ TEST_F(Hdf5FileTest, TemporaryFileCommitRenames) {
     EXPECT_TRUE(fs::exists(p));
     EXPECT_EQ(moved.disk_path(), p);
     EXPECT_FALSE(moved.is_open());
-    // The table was closed with the file: using it is a clean error.
-    EXPECT_THROW(r1.append_row(std::array<double, 3>{0, 0, 0}), Hdf5Error);
+    // The dataset was closed with the file: using it is a clean error.
+    EXPECT_THROW(r1.set_attribute("units", "m"), Hdf5Error);
     EXPECT_THROW(moved.commit(), std::logic_error);
   }
   EXPECT_TRUE(fs::exists(p));  // destructor after commit keeps the file
@@ -493,9 +319,10 @@ TEST_F(Hdf5FileTest, H5dumpReadsTheFile) {
   {
     File f = File::create(p);
     f.set_attribute("config_toml", "[run]\nt_end = 10.0\n");
-    auto t = AppendableTable::create(f, "trajectory/r1", 3, DType::Float64, {.chunk_rows = 8, .deflate = 6});
+    auto t = f.create_filled("trajectory/r1", {20, 3}, DType::Float64, 0.0, {8, 3}, 6);
     t.set_attribute("units", "m");
-    for (int i = 0; i < 20; ++i) t.append_row(std::array<double, 3>{0.25 * i, 1.0, 2.0});
+    for (int i = 0; i < 20; ++i)
+      t.write_region({std::size_t(i), 0}, {1, 3}, std::vector<double>{0.25 * i, 1.0, 2.0});
     f.write_dataset("ints", std::vector<std::int32_t>{1, 2, 3, 4, 5, 6}, {3, 2});
   }
   const fs::path out = file("dump.txt");
@@ -504,7 +331,7 @@ TEST_F(Hdf5FileTest, H5dumpReadsTheFile) {
   std::ifstream in(out);
   const std::string dump((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_NE(dump.find("DATASET \"r1\""), std::string::npos) << dump;
-  EXPECT_NE(dump.find("( 20, 3 ) / ( H5S_UNLIMITED, 3 )"), std::string::npos) << dump;
+  EXPECT_NE(dump.find("( 20, 3 ) / ( 20, 3 )"), std::string::npos) << dump;
   EXPECT_NE(dump.find("4.75"), std::string::npos) << dump;
   EXPECT_NE(dump.find("\"m\""), std::string::npos) << dump;
   EXPECT_NE(dump.find("t_end = 10.0"), std::string::npos) << dump;
@@ -595,7 +422,7 @@ TEST_F(Hdf5FileTest, Float32ChunksEncodedOutsideHdf5ReadBackAsTheFloatsWritten) 
 }
 
 TEST_F(Hdf5FileTest, AByteChangedOnDiskFailsItsChecksum) {
-  // Whole arrays, filled datasets without deflate and appendable tables carry a Fletcher32 per
+  // Whole arrays and filled datasets without deflate carry a Fletcher32 per
   // chunk: one byte changed in the stored values makes the read throw instead of returning a
   // wrong value. The values are found in the file by their bytes (they are stored raw).
   const fs::path p = file("sums.h5");
@@ -611,8 +438,7 @@ TEST_F(Hdf5FileTest, AByteChangedOnDiskFailsItsChecksum) {
     f.create_filled("filled", {2, 30}, DType::Float64, 0.0, {1, 30})
         .write_region({1, 0}, {1, 30}, std::span<const double>(filled));
     Group g = f.create_group("g");
-    auto t = AppendableTable::create(g, "table", 3, DType::Float64, {.chunk_rows = 16});
-    t.append_rows(std::span<const double>(table));
+    g.write_dataset("table", std::span<const double>(table), Dims{10, 3});
     EXPECT_TRUE(f.create_filled("deflated", {2, 8}, DType::Float64, 0.0, {1, 8}, 4).checksummed());
     f.close();
   }

@@ -76,13 +76,13 @@ TEST(ParameterTable, GridAxesAreTheMarkedParametersAndSetTheirChains) {
       continue;
     }
     const auto c = config::parse_sweep_config(text, "t.toml", {});
-    const auto points = config::expand_grid(c);
+    const auto points = sweep::expand_grid(c.model, c, c.source_name);
     ASSERT_EQ(points.size(), 1u);
     EXPECT_EQ(points[0].model.p.*p.field, other_value(p));
   }
   // The alias sets both masses.
   const auto c = config::parse_sweep_config(fmt::format("{}[grid]\nmass = [0.05]\n", kProtocol), "t.toml", {});
-  const auto g = config::expand_grid(c);
+  const auto g = sweep::expand_grid(c.model, c, c.source_name);
   EXPECT_EQ(g[0].model.p.bead_mass, 0.05);
   EXPECT_EQ(g[0].model.p.ball_mass, 0.05);
 }

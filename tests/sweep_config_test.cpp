@@ -35,7 +35,7 @@ TEST(SweepConfig, TheShippedQuickSweepParses) {
   ASSERT_EQ(c.protocol.size(), 2u);
   EXPECT_EQ(c.protocol[0].kind, ajx::sweep::Segment::Kind::Ramp);
   ASSERT_EQ(c.grid.size(), 1u);
-  const auto points = expand_grid(c);
+  const auto points = ajx::sweep::expand_grid(c.model, c, c.source_name);
   ASSERT_EQ(points.size(), 2u);
   EXPECT_DOUBLE_EQ(points[0].model.p.drive_radius, 0.01);
   EXPECT_DOUBLE_EQ(points[1].model.p.drive_radius, 0.02);
@@ -44,7 +44,7 @@ TEST(SweepConfig, TheShippedQuickSweepParses) {
 TEST(SweepConfig, GridsAreCartesianProductsLastAxisFastest) {
   const SweepConfig c = parse_sweep_config(
       quick(), "q.toml", {"grid.contact_distance={start=0.02,stop=0.04,num=3}", "grid.mass=[0.018,0.1]", "grid.ramp_rate=[0.25]"});
-  const auto points = expand_grid(c);
+  const auto points = ajx::sweep::expand_grid(c.model, c, c.source_name);
   ASSERT_EQ(points.size(), 2u * 3u * 2u * 1u);
   // Axes in alphabetical order: contact_distance (slowest), drive_radius, mass, ramp_rate.
   EXPECT_DOUBLE_EQ(points[0].model.p.contact_distance, 0.02);
@@ -67,7 +67,7 @@ TEST(SweepConfig, TieClutchParametersAreGridAxes) {
       quick(), "q.toml",
       {"layers.tie=\"clutch\"", "model.tie_static_torque=1.5e-3", "model.tie_kinetic_torque=1.35e-3",
        "grid.tie_damping=[1e-7,2e-6]", "grid.tie_kinetic_torque=[1.3e-3]"});
-  const auto points = expand_grid(c);
+  const auto points = ajx::sweep::expand_grid(c.model, c, c.source_name);
   ASSERT_EQ(points.size(), 2u * 1u * 2u);  // drive_radius × tie_damping × tie_kinetic_torque
   EXPECT_DOUBLE_EQ(points[0].model.p.tie_damping, 1e-7);
   EXPECT_DOUBLE_EQ(points[1].model.p.tie_damping, 2e-6);
@@ -91,7 +91,7 @@ TEST(SweepConfig, PairCoupleParametersAreGridAxes) {
       parse_sweep_config(quick(), "q.toml",
                          {"layers.pair_couple=\"motor_clutch\"", "model.couple_torque=2e-3",
                           "grid.couple_torque=[0.0,1e-3]", "grid.couple_slip_rate=[0.5]"});
-  const auto points = expand_grid(c);
+  const auto points = ajx::sweep::expand_grid(c.model, c, c.source_name);
   ASSERT_EQ(points.size(), 2u * 1u * 2u);  // couple_slip_rate × couple_torque × drive_radius
   for (std::size_t i = 0; i < points.size(); ++i) {
     EXPECT_DOUBLE_EQ(points[i].model.p.couple_slip_rate, 0.5);
@@ -163,7 +163,7 @@ TEST(SweepConfig, ProtocolStartsFromASeed) {
       {"protocol.start_seed=circular_high", "protocol.start_omega=" + std::to_string(w),
        "protocol.segment=[{kind=\"ramp\", from=" + std::to_string(w) + ", to=20.0, rate=0.5, window=5.0}]"});
   EXPECT_EQ(c.start_seed, "circular_high");
-  const ajx::sweep::SweepPlan plan = ajx::sweep::make_plan(c);
+  const ajx::sweep::SweepPlan plan = ajx::config::make_plan(c);
   const ajx::physics::State s = plan.start_state(0);
   // Table 1's orbit: the bead high on the string (|r1| ≈ 0.545 m, well short of l − d), both
   // balls turning about the axis at start_omega. The seed sets v = ω ẑ × r, then projects the
@@ -263,7 +263,7 @@ TEST(SweepConfig, GroupsRunOncePerVariantWithTheirTablesMerged) {
   EXPECT_DOUBLE_EQ(c.sample_rate, 40.0);
   EXPECT_EQ(c.output_path, "out/grouped.h5");
 
-  const ajx::sweep::SweepPlan plan = ajx::sweep::make_plan(c);
+  const ajx::sweep::SweepPlan plan = ajx::config::make_plan(c);
   ASSERT_EQ(plan.chains(), 4u);  // 1 + 1 + 2 grid points
   EXPECT_EQ(plan.part, (std::vector<std::size_t>{0, 1, 2, 2}));
   ASSERT_EQ(plan.axes, (std::vector<std::string>{"tie_damping"}));

@@ -61,6 +61,18 @@ check "classify with an unknown setting: exit 2" "[ $? -eq 2 ]"
 "$bin" classify "$work/re.h5" --force --set fallen_fraction=7 > "$work/re4.out" 2>&1
 check "classify with a key lacking its section: exit 2, the full key suggested" \
   "[ $? -eq 2 ] && grep -q 'did you mean classifier.fallen_fraction' '$work/re4.out'"
+# thresholds --set classifies in memory: the same table and class sequence as thresholds of the
+# copy classify wrote with those settings, and a sequence unlike the defaults' (else the
+# comparison would prove nothing).
+"$bin" thresholds "$work/one.h5" --no-hold --sequence-csv "$work/seq.csv" > /dev/null 2>&1
+"$bin" thresholds "$work/re2.h5" --no-hold --csv "$work/th_copy.csv" --sequence-csv "$work/seq_copy.csv" > /dev/null 2>&1
+"$bin" thresholds "$work/one.h5" --no-hold --csv "$work/th_set.csv" --sequence-csv "$work/seq_set.csv" \
+  --set classifier.fallen_fraction=7 --set classifier.on_ball_tol=1e-9 > "$work/th_set.out" 2>&1
+check "thresholds --set: exit 0, the table and sequence of classify's copy, a sequence unlike the defaults'" \
+  "[ $? -eq 0 ] && cmp -s '$work/th_copy.csv' '$work/th_set.csv' && cmp -s '$work/seq_copy.csv' '$work/seq_set.csv' && ! cmp -s '$work/seq.csv' '$work/seq_set.csv'"
+"$bin" thresholds "$work/one.h5" --no-hold --set model.drag=1 > "$work/th_bad.out" 2>&1
+check "thresholds --set on a model key: exit 2, says only the classifier's settings can change" \
+  "[ $? -eq 2 ] && grep -q 'only the classifier' '$work/th_bad.out'"
 # The hold mode: the same on 1 and 3 ranks (the seeds' random kicks included).
 "$mpiexec" --oversubscribe -n 1 "$bin" sweep "$src/tests/data/tiny_hold.toml" -o "$work/hold1.h5" -q > /dev/null 2>&1
 rh1=$?

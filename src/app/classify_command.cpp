@@ -11,7 +11,8 @@
 
 #include "app/commands.hpp"
 #include "app/output_paths.hpp"
-#include "app/sweep_file.hpp"
+#include "results/reclassify.hpp"
+#include "results/sweep_file.hpp"
 
 namespace ajx::app {
 
@@ -46,46 +47,20 @@ int classify_command(const ClassifyArgs& args) {
 
   try {
     io::File f = io::File::open_rw(target);
-    checked_format_version(f, target);
-    const auto cls = f.read_int32s("windows/class"), count = f.read_int32s("samples/count");
-    const StoredModels models = read_chain_models(f);
-    const auto t = f.read_doubles("samples/t"), om = f.read_doubles("samples/omega_m"), L1 = f.read_doubles("samples/L1");
-    const auto T1 = f.read_doubles("samples/T1"), T2 = f.read_doubles("samples/T2"), mode = f.read_doubles("samples/mode");
-    const auto r1 = f.read_doubles("samples/r1"), r2 = f.read_doubles("samples/r2");
-    const std::size_t C = cls.rows(), W = cls.cols(), cap = t.dims.at(2);
-    SweepFile out(std::move(f), C, W, cap, 0);
-    long changed = 0, total = 0;
-    for (std::size_t c = 0; c < C; ++c) {
-      const sweep::OrbitScales scales = sweep::orbit_scales(models.chains[c]);
-      for (std::size_t k = 0; k < W; ++k) {
-        const auto n = std::size_t(count(c, k));
-        if (cls(c, k) < 0 || n == 0) continue;  // never computed
-        const std::size_t o = (c * W + k) * cap;
-        std::vector<int> modes(n);
-        for (std::size_t i = 0; i < n; ++i) modes[i] = int(mode.data[o + i]);
-        sweep::OrbitWindow w;
-        w.t = std::span<const double>(&t.data[o], n);
-        w.omega_m = std::span<const double>(&om.data[o], n);
-        w.r1 = std::span<const double>(&r1.data[3 * o], 3 * n);
-        w.r2 = std::span<const double>(&r2.data[3 * o], 3 * n);
-        w.L1 = std::span<const double>(&L1.data[o], n);
-        w.T1 = std::span<const double>(&T1.data[o], n);
-        w.T2 = std::span<const double>(&T2.data[o], n);
-        w.mode = modes;
-        // A window the integration failed in stays failed: the samples cannot say why.
-        w.failed = cls(c, k) == static_cast<std::int32_t>(sweep::OrbitClass::Failed);
-        w.failure = "the integration failed (see /tasks)";
-        const sweep::OrbitClassification r = sweep::classify_orbit(w, scales, settings);
-        changed += static_cast<std::int32_t>(r.cls) != cls(c, k);
-        ++total;
-        const WindowRow row = window_row(r);
-        out.write_rows(c, k, std::span<const WindowRow>(&row, 1));
-      }
+    results::checked_format_version(f, target);
+    const auto again = results::reclassify_windows(f, settings);
+    const auto cls = f.read_int32s("windows/class");
+    const auto cap = f.open_dataset("samples/t").dims().at(2);
+    results::SweepFile out(std::move(f), cls.rows(), cls.cols(), cap, 0);
+    long changed = 0;
+    for (const results::ReclassifiedWindow& w : again) {
+      changed += w.row.cls != w.old_class;
+      out.write_rows(w.chain, w.window, std::span<const results::WindowRow>(&w.row, 1));
     }
     io::Group wg = out.file().open_group("windows");
     wg.set_attribute("classifier_settings", used.empty() ? std::string("defaults") : used);
     out.close();
-    std::printf("classified %ld windows again in %s: %ld changed class\n", total, target.c_str(), changed);
+    std::printf("classified %zu windows again in %s: %ld changed class\n", again.size(), target.c_str(), changed);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s: %s\n", args.input.c_str(), e.what());
     return kExitBadInput;

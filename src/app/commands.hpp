@@ -66,6 +66,7 @@ struct ThresholdsArgs {
   bool sequence = false;      // print each chain's orbit class sequence against the paper's
   std::string sequence_csv;   // also write the sequence as CSV here, when non-empty
   bool absorb_blips = false;  // the sequence absorbs single not-settled windows between two of one class
+  std::vector<std::string> settings;  // "classifier.name=value": classify the windows again in memory first
 };
 int thresholds_command(const ThresholdsArgs& args);
 

@@ -11,6 +11,7 @@
 #include "app/commands.hpp"
 #include "config/did_you_mean.hpp"
 #include "parallel/mpi_env.hpp"
+#include "results/provenance.hpp"
 
 namespace {
 
@@ -137,6 +138,9 @@ int main(int argc, char** argv) {
   thresholds_cmd->add_option("--sequence-csv", thresholds.sequence_csv, "Also write the class sequence as CSV");
   thresholds_cmd->add_flag("--absorb-blips", thresholds.absorb_blips,
                            "In the sequence, absorb one not-settled window between two of the same class");
+  thresholds_cmd->add_option("-s,--set", thresholds.settings,
+                             "A classifier setting, e.g. --set classifier.locked_tol=0.05: the windows are "
+                             "classified again in memory from their samples first (the file is not changed)");
 
   ajx::app::ClassifyArgs classify;
   CLI::App* classify_cmd = app.add_subcommand(
@@ -248,7 +252,7 @@ int main(int argc, char** argv) {
   th_cmd->add_option("--sample", th_sample, "Sampling step that brackets the landing [s]")->capture_default_str();
 
   require_finite(app);
-  app.set_version_flag("--version", fmt::format("astrojax {} (git commit {})", ASTROJAX_VERSION, ASTROJAX_GIT_COMMIT));
+  app.set_version_flag("--version", fmt::format("astrojax {} (git commit {})", ajx::results::program_version(), ajx::results::program_commit()));
   // A mistyped command or option: name the nearest one, as git and cargo do.
   std::vector<std::string> names;
   for (const CLI::App* sub : app.get_subcommands({})) names.push_back(sub->get_name());

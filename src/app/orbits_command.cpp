@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "app/commands.hpp"
-#include "app/provenance.hpp"
-#include "app/sweep_file.hpp"
+#include "results/provenance.hpp"
+#include "results/sweep_file.hpp"
 #include "config/config.hpp"
 #include "io/hdf5_file.hpp"
 #include "orbits/continuation.hpp"
@@ -191,10 +191,10 @@ struct SweepBrackets {
 };
 SweepBrackets sweep_brackets(const std::string& path, const physics::Model& m) {
   const io::File f = io::File::open_read(path);
-  checked_format_version(f, path);
+  results::checked_format_version(f, path);
   const auto cls = f.read_int32s("windows/class"), dir = f.read_int32s("windows/direction");
   const auto wb = f.read_doubles("windows/omega_m_begin"), we = f.read_doubles("windows/omega_m_end");
-  const StoredModels models = read_chain_models(f);
+  const results::StoredModels models = results::read_chain_models(f);
   SweepBrackets out;
   out.lacking = models.lacking;
   for (std::size_t c = 0; c < cls.rows(); ++c) {
@@ -499,7 +499,7 @@ int predict(const config::OrbitsConfig& cfg, const OrbitsArgs& args, std::option
   std::printf("\nagainst the sweep %s (%zu chains with this model):\n", args.compare.c_str(), sb.chains.size());
   if (!sb.lacking.empty())
     std::printf("  (the file records %zu of the %zu model parameters, not %s; matched on those)\n",
-                kModelColumns - sb.lacking.size(), kModelColumns, fmt::format("{}", fmt::join(sb.lacking, ", ")).c_str());
+                results::kModelColumns - sb.lacking.size(), results::kModelColumns, fmt::format("{}", fmt::join(sb.lacking, ", ")).c_str());
   for (const auto& t : pred->thresholds)
     for (std::size_t i = 0; i < sb.chains.size(); ++i) {
       const auto& b = sb.by_symbol[t.symbol][i];
@@ -533,8 +533,8 @@ void write_orbit_files(const OrbitsArgs& args, const config::OrbitsConfig& cfg, 
   std::error_code ec;
   if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path(), ec);
   io::File f = io::File::create_temporary(out);
-  write_format(f, "orbits");
-  write_provenance(f, args.command_line, cfg);
+  results::write_format(f, "orbits");
+  results::write_provenance(f, args.command_line, cfg);
   write_table(f.create_group("orbits"), table);
   if (!br.points.empty()) {
     io::Group bg = f.create_group("branches");

@@ -20,9 +20,9 @@
 #include "app/commands.hpp"
 #include "app/progress.hpp"
 #include "app/output_paths.hpp"
-#include "app/sweep_file.hpp"
-#include "app/sweep_recovery.hpp"
-#include "app/sweep_result.hpp"
+#include "results/sweep_file.hpp"
+#include "results/sweep_recovery.hpp"
+#include "results/sweep_result.hpp"
 #include "config/config.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/journal.hpp"
@@ -108,8 +108,8 @@ std::string parse_sweep(const SweepArgs& args, config::SweepConfig& cfg, sweep::
       throw config::ConfigError(fmt::format("{}: key 'integrator.method': the paper's two-step scheme runs with "
                                             "`astrojax run` only; allowed here: {}", cfg.source_name,
                                             numerics::stepper_names()));
-    plan = sweep::make_plan(cfg);  // chains, each split into tasks on window boundaries
-    check_sweep_memory(cfg, plan, args.max_memory);
+    plan = config::make_plan(cfg);  // chains, each split into tasks on window boundaries
+    results::check_sweep_memory(cfg, plan, args.max_memory);
   } catch (const config::ConfigError& e) {
     return e.what();
   }
@@ -127,10 +127,10 @@ struct SweepOutput {
   const config::SweepConfig& cfg;
   const sweep::SweepPlan& plan;
   const std::filesystem::path final_path, part_path, journal_path;
-  std::optional<SweepFile> file;
+  std::optional<results::SweepFile> file;
   std::optional<io::Journal> journal;
   io::JournalContents replay;
-  std::vector<std::int32_t> status;  // per task: 0 not yet, 1 ran, 2 failed, 3 not run
+  std::vector<results::TaskStatus> status;  // per task
   std::vector<std::string> failures;
 
   SweepOutput(const SweepArgs& a, const config::SweepConfig& c, const sweep::SweepPlan& p)
@@ -175,8 +175,8 @@ struct SweepOutput {
     journal.emplace(io::Journal::open_append(journal_path));  // locked: no other sweep writes it
     replay = io::Journal::read(journal_path);
     if (replay.records.empty())  // killed before its first record
-      journal->append(kJournalIdentity, journal_identity(cfg));
-    else if (replay.records.front().key != kJournalIdentity || replay.records.front().payload != journal_identity(cfg))
+      journal->append(results::kJournalIdentity, results::journal_identity(cfg));
+    else if (replay.records.front().key != results::kJournalIdentity || replay.records.front().payload != results::journal_identity(cfg))
       throw config::ConfigError(fmt::format(
           "{}: key 'output.path': {} was written by a different sweep file or overrides; resume it with the "
           "same ones, or start afresh with --force",
@@ -189,7 +189,7 @@ struct SweepOutput {
                 journal_path.c_str(), replay.records.empty() ? 0 : replay.records.size() - 1);
     std::filesystem::remove(part_path);
     make_file();
-    status.assign(plan.n_tasks, 0);  // the journal's replay below says what is done
+    status.assign(plan.n_tasks, results::TaskStatus::NeverRan);  // the journal's replay below says what is done
   }
 
   // Rank 0: the output checked and opened (afresh or resumed). Returns the error (empty: none).
@@ -197,17 +197,17 @@ struct SweepOutput {
     try {
       check_output_path(cfg.source_name, "output.path", cfg.output_path, {args.config_path}, {".part", ".journal"});
       if (!args.resume) check_not_overwriting(cfg.source_name, "output.path", cfg.output_path, args.force);
-      if (!args.resume && !args.force) check_no_unfinished_sweep(cfg, part_path, journal_path);
+      if (!args.resume && !args.force) results::check_no_unfinished_sweep(cfg, part_path, journal_path);
       if (args.resume) {
         open_resume();
       } else {
-        check_space(cfg, final_path, plan.setups, plan.max_samples);
+        results::check_space(cfg, final_path, plan.setups, plan.max_samples);
         std::error_code ec;
         if (final_path.has_parent_path()) std::filesystem::create_directories(final_path.parent_path(), ec);
         journal.emplace(io::Journal::create(journal_path));  // locked first: no other sweep writes here
         make_file();
-        journal->append(kJournalIdentity, journal_identity(cfg));
-        status.assign(plan.n_tasks, 0);
+        journal->append(results::kJournalIdentity, results::journal_identity(cfg));
+        status.assign(plan.n_tasks, results::TaskStatus::NeverRan);
       }
     } catch (const io::Hdf5Error& e) {
       return fmt::format("{}: key 'output.path': cannot write '{}' ({})", cfg.source_name, part_path.string(), e.what());
@@ -220,28 +220,28 @@ struct SweepOutput {
   }
 
   // One result into the file (the journal holds it already): the windows as the worker
-  // classified and compressed them (sweep_result.hpp), written and flushed. A journal record is a kind byte and then: 1 (ran) the task's
-  // output; 2 (failed without output: past the task wall-clock bound) the reason; 3 (not run)
-  // nothing. Returns the simulated seconds of the task.
+  // classified and compressed them (sweep_result.hpp), written and flushed. The record's kind
+  // (results::RecordKind) says what follows it. Returns the simulated seconds of the task.
   double commit(std::size_t id, std::span<const std::byte> record) {
     const auto& first_task = plan.first_task;
-    if (record.empty() || std::to_integer<int>(record[0]) == 3) {
-      status[id] = 3;
+    using results::RecordKind;
+    if (record.empty() || RecordKind(record[0]) == RecordKind::NotRun) {
+      status[id] = results::TaskStatus::NotRun;
       file->write_not_run(id);
       return 0.0;
     }
     const std::size_t chain = std::size_t(std::upper_bound(first_task.begin(), first_task.end(), id) - first_task.begin()) - 1;
-    TaskResult result;
+    results::TaskResult result;
     sweep::TaskOutput& out = result.summary;
-    if (std::to_integer<int>(record[0]) == 2) {
+    if (RecordKind(record[0]) == RecordKind::FailedWithoutOutput) {
       out.ok = false;
       out.failure.assign(reinterpret_cast<const char*>(record.data() + 1), record.size() - 1);
       out.final_state.t = nan;
       out.final_state.y.setConstant(nan);
     } else {
-      result = decode_result(record.subspan(1));
+      result = results::decode_result(record.subspan(1));
     }
-    status[id] = out.ok ? 1 : 2;
+    status[id] = out.ok ? results::TaskStatus::Ok : results::TaskStatus::Failed;
     if (!out.ok) failures.push_back(fmt::format("task {} (chain {}, part {}): {}", id, chain, id - first_task[chain], out.failure));
     file->write_task(id, chain, result);  // written and flushed at once
     return out.simulated;  // [s]
@@ -265,7 +265,7 @@ struct SweepOutput {
       file.reset();
       std::filesystem::remove(part_path);
       make_file();
-      status.assign(plan.n_tasks, 0);
+      status.assign(plan.n_tasks, results::TaskStatus::NeverRan);
       failures.clear();
       replay_all();
     }
@@ -285,9 +285,9 @@ std::vector<parallel::Chain> chains_to_run(const SweepOutput& output, double& do
   std::vector<parallel::Chain> chains;
   for (std::size_t c = 0; c < plan.setups.size(); ++c) {
     std::size_t k = 0;
-    while (k < spans[c].size() && status[first_task[c] + k] == 1) ++k;
+    while (k < spans[c].size() && status[first_task[c] + k] == results::TaskStatus::Ok) ++k;
     if (k > 0) done_sim += spans[c][k - 1].t_end;
-    if (k == spans[c].size() || status[first_task[c] + k] != 0) continue;
+    if (k == spans[c].size() || status[first_task[c] + k] != results::TaskStatus::NeverRan) continue;
     parallel::Chain ch;
     ch.id = std::int64_t(c);
     ch.carry = sweep::encode(k == 0 ? plan.start_state(c) : output.file->state(first_task[c] + k - 1));
@@ -316,7 +316,7 @@ parallel::WorkFunction task_work(const sweep::SweepPlan& plan) {
     o.ok = out.ok;
     o.error = out.failure;
     o.carry = sweep::encode(out.final_state);
-    o.output = encode(make_result(setups[chain], std::move(out), plan.max_samples));  // classified and compressed here
+    o.output = results::encode(results::make_result(setups[chain], std::move(out), plan.max_samples));  // classified and compressed here
     return o;
   };
 }
@@ -336,7 +336,8 @@ parallel::FarmOptions farm_options(const SweepArgs& args, SweepOutput& output, S
     if (args.max_tasks > 0 && ++results >= args.max_tasks) stop = true;
     const auto id = std::size_t(r.task_id);
     const bool no_output = r.ran && !r.ok && r.output.empty();
-    parallel::Bytes record{std::byte(!r.ran ? 3 : no_output ? 2 : 1)};
+    using results::RecordKind;
+    parallel::Bytes record{std::byte(!r.ran ? RecordKind::NotRun : no_output ? RecordKind::FailedWithoutOutput : RecordKind::Ran)};
     if (no_output)
       record.insert(record.end(), reinterpret_cast<const std::byte*>(r.error.data()),
                     reinterpret_cast<const std::byte*>(r.error.data() + r.error.size()));
@@ -383,8 +384,8 @@ void write_sweep_provenance(io::Group& prov, const SweepArgs& args, int ranks, c
   for (double b : fs.busy_seconds) work += b;
   prov.set_attribute("work_seconds", work);  // summed over ranks: integration alone
   prov.set_attribute("master_result_seconds", fs.result_seconds);  // classify, journal, write
-  prov.set_attribute("version", ASTROJAX_VERSION);
-  prov.set_attribute("git_commit", ASTROJAX_GIT_COMMIT);  // at configure time
+  prov.set_attribute("version", results::program_version());
+  prov.set_attribute("git_commit", results::program_commit());  // at configure time
 }
 
 // Rank 0 after the farm: the file finished (and renamed when complete), the summary line, the
@@ -392,11 +393,11 @@ void write_sweep_provenance(io::Group& prov, const SweepArgs& args, int ranks, c
 int report_sweep(const SweepArgs& args, SweepOutput& output, const parallel::FarmSummary& fs,
                  const SimulatedSeconds& sim, const std::string& started, double wall, int ranks) {
   std::vector<std::string>& failures = output.failures;
-  const std::vector<std::int32_t>& status = output.status;
+  const std::vector<results::TaskStatus>& status = output.status;
   const std::filesystem::path &final_path = output.final_path, &part_path = output.part_path;
   std::sort(failures.begin(), failures.end());
   output.file->finish(failures, [&](io::Group& prov) { write_sweep_provenance(prov, args, ranks, started, wall, fs); });
-  const bool complete = std::none_of(status.begin(), status.end(), [](std::int32_t v) { return v == 0; });
+  const bool complete = std::none_of(status.begin(), status.end(), [](results::TaskStatus v) { return v == results::TaskStatus::NeverRan; });
   if (complete) {
     std::filesystem::rename(part_path, final_path);
     // The file holds everything now. The journal goes while still locked: released first, a

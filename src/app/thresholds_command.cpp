@@ -22,7 +22,8 @@
 #include <vector>
 
 #include "app/commands.hpp"
-#include "app/sweep_file.hpp"
+#include "results/reclassify.hpp"
+#include "results/sweep_file.hpp"
 #include "config/config.hpp"
 #include "io/hdf5_file.hpp"
 #include "sweep/class_sequence.hpp"
@@ -51,38 +52,43 @@ std::vector<std::string> lines(const std::string& text) {
 struct RefineSource {
   sweep::SweepPlan plan;
   sweep::ClassifierSettings settings;
-  std::vector<std::int32_t> status;
-  std::optional<SweepFile> file;
+  std::vector<results::TaskStatus> status;
+  std::optional<results::SweepFile> file;
 
   // The last finished task's final state no later than t, else the chain's start state.
   physics::State state_before(std::size_t c, double t) const {
     const auto& spans = plan.spans[c];
     std::optional<std::size_t> best;
     for (std::size_t j = 0; j < spans.size() && spans[j].t_end <= t; ++j) {
-      if (status[plan.first_task[c] + j] != 1) break;
+      if (status[plan.first_task[c] + j] != results::TaskStatus::Ok) break;
       best = j;
     }
     return best ? file->state(plan.first_task[c] + *best) : plan.start_state(c);
   }
 };
 
-RefineSource open_refine_source(const std::string& path, std::size_t chains, std::size_t windows) {
+// `settings`: the classifier's for the holds and refinements when --set gave some; else the
+// settings the file's windows were classified with.
+RefineSource open_refine_source(const std::string& path, std::size_t chains, std::size_t windows,
+                                const std::optional<sweep::ClassifierSettings>& settings) {
   RefineSource src;
   io::File f = io::File::open_read(path);
-  checked_format_version(f, path);
+  results::checked_format_version(f, path);
   const io::Dataset config = f.open_dataset("config");
   const config::SweepConfig cfg = config::parse_sweep_config(
       config.read_string(), config.read_string_attribute("source"), lines(config.read_string_attribute("overrides")));
-  src.plan = sweep::make_plan(cfg);
+  src.plan = config::make_plan(cfg);
   if (src.plan.chains() != chains || src.plan.max_windows != windows)
     throw std::runtime_error(fmt::format("its configuration makes {} chains of up to {} windows, the file has {} of {}",
                                          src.plan.chains(), src.plan.max_windows, chains, windows));
   const io::Group wg = f.open_group("windows");
-  if (wg.has_attribute("classifier_settings")) {
+  if (settings) {
+    src.settings = *settings;
+  } else if (wg.has_attribute("classifier_settings")) {
     const std::string used = wg.read_string_attribute("classifier_settings");
     if (used != "defaults") src.settings = sweep::parse_classifier_settings(lines(used));
   }
-  src.status = f.read_int32s("tasks/status").data;
+  src.status = results::read_task_statuses(f);
   src.file.emplace(std::move(f), chains, windows, 0, src.plan.n_tasks);
   return src;
 }
@@ -186,13 +192,23 @@ std::vector<std::string> split_lines(const std::string& text) {
   return out;
 }
 
-SweepWindows read_sweep_windows(const io::File& f) {
+// `settings`: classify the windows again from their samples with these (--set), in memory,
+// instead of reading the file's classes.
+SweepWindows read_sweep_windows(const io::File& f, const std::optional<sweep::ClassifierSettings>& settings) {
   SweepWindows s;
-  const auto cls = f.read_int32s("windows/class"), dir = f.read_int32s("windows/direction");
+  auto cls = f.read_int32s("windows/class");
+  const auto dir = f.read_int32s("windows/direction");
   const auto wb = f.read_doubles("windows/omega_m_begin"), we = f.read_doubles("windows/omega_m_end");
-  const auto ob = f.read_doubles("windows/omega_ball");
+  auto ob = f.read_doubles("windows/omega_ball");
   s.radius_bottom_mean = f.read_doubles("windows/radius_bottom_mean");
   s.radius_bottom_std = f.read_doubles("windows/radius_bottom_std");
+  if (settings)
+    for (const results::ReclassifiedWindow& w : results::reclassify_windows(f, *settings)) {
+      cls(w.chain, w.window) = w.row.cls;
+      ob(w.chain, w.window) = results::row_stat(w.row, "omega_ball");
+      s.radius_bottom_mean(w.chain, w.window) = results::row_stat(w.row, "radius_bottom_mean");
+      s.radius_bottom_std(w.chain, w.window) = results::row_stat(w.row, "radius_bottom_std");
+    }
   const std::size_t C = cls.rows(), W = cls.cols();
   s.n_windows = W;
   for (std::size_t c = 0; c < C; ++c) {
@@ -254,11 +270,12 @@ sweep::OrbitClass class_at(const std::vector<sweep::ClassedWindow>& windows, int
 
 // Holds (and refinements) of every bracket, spread over threads: each is an independent
 // integration from the file's stored state before it. Returns an error message, or "".
-std::string judge_rows(const ThresholdsArgs& args, const std::optional<HoldTime>& hold, const SweepWindows& sw,
+std::string judge_rows(const ThresholdsArgs& args, const std::optional<sweep::ClassifierSettings>& settings,
+                       const std::optional<HoldTime>& hold, const SweepWindows& sw,
                        std::vector<Row>& rows) {
   RefineSource src;
   try {
-    src = open_refine_source(args.input, sw.chains.size(), sw.n_windows);
+    src = open_refine_source(args.input, sw.chains.size(), sw.n_windows, settings);
   } catch (const std::exception& e) {
     return fmt::format("{}: cannot rebuild the sweep to {} it: {}", args.input, args.refine > 0 ? "refine" : "hold",
                        e.what());
@@ -538,6 +555,8 @@ std::string report(const ThresholdsArgs& args, const SweepWindows& sw, const std
                                       "bracket vs paper", "verdict"};
   if (markdown)
     out += fmt::format("# Thresholds of `{}`\n\n", args.input);
+  if (!args.settings.empty())
+    out += fmt::format("Windows classified again in memory with {}.\n", fmt::join(args.settings, ", "));
   out += fmt::format("{}Brackets: the mean ω_m of the last window before the class changed and of the first after.{}\n",
                      markdown ? "" : "", hold_text.empty() ? "" : " " + hold_text);
   for (std::size_t v = 0; v < sw.variants.size(); ++v) {
@@ -680,12 +699,22 @@ int thresholds_command(const ThresholdsArgs& args) {
       return kExitBadInput;
     }
   }
+  std::optional<sweep::ClassifierSettings> settings;
+  if (!args.settings.empty()) {
+    try {
+      settings = sweep::parse_classifier_settings(args.settings);
+    } catch (const std::invalid_argument& e) {
+      std::fprintf(stderr, "error: --set %s (thresholds takes the sweep's configuration from the file; only the "
+                   "classifier's settings can be changed)\n", e.what());
+      return kExitBadInput;
+    }
+  }
   SweepWindows sw;
   std::vector<std::optional<Onset>> onsets;
   try {
     const io::File f = io::File::open_read(args.input);
-    checked_format_version(f, args.input);
-    sw = read_sweep_windows(f);
+    results::checked_format_version(f, args.input);
+    sw = read_sweep_windows(f, settings);
     for (std::size_t c = 0; c < sw.chains.size(); ++c) onsets.push_back(flower_onset(f, sw, c, args.onset_span));
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s: cannot read a sweep file: %s\n", args.input.c_str(), e.what());
@@ -695,7 +724,7 @@ int thresholds_command(const ThresholdsArgs& args) {
   for (std::size_t c = 0; c < sw.chains.size(); ++c)
     for (sweep::Threshold t : sweep::kThresholds) rows.push_back({c, t, sweep::find_threshold(t, sw.chains[c]), {}, {}});
   if (args.refine > 0 || hold)
-    if (const std::string error = judge_rows(args, hold, sw, rows); !error.empty()) {
+    if (const std::string error = judge_rows(args, settings, hold, sw, rows); !error.empty()) {
       std::fprintf(stderr, "error: %s\n", error.c_str());
       return kExitBadInput;
     }

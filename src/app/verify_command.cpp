@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "app/commands.hpp"
-#include "app/sweep_file.hpp"
+#include "results/sweep_file.hpp"
 #include "io/journal.hpp"
 #include "sweep/plan.hpp"
 
@@ -49,11 +49,11 @@ void check_layout(const io::File& f, std::vector<std::string>& damaged) {
   }
   const config::SweepConfig cfg =
       config::parse_sweep_config(config.read_string(), config.read_string_attribute("source"), overrides);
-  const sweep::SweepPlan plan = sweep::make_plan(cfg);
+  const sweep::SweepPlan plan = config::make_plan(cfg);
   const std::filesystem::path ref_path =
       std::filesystem::temp_directory_path() / fmt::format("astrojax-verify-{}.h5", ::getpid());
   {
-    SweepFile ref(io::File::create(ref_path), plan.chains(), plan.max_windows, plan.max_samples, plan.n_tasks);
+    results::SweepFile ref(io::File::create(ref_path), plan.chains(), plan.max_windows, plan.max_samples, plan.n_tasks);
     ref.create(cfg, plan);
     ref.close();
   }
@@ -83,9 +83,9 @@ void check_layout(const io::File& f, std::vector<std::string>& damaged) {
 void check_results(const io::File& f, std::vector<std::string>& damaged, std::vector<std::string>& notes) {
   std::vector<std::string> paths{"windows/class", "windows/mode_fraction", "samples/count", "tasks/status",
                                  "tasks/steps", "tasks/final_state"};
-  for (const auto& st : kStats) paths.push_back(std::string("windows/") + st[0]);
-  for (const auto& st : kPowers) paths.push_back(std::string("windows/") + st[0]);
-  for (const char* c : kSampleColumns) paths.push_back(std::string("samples/") + c);
+  for (const auto& st : results::kStats) paths.push_back(std::string("windows/") + st[0]);
+  for (const auto& st : results::kPowers) paths.push_back(std::string("windows/") + st[0]);
+  for (const char* c : results::kSampleColumns) paths.push_back(std::string("samples/") + c);
   std::vector<std::string> unchecked;
   for (const std::string& p : paths) {
     try {
@@ -106,12 +106,12 @@ int verify_command(const VerifyArgs& args) {
   std::vector<std::string> damaged, notes;
   try {
     const io::File f = io::File::open_read(args.input);
-    checked_format_version(f, args.input);
+    results::checked_format_version(f, args.input);
     check_layout(f, damaged);
     check_results(f, damaged, notes);
-    const auto status = f.read_int32s("tasks/status").data;
+    const auto status = results::read_task_statuses(f);
     std::size_t done = 0, never = 0;
-    for (std::int32_t s : status) (s == 0 ? never : done) += 1;
+    for (results::TaskStatus s : status) (s == results::TaskStatus::NeverRan ? never : done) += 1;
     notes.push_back(fmt::format("{} of {} tasks have a result, {} never ran", done, status.size(), never));
     const std::string in = args.input;
     const bool partial = in.size() > 5 && in.compare(in.size() - 5, 5, ".part") == 0;

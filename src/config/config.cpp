@@ -442,14 +442,6 @@ RunConfig load_run_config(const std::string& path, const std::vector<std::string
 
 namespace {
 
-// The [grid] axes: the model parameters the table marks as axes (physics/parameter_table.hpp),
-// and ramp_rate, which sets the protocol's ramps.
-constexpr std::string_view kRampRateAxis = "ramp_rate";
-bool is_grid_parameter(std::string_view key) {
-  const physics::ParameterInfo* p = physics::find_parameter(key);
-  return p ? p->grid_axis : physics::find_alias(key) != nullptr;
-}
-
 // A value list: an array of numbers, or {start, stop, num} (num >= 1, both ends included).
 std::vector<double> value_list(const toml::node& n, const std::string& key, std::string_view file) {
   std::vector<double> out;
@@ -569,7 +561,7 @@ void read_sweep_tables(const toml::table& root, SweepConfig& c, double chains_be
       throw ConfigError(fmt::format("{}: key 'hold': a sweep has either [protocol] (ramps) or [hold], not both", file));
     const toml::table& ht = subtable(root, "hold", file);
     Reader r(ht, "hold", file);
-    HoldSpec h;
+    sweep::HoldSpec h;
     if (!r.has("omega")) r.fail("omega", "missing: the held ω_m values [rad/s], a list or {start, stop, num}");
     r.known("omega");
     h.omega = value_list(*ht.get("omega"), "hold.omega", file);
@@ -603,10 +595,9 @@ void read_sweep_tables(const toml::table& root, SweepConfig& c, double chains_be
   }
   for (const auto& [k, v] : subtable(root, "grid", file)) {
     const std::string key(k.str());
-    if (key != kRampRateAxis && !is_grid_parameter(key)) {
-      std::vector<std::string> allowed = physics::grid_parameter_keys();
-      allowed.emplace_back(kRampRateAxis);
-      throw ConfigError(fmt::format("{}: key 'grid.{}': unknown key; allowed: {}", file, key, fmt::join(allowed, ", ")));
+    if (!sweep::is_grid_axis(key)) {
+      throw ConfigError(fmt::format("{}: key 'grid.{}': unknown key; allowed: {}", file, key,
+                                    fmt::join(sweep::grid_axis_keys(), ", ")));
     }
     if (const KeyInfo* doc = find_key("grid", key)) note_read(*doc);
     c.grid.push_back({key, value_list(v, "grid." + key, file)});
@@ -617,7 +608,11 @@ void read_sweep_tables(const toml::table& root, SweepConfig& c, double chains_be
     r.reject_unknown();
   }
   check_chain_count(c, chains_before);  // before the grid is expanded: a sweep too large to hold is refused, not run out of memory
-  expand_grid(c);  // every grid point is checked before any work
+  try {
+    sweep::expand_grid(c.model, c, file);  // every grid point is checked before any work
+  } catch (const sweep::GridError& e) {
+    throw ConfigError(e.what());
+  }
   if (c.hold) return;
   try {
     sweep::compile(c.protocol, c.start_omega);
@@ -834,39 +829,11 @@ SweepConfig load_sweep_config(const std::string& path, const std::vector<std::st
   return parse_sweep_config(read_file(path), path, overrides);
 }
 
-std::vector<GridPoint> expand_grid(const SweepConfig& c) {
-  std::vector<GridPoint> points;
-  std::vector<std::size_t> at(c.grid.size(), 0);
-  for (;;) {
-    GridPoint g{{}, c.model, c.protocol};
-    for (std::size_t a = 0; a < c.grid.size(); ++a) {
-      const double v = c.grid[a].values[at[a]];
-      g.values.push_back(v);
-      const std::string& k = c.grid[a].key;
-      if (is_grid_parameter(k)) {
-        physics::set_parameter(g.model.p, k, v);
-      } else {  // ramp_rate
-        if (!(v > 0.0 && v <= 1e4))  // as protocol.segment[i].rate
-          throw ConfigError(fmt::format("{}: key 'grid.ramp_rate[{}]': {} is out of range; allowed (0, 10000] rad/s²",
-                                        c.source_name, at[a], v));
-        for (auto& seg : g.protocol)
-          if (seg.kind == sweep::Segment::Kind::Ramp) seg.ramp.rate = v;
-      }
-    }
-    const std::vector<physics::ParameterIssue> issues = physics::validate(g.model);
-    for (const auto& issue : issues) {
-      std::string where;
-      for (std::size_t a = 0; a < c.grid.size(); ++a) where += fmt::format(" grid.{}[{}]", c.grid[a].key, at[a]);
-      throw ConfigError(fmt::format("{}: key '{}' at grid point{}: {} is out of range; allowed {}", c.source_name,
-                                    issue.key, where.empty() ? " (no grid)" : where, issue.value, issue.allowed));
-    }
-    points.push_back(std::move(g));
-    // Next index, the last axis fastest.
-    std::size_t a = c.grid.size();
-    while (a > 0 && ++at[a - 1] == c.grid[a - 1].values.size()) at[--a] = 0;
-    if (a == 0) break;
-  }
-  return points;
+std::vector<sweep::PlanPart> plan_parts(const SweepConfig& c) {
+  std::vector<sweep::PlanPart> out;
+  if (c.parts.empty()) return {sweep::PlanPart{c.model, c.run, c, c.source_name}};
+  for (const SweepConfig& part : c.parts) out.push_back({part.model, part.run, part, part.source_name});
+  return out;
 }
 
 

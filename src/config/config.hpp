@@ -13,7 +13,8 @@
 #include "physics/model.hpp"
 #include "physics/state.hpp"
 #include "sim/simulation.hpp"
-#include "sweep/protocol.hpp"
+#include "sweep/grid.hpp"
+#include "sweep/plan.hpp"
 
 namespace ajx::config {
 
@@ -59,28 +60,10 @@ struct RunConfig : CommonConfig {
   OutputSpec output;
 };
 
-// astrojax sweep: plus [protocol] with [[protocol.segment]], an optional [grid] and [output].
-// Every grid point runs the whole protocol from the initial state: one chain each.
-struct GridAxis {
-  std::string key;             // "drive_radius", "contact_distance", "string_length", "mass",
-                               // "mu_static", "mu_kinetic", "drag", "tie_static_torque",
-                               // "tie_kinetic_torque", "tie_damping", "couple_torque",
-                               // "couple_slip_rate" or "ramp_rate"
-  std::vector<double> values;  // in SI units
-};
-
-// The hold mode: every ω_m of a list held fixed, from several seed states each, to find which
-// orbits coexist at one ω_m without ramping. Replaces [protocol] when present.
-struct HoldSpec {
-  std::vector<double> omega;                // ω_m values [rad/s]
-  double settle = 60.0;                     // transient before measuring [s]
-  double measure = 10.0;                    // the measured window [s]
-  std::vector<std::string> seeds{"hanging"};  // "hanging", "circular_high", "locked_orbit"
-  int perturbations = 0;                    // extra copies of each seed with random velocity kicks
-  double perturbation = 0.01;               // size of a kick [m/s]
-};
-
-struct SweepConfig : CommonConfig {
+// astrojax sweep: plus [protocol] with [[protocol.segment]] (or [hold]), an optional [grid] and
+// [output]; the sweep-specific fields are sweep::SweepSpec's. Every grid point runs the whole
+// protocol from the initial state: one chain each.
+struct SweepConfig : CommonConfig, sweep::SweepSpec {
   // A file with [[group]] tables (chain groups) or [variant.NAME] tables (model variants) is
   // one sweep made of parts: each group runs once per variant it names, each (group, variant)
   // read as a sweep of its own from the file's tables with the variant's and the group's
@@ -91,26 +74,12 @@ struct SweepConfig : CommonConfig {
   std::string variant;          // a part's model variant ("" for a plain file)
   std::string variant_label;    // what the variant is, e.g. "the paper's physics (rigid tie)"
 
-  std::vector<sweep::Segment> protocol;
-  double start_omega = 0.0;   // ω_m at t = 0 [rad/s]
-  std::string start_seed = "hanging";  // the state at t = 0: a seed of sweep/seeds.hpp at start_omega
-  int windows_per_task = 10;  // granularity of the farm's tasks
-  double sample_rate = 100.0; // samples per second stored for every window [1/s]
-  std::vector<GridAxis> grid;
-  std::optional<HoldSpec> hold;
   std::string output_path = "out/sweep.h5";
 };
 
-// One chain of a sweep: its parameters and protocol.
-struct GridPoint {
-  std::vector<double> values;  // one per grid axis, in the order of SweepConfig::grid
-  physics::Model model;
-  std::vector<sweep::Segment> protocol;
-};
-// The Cartesian product of the axes, taken in alphabetical order of their keys (the first
-// varies slowest, the last fastest); one point if there is no grid.
-// Every point is validated; errors name the file and the grid key.
-std::vector<GridPoint> expand_grid(const SweepConfig& c);
+// What the planner needs of each part (one for a plain file), in the order of `parts`.
+std::vector<sweep::PlanPart> plan_parts(const SweepConfig& c);
+inline sweep::SweepPlan make_plan(const SweepConfig& c) { return sweep::make_plan(plan_parts(c)); }
 
 // The most chains a sweep may have: its plan and file layout are held in memory on rank 0
 // (about 1 kB a chain), and a grid that multiplies past this is a typing error more often than

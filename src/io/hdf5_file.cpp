@@ -329,19 +329,6 @@ struct FileState {
 
   std::string name;
   bool open = true;
-  std::vector<AppendableTable*> tables;  // live tables that buffer rows
-
-  void flush_tables() {
-    for (AppendableTable* t : tables) t->flush();
-  }
-  void flush_tables_quietly() noexcept {
-    for (AppendableTable* t : tables) {
-      try {
-        t->flush();
-      } catch (...) {  // destructor path: nowhere to report
-      }
-    }
-  }
 };
 
 }  // namespace detail
@@ -732,7 +719,6 @@ void File::release() noexcept {
   if (temporary_ && !committed_) {
     discard();
   } else if (file_ && handle_.valid()) {
-    file_->flush_tables_quietly();
     file_->open = false;
     handle_.reset();
   }
@@ -758,7 +744,6 @@ File File::open_rw(const fs::path& path) {
 fs::path File::disk_path() const { return temporary_ && !committed_ ? part_path(final_path_) : final_path_; }
 
 void File::flush() {
-  if (file_) file_->flush_tables();
   check(H5Fflush(handle_.get(), H5F_SCOPE_GLOBAL), "H5Fflush", Where{file_name(), "/"});
 }
 
@@ -776,7 +761,6 @@ void File::commit() {
   }
   if (!handle_.valid()) throw std::logic_error(fmt::format("File::commit: {} is closed", file_name()));
   Where w{file_name(), "/"};
-  file_->flush_tables();
   check(H5Fflush(handle_.get(), H5F_SCOPE_GLOBAL), "H5Fflush", w);
   file_->open = false;
   if (!handle_.close()) fail("H5Fclose", w);
@@ -797,225 +781,8 @@ void File::close() {
     return;
   }
   if (!handle_.valid()) return;
-  file_->flush_tables();
   file_->open = false;
   if (!handle_.close()) fail("H5Fclose", Where{file_name(), "/"});
-}
-
-// ---------------------------------------------------------------------------------------------
-// AppendableTable
-
-AppendableTable AppendableTable::create(Group& parent, std::string_view path, std::size_t cols, DType dtype,
-                                        const TableOptions& options) {
-  std::string full = parent.child_path(path);
-  Where w{parent.file_name(), full};
-  auto bad = [&](std::string_view why) {
-    return std::invalid_argument(fmt::format("AppendableTable '{}' in {}: {}", full, parent.file_name(), why));
-  };
-  if (cols == 0) throw bad("cols must be > 0");
-  if (options.chunk_rows == 0) throw bad("chunk_rows must be > 0");
-  if (options.deflate < 0 || options.deflate > 9) throw bad("deflate level must be in 0..9");
-  if (options.flat && cols != 1) throw bad("a flat table needs cols == 1");
-
-  const int rank = options.flat ? 1 : 2;
-  const hsize_t dims[2] = {0, cols};
-  const hsize_t maxdims[2] = {H5S_UNLIMITED, cols};
-  const hsize_t chunk[2] = {options.chunk_rows, cols};
-  Handle space = own(H5Screate_simple(rank, dims, maxdims), Kind::Dataspace, "H5Screate_simple", w);
-  Handle dcpl = own(H5Pcreate(H5P_DATASET_CREATE), Kind::PropertyList, "H5Pcreate", w);
-  check(H5Pset_chunk(dcpl.get(), rank, chunk), "H5Pset_chunk", w);
-  if (options.deflate > 0) {
-    if (!check_tri(H5Zfilter_avail(H5Z_FILTER_DEFLATE), "H5Zfilter_avail", w)) {
-      fail_plain("cannot be compressed: the deflate filter is not available", w);
-    }
-    check(H5Pset_shuffle(dcpl.get()), "H5Pset_shuffle", w);
-    check(H5Pset_deflate(dcpl.get(), static_cast<unsigned>(options.deflate)), "H5Pset_deflate", w);
-  }
-  check(H5Pset_fletcher32(dcpl.get()), "H5Pset_fletcher32", w);  // a changed byte fails the read
-  Handle lcpl = intermediate_lcpl(w);
-  std::string p(path);
-  Handle ds = own(H5Dcreate2(parent.native_handle(), p.c_str(), file_type_of(dtype), space.get(), lcpl.get(),
-                             dcpl.get(), H5P_DEFAULT),
-                  Kind::Dataset, "H5Dcreate2", w);
-  return AppendableTable(std::move(ds), parent.file_, std::move(full), 0, cols, dtype, options.flat,
-                         options.buffer_rows);
-}
-
-AppendableTable AppendableTable::open(Group& parent, std::string_view path, std::size_t buffer_rows) {
-  std::string full = parent.child_path(path);
-  Where w{parent.file_name(), full};
-  std::string p(path);
-  Handle ds = own(H5Dopen2(parent.native_handle(), p.c_str(), H5P_DEFAULT), Kind::Dataset, "H5Dopen2", w);
-
-  Handle space = own(H5Dget_space(ds.get()), Kind::Dataspace, "H5Dget_space", w);
-  int rank = H5Sget_simple_extent_ndims(space.get());
-  if (rank < 0) fail("H5Sget_simple_extent_ndims", w);
-  if (rank != 1 && rank != 2) fail_plain(fmt::format("has rank {}, an appendable table needs 1 or 2", rank), w);
-  hsize_t dims[2] = {0, 1};
-  hsize_t maxdims[2] = {0, 1};
-  check(H5Sget_simple_extent_dims(space.get(), dims, maxdims), "H5Sget_simple_extent_dims", w);
-  if (maxdims[0] != H5S_UNLIMITED) fail_plain("is not extendible (first dimension is not unlimited)", w);
-
-  Handle type = own(H5Dget_type(ds.get()), Kind::Datatype, "H5Dget_type", w);
-  H5T_class_t cls = H5Tget_class(type.get());
-  std::size_t size = H5Tget_size(type.get());
-  DType dtype;
-  if (cls == H5T_FLOAT) {
-    dtype = DType::Float64;
-  } else if (cls == H5T_INTEGER && size == 8) {
-    dtype = DType::Int64;
-  } else if (cls == H5T_INTEGER && size == 4) {
-    dtype = DType::Int32;
-  } else if (cls == H5T_INTEGER && size == 1) {
-    dtype = DType::Int8;
-  } else {
-    fail_plain("has an element type an appendable table does not support", w);
-  }
-  return AppendableTable(std::move(ds), parent.file_, std::move(full), dims[0], rank == 2 ? dims[1] : 1, dtype,
-                         rank == 1, buffer_rows);
-}
-
-AppendableTable::AppendableTable(Handle h, std::shared_ptr<FileState> file, std::string path, std::size_t rows,
-                                 std::size_t cols, DType dtype, bool flat, std::size_t buffer_rows)
-    : Dataset(std::move(h), std::move(file), std::move(path)),
-      rows_written_(rows),
-      cols_(cols),
-      dtype_(dtype),
-      flat_(flat),
-      buffer_rows_(buffer_rows) {
-  enlist();
-}
-
-AppendableTable::AppendableTable(AppendableTable&& other) noexcept
-    : Dataset(std::move(other)),
-      rows_written_(std::exchange(other.rows_written_, 0)),
-      cols_(std::exchange(other.cols_, 0)),
-      dtype_(other.dtype_),
-      flat_(other.flat_),
-      buffer_rows_(std::exchange(other.buffer_rows_, 0)),
-      pending_rows_(std::exchange(other.pending_rows_, 0)),
-      pending_type_(other.pending_type_),
-      pending_(std::move(other.pending_)) {
-  if (file_) std::replace(file_->tables.begin(), file_->tables.end(), &other, this);
-}
-
-AppendableTable& AppendableTable::operator=(AppendableTable&& other) noexcept {
-  if (this != &other) {
-    flush_quietly();
-    delist();
-    Dataset::operator=(std::move(other));
-    rows_written_ = std::exchange(other.rows_written_, 0);
-    cols_ = std::exchange(other.cols_, 0);
-    dtype_ = other.dtype_;
-    flat_ = other.flat_;
-    buffer_rows_ = std::exchange(other.buffer_rows_, 0);
-    pending_rows_ = std::exchange(other.pending_rows_, 0);
-    pending_type_ = other.pending_type_;
-    pending_ = std::move(other.pending_);
-    other.pending_.clear();
-    if (file_) std::replace(file_->tables.begin(), file_->tables.end(), &other, this);
-  }
-  return *this;
-}
-
-AppendableTable::~AppendableTable() {
-  flush_quietly();
-  delist();
-}
-
-void AppendableTable::enlist() noexcept {
-  if (file_ && buffer_rows_ > 0) {
-    try {
-      file_->tables.push_back(this);
-    } catch (...) {  // out of memory: fall back to writing through
-      buffer_rows_ = 0;
-    }
-  }
-}
-
-void AppendableTable::delist() noexcept {
-  if (file_) std::erase(file_->tables, this);
-}
-
-void AppendableTable::flush_quietly() noexcept {
-  try {
-    flush();
-  } catch (...) {  // destructor path: nowhere to report
-  }
-}
-
-void AppendableTable::flush() {
-  if (pending_rows_ == 0) return;
-  write_block(pending_.data(), pending_rows_, pending_type_);
-  pending_rows_ = 0;
-  pending_.clear();
-}
-
-namespace {
-
-std::size_t size_of(DType t) {
-  switch (t) {
-    case DType::Float64: return sizeof(double);
-    case DType::Float32: return sizeof(float);
-    case DType::Int64: return sizeof(std::int64_t);
-    case DType::Int32: return sizeof(std::int32_t);
-    case DType::Int8: return sizeof(std::int8_t);
-  }
-  return 0;
-}
-
-}  // namespace
-
-void AppendableTable::append(const void* data, std::size_t count, DType mem_type, bool single_row) {
-  Where w{file_name(), path_};
-  if (cols_ == 0) fail_plain("is not an open appendable table", w);
-  if (single_row ? count != cols_ : count % cols_ != 0) {
-    throw std::invalid_argument(fmt::format("append to '{}' in {}: {} values for rows of {} columns", path_,
-                                            file_name(), count, cols_));
-  }
-  if (file_ && !file_->open) fail_plain("cannot be appended to: its file is closed", w);
-  const std::size_t n = count / cols_;
-  if (n == 0) return;
-  if (buffer_rows_ == 0) {
-    write_block(data, n, mem_type);
-    return;
-  }
-  if (pending_rows_ > 0 && mem_type != pending_type_) flush();
-  if (pending_rows_ == 0 && n >= buffer_rows_) {
-    write_block(data, n, mem_type);
-    return;
-  }
-  if (pending_.empty()) pending_.reserve(buffer_rows_ * cols_ * size_of(mem_type));
-  const auto* bytes = static_cast<const unsigned char*>(data);
-  pending_.insert(pending_.end(), bytes, bytes + count * size_of(mem_type));
-  pending_type_ = mem_type;
-  pending_rows_ += n;
-  if (pending_rows_ >= buffer_rows_) flush();
-}
-
-void AppendableTable::write_block(const void* data, std::size_t n, DType mem_type) {
-  Where w{file_name(), path_};
-  const std::size_t old_rows = rows_written_;
-  const int rank = flat_ ? 1 : 2;
-  const hsize_t new_dims[2] = {old_rows + n, cols_};
-  const hsize_t start[2] = {old_rows, 0};
-  const hsize_t block[2] = {n, cols_};
-  check(H5Dset_extent(handle_.get(), new_dims), "H5Dset_extent", w);
-  try {
-    Handle file_space = own(H5Dget_space(handle_.get()), Kind::Dataspace, "H5Dget_space", w);
-    check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start, nullptr, block, nullptr), "H5Sselect_hyperslab",
-          w);
-    Handle mem_space = own(H5Screate_simple(rank, block, nullptr), Kind::Dataspace, "H5Screate_simple", w);
-    check(H5Dwrite(handle_.get(), mem_type_of(mem_type), mem_space.get(), file_space.get(), H5P_DEFAULT, data),
-          "H5Dwrite", w);
-  } catch (...) {
-    // Do not leave rows of fill values behind a failed write.
-    const hsize_t old_dims[2] = {old_rows, cols_};
-    H5Dset_extent(handle_.get(), old_dims);
-    H5Eclear2(H5E_DEFAULT);
-    throw;
-  }
-  rows_written_ += n;
 }
 
 }  // namespace ajx::io

@@ -9,9 +9,8 @@
 // wrong width) throw std::invalid_argument; misuse of a temporary file throws std::logic_error.
 //
 // Lifetime: a File closes the file completely when it is closed, committed or destroyed
-// (HDF5 "strong" close), after writing the rows its AppendableTables still buffer. Groups,
-// datasets and tables obtained from it must not be used afterwards: their operations then
-// throw Hdf5Error, and destroying them (in any order) is harmless.
+// (HDF5 "strong" close). Groups and datasets obtained from it must not be used afterwards:
+// their operations then throw Hdf5Error, and destroying them (in any order) is harmless.
 //
 // Layout conventions: arrays are row-major (C order) with explicit dimensions, stored as
 // little-endian IEEE doubles / two's-complement integers; strings are variable-length UTF-8.
@@ -53,9 +52,10 @@ struct Array {
   std::size_t cols() const { return dims.size() < 2 ? 1 : dims[1]; }
   // Element (i, j) of a 2-D array.
   const T& operator()(std::size_t i, std::size_t j) const { return data[i * cols() + j]; }
+  T& operator()(std::size_t i, std::size_t j) { return data[i * cols() + j]; }
 };
 
-// Element type stored in the file for appendable tables.
+// Element type stored in the file.
 enum class DType { Float64, Float32, Int64, Int32, Int8 };
 
 namespace detail {
@@ -87,7 +87,7 @@ class Handle {
   Kind kind_ = Kind::File;
 };
 
-struct FileState;  // per open file: its name, open flag and buffering tables (in the .cpp)
+struct FileState;  // per open file: its name and open flag (in the .cpp)
 
 }  // namespace detail
 
@@ -166,7 +166,6 @@ class Dataset : public Object {
 std::vector<std::byte> encode_chunk(std::span<const double> values, int deflate);
 std::vector<std::byte> encode_chunk(std::span<const float> values, int deflate);
 
-class AppendableTable;
 
 // A group. Paths may be nested ("a/b/c", relative to this group) or absolute ("/a/b").
 // Creating groups, datasets and tables creates missing intermediate groups.
@@ -205,7 +204,6 @@ class Group : public Object {
   std::string read_string_dataset(std::string_view path) const { return open_dataset(path).read_string(); }
 
  protected:
-  friend class AppendableTable;
   using Object::Object;
   std::string child_path(std::string_view rel) const;
 };
@@ -225,7 +223,7 @@ class File : public Group {
   static File open_read(const std::filesystem::path& path);
   static File open_rw(const std::filesystem::path& path);
 
-  // Write the rows buffered by this file's tables, then push all data and metadata to the OS.
+  // Push all data and metadata to the OS.
   void flush();
   // Temporary files only: flush, close, fsync, then atomically rename "<path>.part" -> path.
   void commit();
@@ -259,73 +257,5 @@ void write_atomically(const std::filesystem::path& path, Fill&& fill) {
   std::forward<Fill>(fill)(file);
   file.commit();
 }
-
-struct TableOptions {
-  std::size_t chunk_rows = 1024;   // rows per HDF5 chunk (> 0)
-  int deflate = 0;                 // 0 = no compression, 1..9 = gzip level (with byte shuffle)
-  bool flat = false;               // store an N-vector instead of N x 1 (needs cols == 1)
-  std::size_t buffer_rows = 1024;  // rows held in memory between writes; 0 = write every append
-};
-
-// Extendible chunked dataset of shape (rows, cols) with unlimited rows, grown by appending
-// rows. Values are converted to the table's DType on write.
-//
-// Buffering: one HDF5 write costs ~3 us whatever its size, so appended rows are collected in
-// memory and written (dataset extended) once buffer_rows are pending, on flush(), and when the
-// table or its File is flushed, closed, committed or destroyed. rows() counts pending rows;
-// the dataset in the file (dims(), read_*(), other handles, h5dump) shows only written rows, so
-// call flush() (or File::flush()) before reading it back in the same process. Errors of a
-// write are thrown by the call that triggers it; destructors swallow them, so end with
-// File::close()/commit() (or flush()) to see them. If a write fails the rows stay pending.
-// With buffer_rows = 0 every append extends the dataset and writes through immediately.
-class AppendableTable : public Dataset {
- public:
-  AppendableTable() = default;
-  AppendableTable(AppendableTable&& other) noexcept;
-  AppendableTable& operator=(AppendableTable&& other) noexcept;
-  ~AppendableTable();
-
-  static AppendableTable create(Group& parent, std::string_view path, std::size_t cols, DType dtype,
-                                const TableOptions& options = {});
-  // Reopen an existing extendible 2-D (or flat 1-D) dataset to append more rows.
-  static AppendableTable open(Group& parent, std::string_view path, std::size_t buffer_rows = 1024);
-
-  // One row: row.size() must equal cols(). std::array and std::vector convert implicitly.
-  void append_row(std::span<const double> row) { append(row.data(), row.size(), DType::Float64, true); }
-  void append_row(std::span<const std::int64_t> row) { append(row.data(), row.size(), DType::Int64, true); }
-  void append_row(std::span<const std::int32_t> row) { append(row.data(), row.size(), DType::Int32, true); }
-  void append_row(std::span<const std::int8_t> row) { append(row.data(), row.size(), DType::Int8, true); }
-  // A block of rows, row-major: block.size() must be a multiple of cols().
-  void append_rows(std::span<const double> block) { append(block.data(), block.size(), DType::Float64, false); }
-  void append_rows(std::span<const std::int64_t> block) { append(block.data(), block.size(), DType::Int64, false); }
-  void append_rows(std::span<const std::int32_t> block) { append(block.data(), block.size(), DType::Int32, false); }
-  void append_rows(std::span<const std::int8_t> block) { append(block.data(), block.size(), DType::Int8, false); }
-
-  // Write the pending rows now.
-  void flush();
-
-  std::size_t rows() const noexcept { return rows_written_ + pending_rows_; }  // including pending
-  std::size_t pending_rows() const noexcept { return pending_rows_; }
-  std::size_t cols() const noexcept { return cols_; }
-  DType dtype() const noexcept { return dtype_; }
-
- private:
-  AppendableTable(detail::Handle h, std::shared_ptr<detail::FileState> file, std::string path, std::size_t rows,
-                  std::size_t cols, DType dtype, bool flat, std::size_t buffer_rows);
-  void append(const void* data, std::size_t count, DType mem_type, bool single_row);
-  void write_block(const void* data, std::size_t n, DType mem_type);
-  void enlist() noexcept;
-  void delist() noexcept;
-  void flush_quietly() noexcept;
-
-  std::size_t rows_written_ = 0;
-  std::size_t cols_ = 0;
-  DType dtype_ = DType::Float64;
-  bool flat_ = false;
-  std::size_t buffer_rows_ = 0;
-  std::size_t pending_rows_ = 0;
-  DType pending_type_ = DType::Float64;
-  std::vector<unsigned char> pending_;  // pending_rows_ rows of pending_type_ elements
-};
 
 }  // namespace ajx::io

@@ -12,8 +12,9 @@ namespace ajx::sweep {
 namespace {
 
 // The chains of one sweep (a plain file, or one part of a grouped file), appended to the plan.
-void add_chains(SweepPlan& plan, const config::SweepConfig& cfg, std::size_t part) {
-  for (const config::GridPoint& g : config::expand_grid(cfg)) {
+void add_chains(SweepPlan& plan, const PlanPart& p, std::size_t part) {
+  const SweepSpec& cfg = p.spec;
+  for (const GridPoint& g : expand_grid(p.model, cfg, p.source_name)) {
     if (!cfg.hold) {
       plan.starts.push_back({cfg.start_seed, cfg.start_omega, 0, 0.0});
       plan.points.push_back(g);
@@ -25,7 +26,7 @@ void add_chains(SweepPlan& plan, const config::SweepConfig& cfg, std::size_t par
       for (const std::string& seed : cfg.hold->seeds)
         for (int k = 0; k <= cfg.hold->perturbations; ++k) {
           plan.starts.push_back({seed, w, k, cfg.hold->perturbation});
-          config::GridPoint held = g;
+          GridPoint held = g;
           held.protocol = {Segment{Segment::Kind::Steps, {}, {w, w, 1, cfg.hold->settle, cfg.hold->measure, 1.0}}};
           plan.points.push_back(std::move(held));
           plan.part.push_back(part);
@@ -35,17 +36,14 @@ void add_chains(SweepPlan& plan, const config::SweepConfig& cfg, std::size_t par
 
 }  // namespace
 
-SweepPlan make_plan(const config::SweepConfig& cfg) {
+SweepPlan make_plan(const std::vector<PlanPart>& parts) {
   SweepPlan plan;
-  const bool grouped = !cfg.parts.empty();
-  const auto part_of = [&](std::size_t i) -> const config::SweepConfig& { return grouped ? cfg.parts[i] : cfg; };
-  const std::size_t n_parts = grouped ? cfg.parts.size() : 1;
-  for (std::size_t i = 0; i < n_parts; ++i) {
+  for (std::size_t i = 0; i < parts.size(); ++i) {
     const std::size_t first = plan.points.size();
-    add_chains(plan, part_of(i), i);
+    add_chains(plan, parts[i], i);
     // The part's grid values, placed on the file's axes.
     std::vector<std::size_t> at;
-    for (const config::GridAxis& a : part_of(i).grid) {
+    for (const GridAxis& a : parts[i].spec.grid) {
       auto it = std::find(plan.axes.begin(), plan.axes.end(), a.key);
       if (it == plan.axes.end()) it = plan.axes.insert(plan.axes.end(), a.key);
       at.push_back(std::size_t(it - plan.axes.begin()));
@@ -58,13 +56,13 @@ SweepPlan make_plan(const config::SweepConfig& cfg) {
   }
   for (auto& p : plan.points) p.values.resize(plan.axes.size(), std::numeric_limits<double>::quiet_NaN());
   for (std::size_t i = 0; i < plan.points.size(); ++i) {
-    const config::SweepConfig& part = part_of(plan.part[i]);
+    const PlanPart& part = parts[plan.part[i]];
     ChainSetup c;
     c.model = plan.points[i].model;
     c.protocol = compile(plan.points[i].protocol, plan.starts[i].omega);
     c.run = part.run;
-    c.sample_rate = part.sample_rate;
-    plan.spans.push_back(split(c.protocol, part.windows_per_task));
+    c.sample_rate = part.spec.sample_rate;
+    plan.spans.push_back(split(c.protocol, part.spec.windows_per_task));
     plan.first_task.push_back(plan.n_tasks);
     plan.n_tasks += plan.spans.back().size();
     plan.max_windows = std::max(plan.max_windows, c.protocol.windows.size());

@@ -7,8 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "config/config.hpp"
 #include "physics/state.hpp"
+#include "sim/simulation.hpp"
+#include "sweep/grid.hpp"
 #include "sweep/protocol.hpp"
 #include "sweep/task.hpp"
 
@@ -27,7 +28,7 @@ struct SweepPlan {
   // points[c].values has one value per axis, NaN where its part has no such axis.
   std::vector<std::string> axes;
   std::vector<std::size_t> part;          // per chain: its part of SweepConfig::parts (0 for a plain file)
-  std::vector<config::GridPoint> points;  // per chain: parameters and protocol segments
+  std::vector<GridPoint> points;     // per chain: parameters and protocol segments
   std::vector<ChainStart> starts;         // per chain
   std::vector<ChainSetup> setups;         // per chain
   std::vector<std::vector<TaskSpan>> spans;  // per chain: its tasks in order
@@ -42,7 +43,16 @@ struct SweepPlan {
   physics::State start_state(std::size_t c) const;
 };
 
-// Throws config::ConfigError (grid points) or std::invalid_argument (protocols).
-SweepPlan make_plan(const config::SweepConfig& cfg);
+// One part of a sweep (a plain sweep has one): the model and integrator its chains start from,
+// and what it asks for. A grouped sweep has a part per (group, model variant).
+struct PlanPart {
+  physics::Model model;
+  sim::RunOptions run;
+  SweepSpec spec;
+  std::string source_name;  // for messages
+};
+
+// Throws GridError (grid points) or std::invalid_argument (protocols).
+SweepPlan make_plan(const std::vector<PlanPart>& parts);
 
 }  // namespace ajx::sweep

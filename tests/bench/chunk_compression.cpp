@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "app/sweep_result.hpp"
+#include "results/sweep_result.hpp"
 #include "io/hdf5_file.hpp"
 
 namespace {
@@ -22,7 +22,7 @@ std::size_t zlib_chunk(const unsigned char* in, std::size_t n, std::size_t B) {
     for (std::size_t j = 0; j < B; ++j) shuffled[j * n + i] = in[i * B + j];
   uLongf size = compressBound(uLong(shuffled.size()));
   std::vector<unsigned char> out(size);
-  compress2(out.data(), &size, shuffled.data(), uLong(shuffled.size()), ajx::app::kSampleDeflate);
+  compress2(out.data(), &size, shuffled.data(), uLong(shuffled.size()), ajx::results::kSampleDeflate);
   return size;
 }
 
@@ -38,12 +38,12 @@ int main(int argc, char** argv) {
   // Every window's chunk of every column, as doubles (the chunk shape is a window's cap).
   std::vector<std::vector<double>> chunks;
   std::vector<bool> float32;
-  for (std::size_t k = 0; k < app::kNumSampleColumns; ++k) {
-    const auto a = f.read_doubles(std::string("samples/") + app::kSampleColumns[k]);
+  for (std::size_t k = 0; k < results::kNumSampleColumns; ++k) {
+    const auto a = f.read_doubles(std::string("samples/") + results::kSampleColumns[k]);
     std::size_t per = a.dims[2] * (a.dims.size() > 3 ? a.dims[3] : 1);
     for (std::size_t at = 0; at + per <= a.data.size(); at += per) {
       chunks.emplace_back(a.data.begin() + long(at), a.data.begin() + long(at + per));
-      float32.push_back(app::kSampleFloat32[k]);
+      float32.push_back(results::kSampleFloat32[k]);
     }
   }
   std::printf("%zu chunks\n%-28s %12s %10s\n", chunks.size(), "pipeline", "bytes out", "CPU [s]");
@@ -56,10 +56,10 @@ int main(int argc, char** argv) {
         if (narrow && float32[c]) {
           const std::vector<float> w(v.begin(), v.end());
           bytes += zlib ? zlib_chunk(reinterpret_cast<const unsigned char*>(w.data()), w.size(), 4)
-                        : io::encode_chunk(std::span<const float>(w), app::kSampleDeflate).size();
+                        : io::encode_chunk(std::span<const float>(w), results::kSampleDeflate).size();
         } else {
           bytes += zlib ? zlib_chunk(reinterpret_cast<const unsigned char*>(v.data()), v.size(), 8)
-                        : io::encode_chunk(std::span<const double>(v), app::kSampleDeflate).size();
+                        : io::encode_chunk(std::span<const double>(v), results::kSampleDeflate).size();
         }
       }
       std::printf("%-28s %12zu %10.3f\n",

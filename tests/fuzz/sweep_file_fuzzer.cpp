@@ -14,7 +14,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     const ajx::config::SweepConfig cfg = ajx::config::parse_sweep_config(text, "fuzz.toml");
     // The chains exactly as astrojax sweep builds them, each split into tasks.
-    (void)ajx::sweep::make_plan(cfg);
+    (void)ajx::config::make_plan(cfg);
   } catch (const ajx::config::ConfigError&) {
     // rejected with a message: the expected outcome for bad input
   }

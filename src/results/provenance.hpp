@@ -15,7 +15,7 @@
 #include "config/resolved.hpp"
 #include "io/hdf5_file.hpp"
 
-namespace ajx::app {
+namespace ajx::results {
 
 // The layout version of run and sweep files (root attribute format_version):
 //   1  (no attribute) before the resolved configuration;
@@ -44,10 +44,15 @@ inline std::int64_t checked_format_version(const io::File& f, const std::string&
   return v;
 }
 
+// The program's version and the git commit it was built from (set by CMake at configure time,
+// in provenance.cpp only, so that a new commit recompiles one file).
+std::string program_version();
+std::string program_commit();
+
 inline void write_provenance(io::File& f, const std::string& command_line, const config::CommonConfig& cfg) {
   f.set_attribute("program", "astrojax-explorer");
-  f.set_attribute("version", ASTROJAX_VERSION);
-  f.set_attribute("git_commit", ASTROJAX_GIT_COMMIT);
+  f.set_attribute("version", program_version());
+  f.set_attribute("git_commit", program_commit());
   f.set_attribute("command_line", command_line);
   auto config = f.write_string_dataset("config", cfg.source_text);
   config.set_attribute("source", cfg.source_name);
@@ -56,4 +61,4 @@ inline void write_provenance(io::File& f, const std::string& command_line, const
   write_resolved(resolved, cfg);
 }
 
-}  // namespace ajx::app
+}  // namespace ajx::results

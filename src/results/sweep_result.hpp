@@ -12,7 +12,7 @@
 #include "sweep/orbit_classifier.hpp"
 #include "sweep/task.hpp"
 
-namespace ajx::app {
+namespace ajx::results {
 
 // The per-window statistics of /windows: name, units, description.
 inline constexpr const char* kStats[][3] = {
@@ -85,4 +85,4 @@ TaskResult make_result(const sweep::ChainSetup& chain, sweep::TaskOutput out, st
 std::vector<std::byte> encode(const TaskResult& r);
 TaskResult decode_result(std::span<const std::byte> bytes);
 
-}  // namespace ajx::app
+}  // namespace ajx::results

@@ -1,4 +1,4 @@
-#include "app/sweep_result.hpp"
+#include "results/sweep_result.hpp"
 
 #include <algorithm>
 #include <limits>
@@ -7,7 +7,7 @@
 #include "io/hdf5_file.hpp"
 #include "sweep/codec.hpp"
 
-namespace ajx::app {
+namespace ajx::results {
 
 WindowRow window_row(const sweep::OrbitClassification& c) {
   const auto& s = c.stats;
@@ -104,4 +104,4 @@ TaskResult decode_result(std::span<const std::byte> bytes) {
   return r;
 }
 
-}  // namespace ajx::app
+}  // namespace ajx::results

@@ -6,7 +6,7 @@
 #include <string>
 #include <string_view>
 
-namespace ajx::app {
+namespace ajx::results {
 
 // Bytes of memory one process may plan for: max_memory_mb when > 0, else half the physical
 // memory of the machine.
@@ -21,4 +21,4 @@ double free_bytes_for(const std::string& path);
 void check_memory(std::string_view source, std::string_view key, std::string_view what, double bytes, double budget,
                   double max_memory_mb);
 
-}  // namespace ajx::app
+}  // namespace ajx::results

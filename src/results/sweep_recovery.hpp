@@ -11,13 +11,18 @@
 #include <string>
 #include <vector>
 
-#include "app/resource_budget.hpp"
+#include "results/resource_budget.hpp"
 #include "config/config.hpp"
 #include "io/journal.hpp"
 #include "sweep/plan.hpp"
 #include "sweep/task.hpp"
 
-namespace ajx::app {
+namespace ajx::results {
+
+// A task's journal record: a kind byte, then for Ran the task's encoded result
+// (sweep_result.hpp), for FailedWithoutOutput the reason (a task past its wall-clock bound),
+// for NotRun nothing.
+enum class RecordKind : std::uint8_t { Ran = 1, FailedWithoutOutput = 2, NotRun = 3 };
 
 // The journal's first record (key -1): the sweep file verbatim, a NUL, the overrides.
 inline constexpr std::int64_t kJournalIdentity = -1;
@@ -92,4 +97,4 @@ inline void check_no_unfinished_sweep(const config::SweepConfig& cfg, const std:
       cfg.source_name, fmt::join(found, " and ")));
 }
 
-}  // namespace ajx::app
+}  // namespace ajx::results

@@ -1,4 +1,4 @@
-#include "app/resource_budget.hpp"
+#include "results/resource_budget.hpp"
 
 #include <sys/statvfs.h>
 #include <unistd.h>
@@ -9,7 +9,7 @@
 
 #include "config/config.hpp"
 
-namespace ajx::app {
+namespace ajx::results {
 
 double memory_budget(double max_memory_mb) {
   if (max_memory_mb > 0) return max_memory_mb * 1e6;
@@ -36,4 +36,4 @@ void check_memory(std::string_view source, std::string_view key, std::string_vie
       budget / 1e6, max_memory_mb > 0 ? "--max-memory" : "half the machine's memory; --max-memory sets another"));
 }
 
-}  // namespace ajx::app
+}  // namespace ajx::results

@@ -14,16 +14,16 @@
 
 #include <sstream>
 #include <stdexcept>
-#include "app/provenance.hpp"
+#include "results/provenance.hpp"
 #include "config/config.hpp"
 #include "physics/parameter_table.hpp"
 #include "io/hdf5_file.hpp"
-#include "app/sweep_result.hpp"
+#include "results/sweep_result.hpp"
 #include "sweep/orbit_classifier.hpp"
 #include "sweep/plan.hpp"
 #include "sweep/task.hpp"
 
-namespace ajx::app {
+namespace ajx::results {
 
 inline constexpr double kNotComputed = std::numeric_limits<double>::quiet_NaN();
 
@@ -60,6 +60,21 @@ inline StoredModels read_chain_models(const io::File& f) {
     for (std::size_t j = 0; j < cols.size(); ++j) p.*cols[j]->field = model(c, j);
     out.chains.push_back(p);
   }
+  return out;
+}
+
+// /tasks/status of a sweep file, per task.
+enum class TaskStatus : std::int32_t {
+  NeverRan = 0,  // no result yet (an interrupted sweep, or a task beyond --max-tasks)
+  Ok = 1,
+  Failed = 2,
+  NotRun = 3,    // an earlier task of its chain failed, so its start state does not exist
+};
+inline constexpr const char* kTaskStatusNames = "0 never ran,1 ok,2 failed,3 not run (an earlier task of its chain failed)";
+
+inline std::vector<TaskStatus> read_task_statuses(const io::File& f) {
+  std::vector<TaskStatus> out;
+  for (std::int32_t v : f.read_int32s("tasks/status").data) out.push_back(TaskStatus(v));
   return out;
 }
 
@@ -130,7 +145,7 @@ class SweepFile {
     tg.write_dataset("t_begin", std::span<const double>(tb)).set_attribute("units", "s");
     tg.write_dataset("t_end", std::span<const double>(te)).set_attribute("units", "s");
     tg.create_filled("status", {T_}, io::DType::Int32, 0.0, {T_})
-        .set_attribute("names", "0 never ran,1 ok,2 failed,3 not run (an earlier task of its chain failed)");
+        .set_attribute("names", kTaskStatusNames);
     tg.create_filled("steps", {T_}, io::DType::Int64, 0.0, {T_});
     tg.create_filled("final_state", {T_, kStateCols}, io::DType::Float64, kNotComputed, {1, kStateCols})
         .set_attribute("columns", "t, mode, sigma, s_star, impact_loss, then r1, r2, v1, v2, motor_work, drag_loss, "
@@ -149,7 +164,7 @@ class SweepFile {
           cfg.source_name, f_.disk_path().string()));
   }
 
-  std::vector<std::int32_t> status() const { return f_.read_int32s("tasks/status").data; }
+  std::vector<TaskStatus> status() const { return read_task_statuses(f_); }
   physics::State state(std::size_t task) const {
     const auto all = f_.read_doubles("tasks/final_state");
     const double* st = &all.data[task * kStateCols];
@@ -172,7 +187,7 @@ class SweepFile {
   }
 
   void write_not_run(std::size_t task) {
-    const std::int32_t v = 3;
+    const auto v = std::int32_t(TaskStatus::NotRun);
     ds("tasks/status").write_region({task}, {1}, std::span<const std::int32_t>(&v, 1));
     f_.flush();
   }
@@ -180,7 +195,7 @@ class SweepFile {
   void write_task(std::size_t task, std::size_t chain, const TaskResult& result) {
     write_windows(chain, result.windows);
     const sweep::TaskOutput& out = result.summary;
-    const std::int32_t st = out.ok ? 1 : 2;
+    const auto st = std::int32_t(out.ok ? TaskStatus::Ok : TaskStatus::Failed);
     ds("tasks/status").write_region({task}, {1}, std::span<const std::int32_t>(&st, 1));
     const std::int64_t steps = out.steps;
     ds("tasks/steps").write_region({task}, {1}, std::span<const std::int64_t>(&steps, 1));
@@ -396,4 +411,4 @@ class SweepFile {
   std::size_t C_, W_, cap_, T_;
 };
 
-}  // namespace ajx::app
+}  // namespace ajx::results

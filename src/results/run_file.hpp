@@ -1,0 +1,38 @@
+// The file of `astrojax run`: the sampled trajectory with units and descriptions, the run's
+// summary (energy ledger, counters, the violations of omitted layers) and the provenance.
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "config/config.hpp"
+#include "io/hdf5_file.hpp"
+#include "physics/drive.hpp"
+#include "sim/paper_scheme.hpp"
+#include "sim/simulation.hpp"
+
+namespace ajx::results {
+
+// Columns of the sampled trajectory, in memory until the run ends.
+struct Trajectory {
+  // Bytes a sample takes in memory and in the file: 25 doubles and the mode.
+  static constexpr double kBytesPerSample = 25 * sizeof(double) + sizeof(std::int32_t);
+
+  std::vector<double> t, r1, r2, v1, v2, T1, T2, contact, L1, psi, omega_m, phi, energy;
+  std::vector<double> motor_work, drag_loss, friction_loss, impact_loss;
+  std::vector<std::int32_t> mode;
+
+  void add(const sim::Sample& s, const physics::Parameters& p);  // one sample
+  void write(io::Group& g) const;  // one dataset per quantity, with units and a description
+};
+
+// The trajectory, the summary and the provenance into the run's file, then committed.
+// `start_projection`: with the paper's scheme, |L1 + L2 - l| of its starting pair before
+// projection; `raw_pair`: a two-step start's pair as given, before projection.
+void write_run(io::File& f, const std::string& command_line, const config::RunConfig& cfg,
+               const physics::MotorSchedule& schedule, const Trajectory& traj, const sim::RunSummary& sum,
+               const physics::State& state, double wall, std::optional<double> start_projection,
+               const std::optional<sim::PairStart>& raw_pair);
+
+}  // namespace ajx::results
