@@ -137,23 +137,152 @@ struct Tests {
   BranchPoint point;
 };
 
+// One continuation: the curve in scaled unknowns, and the test functions at its points.
+class Continuer {
+ public:
+  Continuer(const OrbitProblem& pb, const std::string& parameter, const ContinuationOptions& opt)
+      : pb_(pb), opt_(opt), c_{pb, parameter, {}, 1.0} {
+    const Scales sc = scales(pb.model);
+    // Forces in units of the largest of weight and centripetal pull at the start, W (1 + ω² l/g):
+    // on a whirling branch the tensions grow as ω², and steps measured in W alone would crawl.
+    const double fs = sc.force * (1.0 + pb.omega * pb.omega * sc.length / pb.model.p.gravity);
+    c_.dX << Vec3::Constant(sc.length), Vec3::Constant(sc.length), fs, fs, sc.length;
+    const double lambda0 = parameter_value(pb, parameter);
+    // ω_m in units of the pendulum frequency √(g/l); s in l; others in their own size.
+    c_.ls = parameter == "omega" ? std::sqrt(pb.model.p.gravity / pb.model.p.string_length)
+            : parameter == "s"   ? pb.model.p.string_length
+                                 : (lambda0 != 0 ? std::abs(lambda0) : 1.0);
+    rate_scale_ = pb.omega + std::sqrt(pb.model.p.gravity / pb.model.p.string_length);
+    noise_ = growth_noise(pb.model, pb.omega);
+  }
+
+  Vec10 scaled(const Vec9& X, double lambda) const {
+    Vec10 Z;
+    Z << X.cwiseQuotient(c_.dX), lambda / c_.ls;
+    return Z;
+  }
+
+  // The point Z with its tangent (oriented along `orient`, or by `dir` at the start), the
+  // augmented determinant, the orbit and, if asked, its stability.
+  Tests make(const Vec10& Z, const Vec10& orient, int dir) const {
+    Tests T;
+    T.Z = Z;
+    const Mat9x10 A = c_.GZ(Z);
+    T.t = tangent(A, orient, dir);
+    Mat10 aug;
+    aug.topRows<9>() = A;
+    aug.row(9) = T.t.transpose();
+    T.det_aug = aug.determinant();
+    const OrbitProblem q = c_.at(Z);
+    T.point.lambda = Z(9) * c_.ls;
+    T.point.orbit = describe(q, c_.X(Z));
+    T.point.tangent_lambda = T.t(9);
+    if (opt_.stability) {
+      T.point.stab = stability(q, c_.X(Z));
+      // Eigenvalues within the finite-difference noise of zero do not count.
+      for (int i = 0; i < T.point.stab.eigenvalues.size(); ++i)
+        T.point.unstable += T.point.stab.eigenvalues(i).real() > noise_;
+    }
+    return T;
+  }
+
+  // The signed test functions whose sign changes are events: fold, branch point, the cone's
+  // upper and lower margins, the smaller tension, the count of unstable eigenvalues.
+  std::array<double, 6> values(const Tests& T) const {
+    const bool skip_up = pb_.closure == Closure::ConeUp, skip_down = pb_.closure == Closure::ConeDown;
+    const SteadyOrbit& o = T.point.orbit;
+    return std::array<double, 6>{T.t(9), T.det_aug, skip_up ? 1.0 : o.margins.up,
+                                 skip_down || std::isinf(o.margins.down) ? 1.0 : o.margins.down,
+                                 std::min(o.T1, o.T2), double(T.point.unstable)};
+  }
+
+  Corrected correct(const Vec10& Zp, const Vec10& n) const { return orbits::correct(c_, Zp, n); }
+
+  // Events between cur and next: bisection on the sign of each test function that changed.
+  void add_events(const Tests& cur, const Tests& next, Branch& br) const {
+    const auto v0 = values(cur), v1 = values(next);
+    for (int k = 0; k < 6; ++k) {
+      const bool changed = k == 5 ? v0[k] != v1[k] : (v0[k] < 0) != (v1[k] < 0);
+      if (!changed || !std::isfinite(v0[k]) || !std::isfinite(v1[k])) continue;
+      const Tests at = locate(cur, next, k, int(std::min(v0[5], v1[5])));
+      BranchEvent e;
+      e.lambda = at.point.lambda;
+      e.orbit = at.point.orbit;
+      e.after_point = int(br.points.size()) - 1;
+      classify_event(e, k, at, v1[k] < v0[k], next.point.lambda > cur.point.lambda);
+      br.events.push_back(e);
+    }
+  }
+
+  // Why the branch ends at `cur`, or "" to go on.
+  std::string stop_reason(const Tests& cur) const {
+    const double lambda = cur.point.lambda;
+    if (lambda < opt_.lambda_min || lambda > opt_.lambda_max) return "left the parameter range";
+    const double s = cur.point.orbit.s, l = pb_.model.p.string_length;
+    if (!(s > 0 && s < l)) return "the bead left the string";
+    if (c_.name == "omega" && !(lambda > 0)) return "ω_m reached 0";
+    return "";
+  }
+
+ private:
+  // Test function k's zero between cur and next, bisected on the segment (corrected onto the
+  // curve at each midpoint). A change in the count of unstable eigenvalues is located on the
+  // real part of the crossing one: the (n_cross+1)-th largest, n_cross the smaller count (the
+  // count itself has a noise threshold).
+  Tests locate(const Tests& cur, const Tests& next, int k, int n_cross) const {
+    const auto located = [&](const Tests& T) {
+      return k == 5 ? T.point.stab.eigenvalues(n_cross).real() : values(T)[k];
+    };
+    const Vec10 d = (next.Z - cur.Z).normalized();
+    const double f0 = located(cur);
+    double a = 0, b = 1;
+    Tests at = next;
+    for (int it = 0; it < 40; ++it) {
+      const double m = 0.5 * (a + b);
+      const Corrected cm = correct(cur.Z + m * (next.Z - cur.Z), d);
+      if (!cm.ok) break;
+      Tests tm = make(cm.Z, cur.t, 0);
+      const bool same = (located(tm) < 0) == (f0 < 0);
+      (same ? a : b) = m;
+      if (!same) at = tm;
+    }
+    return at;
+  }
+
+  void classify_event(BranchEvent& e, int k, const Tests& at, bool gain, bool increasing) const {
+    switch (k) {
+      case 0: e.kind = EventKind::Fold; break;
+      case 1: e.kind = EventKind::BranchPoint; break;
+      case 2: e.kind = EventKind::ConeExitUp; break;
+      case 3: e.kind = EventKind::ConeExitDown; break;
+      case 4: e.kind = EventKind::Slack; break;
+      case 5: {
+        // The crossing eigenvalue: the one nearest the imaginary axis where it was located.
+        const Eigen::VectorXcd& ev = at.point.stab.eigenvalues;
+        int j = 0;
+        for (int i = 1; i < ev.size(); ++i)
+          if (std::abs(ev(i).real()) < std::abs(ev(j).real())) j = i;
+        e.frequency = std::abs(ev(j).imag());
+        e.kind = e.frequency > 1e-6 * rate_scale_ ? EventKind::Hopf
+                 : gain                           ? EventKind::StabilityGain
+                                                  : EventKind::StabilityLoss;
+        e.note = (gain ? "stabilising" : "destabilising") + std::string(" with λ ") +
+                 (increasing ? "increasing" : "decreasing");
+        break;
+      }
+    }
+  }
+
+  const OrbitProblem& pb_;
+  const ContinuationOptions& opt_;
+  Curve c_;
+  double rate_scale_ = 0, noise_ = 0;
+};
+
 }  // namespace
 
 Branch continue_branch(OrbitProblem pb, const Vec9& X0, const std::string& parameter, const ContinuationOptions& opt) {
-  const Scales sc = scales(pb.model);
-  Curve c{pb, parameter, {}, 1.0};
-  // Forces in units of the largest of weight and centripetal pull at the start, W (1 + ω² l/g):
-  // on a whirling branch the tensions grow as ω², and steps measured in W alone would crawl.
-  const double fs = sc.force * (1.0 + pb.omega * pb.omega * sc.length / pb.model.p.gravity);
-  c.dX << Vec3::Constant(sc.length), Vec3::Constant(sc.length), fs, fs, sc.length;
-  const double lambda0 = parameter_value(pb, parameter);
-  // ω_m in units of the pendulum frequency √(g/l); s in l; others in their own size.
-  c.ls = parameter == "omega" ? std::sqrt(pb.model.p.gravity / pb.model.p.string_length)
-         : parameter == "s"   ? pb.model.p.string_length
-                              : (lambda0 != 0 ? std::abs(lambda0) : 1.0);
-  const double rate_scale = pb.omega + std::sqrt(pb.model.p.gravity / pb.model.p.string_length);
-  const double noise = growth_noise(pb.model, pb.omega);
-
+  const Continuer run(pb, parameter, opt);
   Branch br;
   br.parameter = parameter;
   br.closure = pb.closure;
@@ -162,48 +291,16 @@ Branch continue_branch(OrbitProblem pb, const Vec9& X0, const std::string& param
     br.stop_reason = "no orbit at the start (Newton did not converge)";
     return br;
   }
-  const auto make = [&](const Vec10& Z, const Vec10& orient, int dir) {
-    Tests T;
-    T.Z = Z;
-    const Mat9x10 A = c.GZ(Z);
-    T.t = tangent(A, orient, dir);
-    Mat10 aug;
-    aug.topRows<9>() = A;
-    aug.row(9) = T.t.transpose();
-    T.det_aug = aug.determinant();
-    const OrbitProblem q = c.at(Z);
-    T.point.lambda = Z(9) * c.ls;
-    T.point.orbit = describe(q, c.X(Z));
-    T.point.tangent_lambda = T.t(9);
-    if (opt.stability) {
-      T.point.stab = stability(q, c.X(Z));
-      // Eigenvalues within the finite-difference noise of zero do not count.
-      for (int i = 0; i < T.point.stab.eigenvalues.size(); ++i)
-        T.point.unstable += T.point.stab.eigenvalues(i).real() > noise;
-    }
-    return T;
-  };
-  Vec10 Z;
-  Z << start.X.cwiseQuotient(c.dX), lambda0 / c.ls;
-  Tests cur = make(Z, Vec10::Zero(), opt.direction >= 0 ? 1 : -1);
+  Tests cur = run.make(run.scaled(start.X, parameter_value(pb, parameter)), Vec10::Zero(), opt.direction >= 0 ? 1 : -1);
   br.points.push_back(cur.point);
-
-  // The signed test functions whose sign changes are events.
-  const bool skip_up = pb.closure == Closure::ConeUp, skip_down = pb.closure == Closure::ConeDown;
-  const auto values = [&](const Tests& T) {
-    const SteadyOrbit& o = T.point.orbit;
-    return std::array<double, 6>{T.t(9), T.det_aug, skip_up ? 1.0 : o.margins.up,
-                                 skip_down || std::isinf(o.margins.down) ? 1.0 : o.margins.down,
-                                 std::min(o.T1, o.T2), double(T.point.unstable)};
-  };
-
+  // Pseudo-arclength: predict along the tangent, correct on the plane normal to it.
   double h = opt.step;
   while (int(br.points.size()) < opt.max_points) {
-    const Corrected nx = correct(c, cur.Z + h * cur.t, cur.t);
+    const Corrected nx = run.correct(cur.Z + h * cur.t, cur.t);
     Tests next;
     bool ok = nx.ok;
     if (ok) {
-      next = make(nx.Z, cur.t, 0);
+      next = run.make(nx.Z, cur.t, 0);
       ok = next.t.dot(cur.t) > 0.9;  // a sharp turn: a smaller step, not a jump to another branch
     }
     if (!ok) {
@@ -214,76 +311,12 @@ Branch continue_branch(OrbitProblem pb, const Vec9& X0, const std::string& param
       }
       continue;
     }
-    // Events between cur and next: bisection on the sign of each test function.
-    const auto v0 = values(cur), v1 = values(next);
-    const Vec10 d = (next.Z - cur.Z).normalized();
-    for (int k = 0; k < 6; ++k) {
-      const bool changed = k == 5 ? v0[k] != v1[k] : (v0[k] < 0) != (v1[k] < 0);
-      if (!changed || !std::isfinite(v0[k]) || !std::isfinite(v1[k])) continue;
-      // A change in the count of unstable eigenvalues is located on the real part of the
-      // crossing one: the (n+1)-th largest, n the smaller count (the count itself has a noise
-      // threshold).
-      const int n_cross = int(std::min(v0[5], v1[5]));
-      const auto located = [&](const Tests& T) {
-        return k == 5 ? T.point.stab.eigenvalues(n_cross).real() : values(T)[k];
-      };
-      const double f0 = located(cur);
-      double a = 0, b = 1;
-      Tests at = next;
-      for (int it = 0; it < 40; ++it) {
-        const double m = 0.5 * (a + b);
-        const Corrected cm = correct(c, cur.Z + m * (next.Z - cur.Z), d);
-        if (!cm.ok) break;
-        Tests tm = make(cm.Z, cur.t, 0);
-        const bool same = (located(tm) < 0) == (f0 < 0);
-        (same ? a : b) = m;
-        if (!same) at = tm;
-      }
-      BranchEvent e;
-      e.lambda = at.point.lambda;
-      e.orbit = at.point.orbit;
-      e.after_point = int(br.points.size()) - 1;
-      switch (k) {
-        case 0: e.kind = EventKind::Fold; break;
-        case 1: e.kind = EventKind::BranchPoint; break;
-        case 2: e.kind = EventKind::ConeExitUp; break;
-        case 3: e.kind = EventKind::ConeExitDown; break;
-        case 4: e.kind = EventKind::Slack; break;
-        case 5: {
-          // The crossing eigenvalue: the one nearest the imaginary axis where it was located.
-          const Eigen::VectorXcd& ev = at.point.stab.eigenvalues;
-          int j = 0;
-          for (int i = 1; i < ev.size(); ++i)
-            if (std::abs(ev(i).real()) < std::abs(ev(j).real())) j = i;
-          const bool gain = v1[k] < v0[k];
-          e.frequency = std::abs(ev(j).imag());
-          e.kind = e.frequency > 1e-6 * rate_scale ? EventKind::Hopf
-                   : gain                          ? EventKind::StabilityGain
-                                                   : EventKind::StabilityLoss;
-          e.note = (gain ? "stabilising" : "destabilising") + std::string(" with λ ") +
-                   (next.point.lambda > cur.point.lambda ? "increasing" : "decreasing");
-          break;
-        }
-      }
-      br.events.push_back(e);
-    }
+    run.add_events(cur, next, br);
     br.points.push_back(next.point);
     cur = next;
     if (nx.iterations <= 3) h = std::min(1.5 * h, opt.step_max);
-    const double lambda = cur.point.lambda;
-    if (lambda < opt.lambda_min || lambda > opt.lambda_max) {
-      br.stop_reason = "left the parameter range";
-      break;
-    }
-    const double s = cur.point.orbit.s, l = pb.model.p.string_length;
-    if (!(s > 0 && s < l)) {
-      br.stop_reason = "the bead left the string";
-      break;
-    }
-    if (parameter == "omega" && !(lambda > 0)) {
-      br.stop_reason = "ω_m reached 0";
-      break;
-    }
+    br.stop_reason = run.stop_reason(cur);
+    if (!br.stop_reason.empty()) break;
   }
   if (br.stop_reason.empty()) br.stop_reason = "max_points reached";
   std::sort(br.events.begin(), br.events.end(),

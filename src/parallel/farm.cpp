@@ -449,6 +449,43 @@ void give_up_late(const FarmOptions& options, double bound, Workers& ws, std::ve
   }
 }
 
+// Ready tasks to idle workers, in the order the workers asked; returns the bytes sent.
+std::uint64_t hand_out(const FarmComm& comm, std::deque<int>& idle, Scheduler& sched, Workers& ws) {
+  std::uint64_t sent = 0;
+  while (!idle.empty() && sched.has_ready()) {
+    const int w = idle.front();
+    idle.pop_front();
+    const std::size_t c = sched.take();
+    const Task& t = sched.task(c);
+    Header h;
+    h.task_id = t.id;
+    h.chain = t.chain;
+    h.index = t.index;
+    const Bytes msg = pack(h, t.input, sched.carry(c));
+    comm.send(msg, w, kTagTask);
+    sent += msg.size();
+    ws.assigned[static_cast<std::size_t>(w)] = c;
+    ws.handed[static_cast<std::size_t>(w)] = Clock::now();
+  }
+  return sent;
+}
+
+// A worker's result message as the task's result.
+TaskResult result_of(const Message& m) {
+  TaskResult r;
+  r.task_id = m.header.task_id;
+  r.chain = m.header.chain;
+  r.index = m.header.index;
+  r.ran = true;
+  r.ok = m.header.code == 1;
+  r.output = m.bytes(0);
+  r.carry = m.bytes(1);
+  r.error = m.text(2);
+  r.wall_seconds = m.header.seconds;
+  r.rank = m.source;
+  return r;
+}
+
 FarmSummary run_master(const FarmComm& comm, int size, std::vector<Chain> chains, const FarmOptions& options,
                        Clock::time_point start) {
   Scheduler sched(std::move(chains), options, start);
@@ -467,21 +504,7 @@ FarmSummary run_master(const FarmComm& comm, int size, std::vector<Chain> chains
   while (true) {
     // A stop request or an error: no new task; results in flight still come back.
     if (!stopping && (stop_requested(options) || sched.failed())) stopping = true;
-    while (!stopping && !idle.empty() && sched.has_ready()) {
-      const int w = idle.front();
-      idle.pop_front();
-      const std::size_t c = sched.take();
-      const Task& t = sched.task(c);
-      Header h;
-      h.task_id = t.id;
-      h.chain = t.chain;
-      h.index = t.index;
-      const Bytes msg = pack(h, t.input, sched.carry(c));
-      comm.send(msg, w, kTagTask);
-      sent += msg.size();
-      ws.assigned[static_cast<std::size_t>(w)] = c;
-      ws.handed[static_cast<std::size_t>(w)] = Clock::now();
-    }
+    if (!stopping) sent += hand_out(comm, idle, sched, ws);
     // Done when every worker is waiting (so none has a message still on its way) and there is
     // nothing more to hand out.
     // Lost workers never ask again: with none left, what is still ready never starts.
@@ -515,17 +538,7 @@ FarmSummary run_master(const FarmComm& comm, int size, std::vector<Chain> chains
                                  std::to_string(m.header.task_id) + ", which it was not given");
       const std::size_t c = *slot;
       slot.reset();
-      TaskResult r;
-      r.task_id = m.header.task_id;
-      r.chain = m.header.chain;
-      r.index = m.header.index;
-      r.ran = true;
-      r.ok = m.header.code == 1;
-      r.output = m.bytes(0);
-      r.carry = m.bytes(1);
-      r.error = m.text(2);
-      r.wall_seconds = m.header.seconds;
-      r.rank = w;
+      TaskResult r = result_of(m);
       busy[static_cast<std::size_t>(w)] += r.wall_seconds;
       ++ran[static_cast<std::size_t>(w)];
       slowest = std::max(slowest, r.wall_seconds);

@@ -47,21 +47,19 @@ double parameter(const Parameters& p, std::string_view key) {
   throw std::invalid_argument(fmt::format("unknown model parameter '{}'", key));
 }
 
-std::vector<std::string> grid_parameter_keys() {
+namespace {
+// The keys of the parameters a flag of the table marks, then the aliases (which name one).
+std::vector<std::string> keys_marked(bool ParameterInfo::*flag) {
   std::vector<std::string> out;
   for (const ParameterInfo& p : kParameters)
-    if (p.grid_axis) out.emplace_back(p.key);
+    if (p.*flag) out.emplace_back(p.key);
   for (const ParameterAlias& a : kParameterAliases) out.emplace_back(a.key);
   return out;
 }
+}  // namespace
 
-std::vector<std::string> continuation_parameter_keys() {
-  std::vector<std::string> out;
-  for (const ParameterInfo& p : kParameters)
-    if (p.continuation) out.emplace_back(p.key);
-  for (const ParameterAlias& a : kParameterAliases) out.emplace_back(a.key);
-  return out;
-}
+std::vector<std::string> grid_parameter_keys() { return keys_marked(&ParameterInfo::grid_axis); }
+std::vector<std::string> continuation_parameter_keys() { return keys_marked(&ParameterInfo::continuation); }
 
 std::vector<double> parameter_row(const Parameters& p) {
   std::vector<double> row;
