@@ -1072,6 +1072,36 @@ class fit(unittest.TestCase):
         m = ft.measure(res, 0.02)
         self.assertAlmostEqual(m["omega_2"][0], 15.0 * pi)
 
+    def test_a_bracket_over_unsettled_windows_weighs_as_one_step(self):
+        import fit_thresholds as ft
+        # ω_fall between a lagging window at 4.0π and the first fallen one at 3.0π, with four
+        # not-settled windows at 3.8–3.2π in between (0.2π apart): σ is half the window
+        # spacing, 0.1π, not the bracket's half-width 0.5π, so the same miss costs 25× more χ².
+        pi = math.pi
+        row = lambda name, a, b: {"chain": "0", "threshold": name, "before_rad_s": repr(a), "after_rad_s": repr(b)}
+        run = lambda d, cls, a, b, n: {"kind": "run", "chain": "0", "direction": str(d), "class": cls,
+                                       "omega_from_rad_s": repr(a), "omega_to_rad_s": repr(b), "windows": str(n),
+                                       "omega_ball_mean_rad_s": repr(4.2 * pi)}
+        down_seq = [run(-1, "lagging-circular", 4.4 * pi, 4.0 * pi, 3), run(-1, "not-settled", 3.8 * pi, 3.2 * pi, 4),
+                    run(-1, "fallen", 3.0 * pi, 2.0 * pi, 6), run(1, "not-settled", 3.4 * pi, 3.6 * pi, 2)]
+        self.assertEqual(ft.windows_inside(down_seq, 4.0 * pi, 3.0 * pi, -1), 4)  # the up leg's 2 do not count
+        self.assertEqual(ft.windows_inside(down_seq, 4.0 * pi, 3.0 * pi, 1), 2)
+        mid, sigma, before, hw = ft.bracket([row("omega_fall", 4.0 * pi, 3.0 * pi)], "omega_fall", down_seq, -1)
+        self.assertAlmostEqual(mid, 3.5 * pi)
+        self.assertAlmostEqual(hw, 0.5 * pi)
+        self.assertAlmostEqual(sigma, 0.1 * pi)
+        # A clean bracket between adjacent windows keeps σ = its half-width.
+        clean = ft.bracket([row("omega_fall", 3.2 * pi, 3.0 * pi)], "omega_fall", down_seq, -1)
+        self.assertAlmostEqual(clean[1], 0.1 * pi)
+        res = {"rise": ([row("omega_rise", 12.5 * pi, 12.7 * pi)], []), "up": ([row("omega_1", 4.7 * pi, 4.9 * pi)], []),
+               "down": ([row("omega_fall", 4.0 * pi, 3.0 * pi)], down_seq)}
+        m = ft.measure(res, 0.02)
+        self.assertAlmostEqual(m["omega_fall"][1], 0.1 * pi)
+        self.assertAlmostEqual(m["omega_fall"][3], 0.5 * pi)
+        w, rel, sig, _ = ft.residuals(m, ["omega_fall"], "penalty", 100.0)
+        self.assertAlmostEqual(sig[0], 0.1 / 3.24)
+        self.assertAlmostEqual(w[0], (3.5 - 3.24) / 0.1)  # (ω − paper)/σ: 2.6 σ, not 0.52
+
     def test_a_sweep_with_failed_tasks_is_kept_and_flagged(self):
         import tempfile
         import fit_thresholds as ft
