@@ -515,6 +515,17 @@ class adequacy(unittest.TestCase):
                          "**yes**: ramp: not reached; held 16.00π (+6.7 %); Hopf 14.81π (-1.3 %)")
         self.assertEqual(ma.hopf_text(stair[1][1]), "Hopf 14.81 ± 0.10π (-1.3 %)")
 
+    def test_hopf_point_is_the_one_astrojax_prints(self):
+        import model_adequacy as ma
+        # The row of `astrojax thresholds` on the staircase at c_a = 2e-6 (its σ scaled by
+        # χ²/dof); another chain's row and a table without one give nothing.
+        printed = ("  ω2         0 tie_damping=2e-06  16.000 → 16.500    0.500      lagging-circular → flower\n"
+                   "  ω2 (Hopf)  1 tie_damping=3e-06  12.52 ± 0.13       0.260      lag's Hopf point, 30 levels\n"
+                   "  ω2 (Hopf)  0 tie_damping=2e-06  15.34 ± 0.35       0.701      lag's Hopf point, 34 levels"
+                   "        15.00      contains it        fit χ²/dof 2.1e+02\n")
+        self.assertEqual(ma.hopf_point_printed(printed), (15.34, 0.35))
+        self.assertTrue(all(math.isnan(v) for v in ma.hopf_point_printed(printed.splitlines()[1])))
+
     def test_tiny_run(self):
         md, work = data("adequacy.md"), data("adequacy_runs")
         script("model_adequacy.py", "-o", md, "--work", work, "--astrojax", ASTROJAX,
