@@ -701,7 +701,8 @@ def report(args, params, ev, best, D, how, h, cov, loose, tight, factor, sv, fin
     for k, name in enumerate(names):
         value, _, note, hw = meas[name]
         if np.isfinite(value):
-            L.append(f"| {SYMBOL[name]} | {value / PI:.3f} | {hw / PI:.3f} | {PAPER[name]:.2f} | "
+            hw_text = f"{hw / PI:.3f}" if np.isfinite(hw) else "—"  # the plateau is no bracket
+            L.append(f"| {SYMBOL[name]} | {value / PI:.3f} | {hw_text} | {PAPER[name]:.2f} | "
                      f"{100 * rel[i_used]:+.1f} % | {100 * sig[i_used]:.1f} % | |")
             i_used += 1
         else:
