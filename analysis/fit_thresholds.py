@@ -20,7 +20,10 @@ The sweeps are temporary copies of the shipped files with segments dropped or ex
 `astrojax thresholds --csv --sequence-csv`. ω2 (astrojax: a circular orbit giving way to a
 flower) counts only where its bracket starts in a lagging-circular run of the up-ramp, the
 paper's order (locked → lagging → flower).
-σ_k = the bracket's half-width / paper_k (the window resolution; --refine narrows brackets).
+σ_k = half the window spacing at the bracket / paper_k: the bracket's half-width divided by the
+number of window steps it spans (1 + the windows inside it, not-settled ones that astrojax's
+definitions let through), so a threshold smeared over unsettled windows weighs as much as a
+clean one (--refine narrows brackets).
 A threshold not reached adds --penalty² to χ² (a miss of --penalty σ), or, with
 --missing exclude, is dropped and flagged; either way the report and the CSV name it.
 
@@ -441,14 +444,33 @@ def run_sweep(astrojax, scene, out, values, tie, refine, extra=()):
     return rows, seq, note
 
 
-def bracket(rows, name):
-    """(mid, half-width, lower window) [rad/s] of threshold `name` from astrojax's rows (chain 0), NaN if
-    not reached."""
+def bracket(rows, name, seq=(), direction=1):
+    """(mid, σ, lower window, half-width) [rad/s] of threshold `name` from astrojax's rows
+    (chain 0), NaN if not reached. σ is the half-width divided by the number of window steps the
+    bracket spans: 1 plus the windows of `seq`'s runs (leg `direction`) that lie inside it, which
+    astrojax's definitions let through (not-settled windows before ω_fall, for example). So σ is
+    half the window spacing whether or not the change of class was clean: a bracket widened by
+    unsettled windows says the model's transition is not sharp, not that the value is unknown,
+    and must not buy a small weight."""
     for r in rows:
         if r["threshold"] == name and int(r["chain"]) == 0:
             a, b = ajx.number(r["before_rad_s"]), ajx.number(r["after_rad_s"])
-            return 0.5 * (a + b), 0.5 * abs(b - a), a
-    return np.nan, np.nan, np.nan
+            return 0.5 * (a + b), 0.5 * abs(b - a) / (1 + windows_inside(seq, a, b, direction)), a, 0.5 * abs(b - a)
+    return np.nan, np.nan, np.nan, np.nan
+
+
+def windows_inside(seq, a, b, direction):
+    """The windows of the runs of leg `direction` (chain 0) that lie strictly between ω_m = a and
+    b, with a tolerance of 1e-9 rad/s: the windows a bracket [a, b] steps over."""
+    lo, hi = min(a, b) + 1e-9, max(a, b) - 1e-9
+    n = 0
+    for r in seq:
+        if r["kind"] != "run" or int(r.get("chain", 0) or 0) != 0 or int(r["direction"]) != direction:
+            continue
+        f, t = float(r["omega_from_rad_s"]), float(r["omega_to_rad_s"])
+        if lo <= min(f, t) and max(f, t) <= hi:
+            n += int(r["windows"])
+    return n
 
 
 def up_runs(seq, cls):
@@ -456,22 +478,23 @@ def up_runs(seq, cls):
 
 
 def measure(results, plateau_sigma):
-    """{name: (value [rad/s], σ [rad/s], note)} from the three sweeps' rows; value NaN where
-    not reached, with the reason in the note."""
+    """{name: (value [rad/s], σ [rad/s], note, bracket half-width [rad/s])} from the three
+    sweeps' rows (σ: see bracket); value NaN where not reached, with the reason in the note."""
     out = {}
-    rise_rows = results["rise"][0]
+    rise_rows, rise_seq = results["rise"][:2]
     up_rows, up_seq = results["up" if "up" in results else "held"][:2]
-    down_rows = results["down" if "down" in results else "held"][0]
-    for name, rows in (("omega_rise", rise_rows), ("omega_1", up_rows), ("omega_fall", down_rows)):
-        mid, hw, _ = bracket(rows, name)
-        out[name] = (mid, hw, "" if np.isfinite(mid) else "not reached")
-    mid, hw, before = bracket(up_rows, "omega_2")
+    down_rows, down_seq = results["down" if "down" in results else "held"][:2]
+    for name, rows, seq, leg in (("omega_rise", rise_rows, rise_seq, 1), ("omega_1", up_rows, up_seq, 1),
+                                 ("omega_fall", down_rows, down_seq, -1)):
+        mid, sigma, _, hw = bracket(rows, name, seq, leg)
+        out[name] = (mid, sigma, "" if np.isfinite(mid) else "not reached", hw)
+    mid, sigma, before, hw = bracket(up_rows, "omega_2", up_seq, 1)
     lag = up_runs(up_seq, "lagging-circular")
     in_lag = [r for r in lag if float(r["omega_from_rad_s"]) - 1e-9 <= before <= float(r["omega_to_rad_s"]) + 1e-9]
     if np.isfinite(mid) and in_lag:
-        out["omega_2"] = (mid, hw, "")
+        out["omega_2"] = (mid, sigma, "", hw)
     elif not lag:
-        out["omega_2"] = (np.nan, np.nan, "not reached: no lagging orbit on the way up")
+        out["omega_2"] = (np.nan, np.nan, "not reached: no lagging orbit on the way up", np.nan)
     else:
         top = max(float(r["omega_to_rad_s"]) for r in up_seq if r["kind"] == "run" and r["direction"] == "1")
         end = max(float(r["omega_to_rad_s"]) for r in lag)
@@ -480,12 +503,12 @@ def measure(results, plateau_sigma):
         out["omega_2"] = (np.nan, np.nan, f"not reached: the lag survives to the ramp's top, {top / PI:.2f}π"
                           if end >= top - 1e-9 else
                           f"not reached: the lag ends at {end / PI:.2f}π in {after[0] if after else '?'}, "
-                          f"not in a flower")
+                          f"not in a flower", np.nan)
     if lag:
         longest = max(lag, key=lambda r: int(r["windows"]))
-        out["plateau"] = (float(longest["omega_ball_mean_rad_s"]), plateau_sigma * PAPER["plateau"] * PI, "")
+        out["plateau"] = (float(longest["omega_ball_mean_rad_s"]), plateau_sigma * PAPER["plateau"] * PI, "", np.nan)
     else:
-        out["plateau"] = (np.nan, np.nan, "not reached: no lagging orbit on the way up")
+        out["plateau"] = (np.nan, np.nan, "not reached: no lagging orbit on the way up", np.nan)
     return out
 
 
@@ -494,10 +517,10 @@ def residuals(meas, names, missing, penalty):
     reached gives `penalty` (missing='penalty') or is dropped (missing='exclude')."""
     w, rel, sig, flags = [], [], [], []
     for k in names:
-        value, hw, note = meas[k]
+        value, sigma, note = meas[k][:3]
         paper = PAPER[k] * PI
         if np.isfinite(value):
-            s = max(hw, 1e-6 * paper) / paper
+            s = max(sigma, 1e-6 * paper) / paper
             rel.append((value - paper) / paper)
             sig.append(s)
             w.append(rel[-1] / s)
@@ -559,7 +582,7 @@ class Evaluator:
 
     def record(self, key, values, results, phase, issue):
         if results is None:
-            meas = {k: (np.nan, np.nan, f"infeasible: {issue}") for k in self.names}
+            meas = {k: (np.nan, np.nan, f"infeasible: {issue}", np.nan) for k in self.names}
         else:
             meas = measure(results, self.args.plateau_sigma)
         w, rel, sig, flags = residuals(meas, self.names, self.args.missing, self.args.penalty)
@@ -665,7 +688,7 @@ def report(args, params, ev, best, D, how, h, cov, loose, tight, factor, sv, fin
     L += ["", f"χ² = {best['chi2']:.4g} over {len(names)} residuals ({m_used} reached), {len(params)} parameters; "
           + (f"covariance scaled by {factor:.3g} = max(1, χ²/(m − n))." if factor != 1.0 or m_used > len(params)
              else "no more residuals than parameters: the covariance is not scaled by χ²."),
-          "σ: (JᵀWJ)⁺ over the constrained directions, W = diag(1/σ_k²) with σ_k the bracket half-widths.", ""]
+          "σ: (JᵀWJ)⁺ over the constrained directions, W = diag(1/σ_k²) with σ_k half the window spacing at each bracket.", ""]
     failed = [r for r in ev.log if any("some tasks failed" in f for f in r["flags"])]
     L += [f"Evaluations with failed tasks (astrojax sweep exit code 3; their windows are skipped by "
           f"`astrojax thresholds`): {len(failed)} of {len(ev.log)}"
@@ -676,9 +699,10 @@ def report(args, params, ev, best, D, how, h, cov, loose, tight, factor, sv, fin
           "|---|---|---|---|---|---|---|"]
     i_used = 0
     for k, name in enumerate(names):
-        value, hw, note = meas[name]
+        value, _, note, hw = meas[name]
         if np.isfinite(value):
-            L.append(f"| {SYMBOL[name]} | {value / PI:.3f} | {hw / PI:.3f} | {PAPER[name]:.2f} | "
+            hw_text = f"{hw / PI:.3f}" if np.isfinite(hw) else "—"  # the plateau is no bracket
+            L.append(f"| {SYMBOL[name]} | {value / PI:.3f} | {hw_text} | {PAPER[name]:.2f} | "
                      f"{100 * rel[i_used]:+.1f} % | {100 * sig[i_used]:.1f} % | |")
             i_used += 1
         else:
@@ -687,7 +711,7 @@ def report(args, params, ev, best, D, how, h, cov, loose, tight, factor, sv, fin
     L += ["", "## Sensitivities at the best parameters", "",
           "∂ω_k/∂p_j in π rad/s per unit of p_j, from ±h_j (central differences; one-sided where a side is "
           "not reached); in brackets the change of ω_k in % for a 10 % change of p_j. \"within a bracket\": "
-          "the threshold moved by no more than its bracket width over the step, so the slope is at the "
+          "the threshold moved by no more than one window step (2 σ_k) over the step, so the slope is at the "
           "resolution (it may be 0 or one bracket's jump).", ""]
     L.append("| threshold | " + " | ".join(f"{k} (h = {hj:.3g} {p.unit})" for k, hj, p in zip(keys, h, params)) + " |")
     L.append("|---|" + "---|" * len(keys))
@@ -756,10 +780,11 @@ def write_csv(path, ev):
     with open(path, "w", newline="") as f:
         w = csv.writer(f, lineterminator="\n")
         w.writerow(["index", "phase", *keys, *(f"{n}_rad_s" for n in names), *(f"{n}_half_width_rad_s" for n in names),
-                    "chi2", "flags"])
+                    *(f"{n}_sigma_rad_s" for n in names), "chi2", "flags"])
         for r in ev.log:
             w.writerow([r["index"], r["phase"], *(f"{v:.9g}" for v in r["x"]),
                         *("" if not np.isfinite(r["meas"][n][0]) else f"{r['meas'][n][0]:.9g}" for n in names),
+                        *("" if not np.isfinite(r["meas"][n][3]) else f"{r['meas'][n][3]:.9g}" for n in names),
                         *("" if not np.isfinite(r["meas"][n][1]) else f"{r['meas'][n][1]:.9g}" for n in names),
                         f"{r['chi2']:.9g}", "; ".join(r["flags"] + ([r["issue"]] if r["issue"] else []))])
     print(f"wrote {path}")

@@ -18,8 +18,8 @@ the built astrojax on the files of sweeps/adequacy/ at one representative (R, d)
     back down through ω_fall), one chain at the one parameter set's c_a (docs/reports/reproduction-evidence.md, "One
     parameter set for the whole protocol"; the tie keys do nothing without the clutch);
     `astrojax thresholds` brackets held ω1, ω2 and ω_fall, `--sequence-csv` gives the runs of
-    one class per leg (with a lagging orbit's ω_ball plateau), and flower_onset.analyse the Hopf
-    point where there are flowers.
+    one class per leg (with a lagging orbit's ω_ball plateau), and its "ω2 (Hopf)" row the Hopf
+    point where there are flowers (its σ scaled by χ²/dof, as astrojax prints it).
 A threshold is reproduced when a ramp bracket's midpoint, a staircase bracket's midpoint, the
 Hopf point (ω2) or a prediction of the equilibria lies within 5 % of the paper's value; an
 orbit type when some ramp window, held chain or staircase level is classified as it. The
@@ -37,13 +37,13 @@ usage: /usr/bin/python3 analysis/model_adequacy.py -o out/adequacy.md [--work ou
        [--staircase sweeps/table1_staircase.toml]
 """
 import os
+import re
 import sys
 
 import h5py
 import numpy as np
 
 import astrojax_analysis as ajx
-import flower_onset
 
 PI = np.pi
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -170,18 +170,17 @@ def classed_windows(sweep):
 def staircase(exe, path):
     """The second half held level by level (chain 0 of the staircase sweep): the held
     thresholds, each level's class, the runs of one class per leg with their mean ω_ball and
-    dω_ball/dω_m, the Hopf point of flower_onset (ω_H, σ [π rad/s]; NaN without a flower that
+    dω_ball/dω_m, the Hopf point astrojax thresholds fits (ω_H, σ [π rad/s]; NaN without a flower that
     lasts to the top), and the smallest tension and L1 the measured windows saw (what the slack
     and top-stop layers are there for)."""
-    rows, _ = ajx.run_thresholds(path, exe)
+    rows, printed = ajx.run_thresholds(path, exe)
     out = dict(zip(("mid", "bracket"), brackets(rows)))
     sweep = ajx.Sweep(path)
     out["windows"] = classed_windows(sweep)
     out["runs"] = [(int(r["direction"]), r["class"], float(r["omega_from_rad_s"]), float(r["omega_to_rad_s"]),
                     ajx.number(r["omega_ball_mean_rad_s"]), ajx.number(r["omega_ball_slope"]))
                    for r in ajx.run_sequence(path, exe) if r["kind"] == "run" and int(r["chain"]) == 0]
-    hopf = flower_onset.analyse(sweep, 0, flower_onset.SPAN)
-    out["hopf"] = (hopf["omega_H"], hopf["sigma_H"])
+    out["hopf"] = hopf_point_printed(printed)
     ks = sweep.windows(0)
     out["L1_min"] = float(np.min(sweep.stats["L1_min"][0, ks])) if ks else np.nan
     with h5py.File(path, "r") as f:
@@ -189,6 +188,16 @@ def staircase(exe, path):
         taken = np.arange(s["T1"].shape[2]) < s["count"][0][:, None]  # the stored samples of each window
         out["T_min"] = min((float(np.min(s[k][0][taken])) for k in ("T1", "T2") if taken.any()), default=np.nan)
     return out
+
+
+def hopf_point_printed(text):
+    """(ω_H, σ) [π rad/s] of chain 0's "ω2 (Hopf)" row in the table `astrojax thresholds` prints,
+    its σ scaled by χ²/dof as astrojax gives it; (NaN, NaN) without one (no flower to the top)."""
+    for line in text.splitlines():
+        m = re.match(r"\s*ω2 \(Hopf\)\s+0\b.*?\s([0-9.]+) ± ([0-9.]+)\s", line)
+        if m:
+            return float(m.group(1)), float(m.group(2))
+    return np.nan, np.nan
 
 
 def predicted_value(group):

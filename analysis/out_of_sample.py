@@ -72,8 +72,8 @@ class Evaluator(ft.Evaluator):
     """fit_thresholds' evaluation, with ω_fall from the fresh orbit ('fall') where the staircase's
     down leg has no circular orbit to fall from (the rigid tie falls at ω1 on the way up), and
     scored by J = Σ ((ω_k − paper_k)/paper_k)², a threshold not reached counting as a miss of
-    --penalty (relative): χ² weighted by the brackets' widths would favour points whose
-    threshold falls among not-settled windows, where the bracket is wide."""
+    --penalty (relative): unweighted, so that variants with different window spacings are
+    scored alike."""
 
     def record(self, key, values, results, phase, issue):
         if results is not None and not np.isfinite(ft.bracket(results["held"][0], "omega_fall")[0]):

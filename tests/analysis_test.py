@@ -515,6 +515,17 @@ class adequacy(unittest.TestCase):
                          "**yes**: ramp: not reached; held 16.00π (+6.7 %); Hopf 14.81π (-1.3 %)")
         self.assertEqual(ma.hopf_text(stair[1][1]), "Hopf 14.81 ± 0.10π (-1.3 %)")
 
+    def test_hopf_point_is_the_one_astrojax_prints(self):
+        import model_adequacy as ma
+        # The row of `astrojax thresholds` on the staircase at c_a = 2e-6 (its σ scaled by
+        # χ²/dof); another chain's row and a table without one give nothing.
+        printed = ("  ω2         0 tie_damping=2e-06  16.000 → 16.500    0.500      lagging-circular → flower\n"
+                   "  ω2 (Hopf)  1 tie_damping=3e-06  12.52 ± 0.13       0.260      lag's Hopf point, 30 levels\n"
+                   "  ω2 (Hopf)  0 tie_damping=2e-06  15.34 ± 0.35       0.701      lag's Hopf point, 34 levels"
+                   "        15.00      contains it        fit χ²/dof 2.1e+02\n")
+        self.assertEqual(ma.hopf_point_printed(printed), (15.34, 0.35))
+        self.assertTrue(all(math.isnan(v) for v in ma.hopf_point_printed(printed.splitlines()[1])))
+
     def test_tiny_run(self):
         md, work = data("adequacy.md"), data("adequacy_runs")
         script("model_adequacy.py", "-o", md, "--work", work, "--astrojax", ASTROJAX,
@@ -1071,6 +1082,36 @@ class fit(unittest.TestCase):
         up_rows[1] = row("omega_2", 14.92 * pi, 15.08 * pi)
         m = ft.measure(res, 0.02)
         self.assertAlmostEqual(m["omega_2"][0], 15.0 * pi)
+
+    def test_a_bracket_over_unsettled_windows_weighs_as_one_step(self):
+        import fit_thresholds as ft
+        # ω_fall between a lagging window at 4.0π and the first fallen one at 3.0π, with four
+        # not-settled windows at 3.8–3.2π in between (0.2π apart): σ is half the window
+        # spacing, 0.1π, not the bracket's half-width 0.5π, so the same miss costs 25× more χ².
+        pi = math.pi
+        row = lambda name, a, b: {"chain": "0", "threshold": name, "before_rad_s": repr(a), "after_rad_s": repr(b)}
+        run = lambda d, cls, a, b, n: {"kind": "run", "chain": "0", "direction": str(d), "class": cls,
+                                       "omega_from_rad_s": repr(a), "omega_to_rad_s": repr(b), "windows": str(n),
+                                       "omega_ball_mean_rad_s": repr(4.2 * pi)}
+        down_seq = [run(-1, "lagging-circular", 4.4 * pi, 4.0 * pi, 3), run(-1, "not-settled", 3.8 * pi, 3.2 * pi, 4),
+                    run(-1, "fallen", 3.0 * pi, 2.0 * pi, 6), run(1, "not-settled", 3.4 * pi, 3.6 * pi, 2)]
+        self.assertEqual(ft.windows_inside(down_seq, 4.0 * pi, 3.0 * pi, -1), 4)  # the up leg's 2 do not count
+        self.assertEqual(ft.windows_inside(down_seq, 4.0 * pi, 3.0 * pi, 1), 2)
+        mid, sigma, before, hw = ft.bracket([row("omega_fall", 4.0 * pi, 3.0 * pi)], "omega_fall", down_seq, -1)
+        self.assertAlmostEqual(mid, 3.5 * pi)
+        self.assertAlmostEqual(hw, 0.5 * pi)
+        self.assertAlmostEqual(sigma, 0.1 * pi)
+        # A clean bracket between adjacent windows keeps σ = its half-width.
+        clean = ft.bracket([row("omega_fall", 3.2 * pi, 3.0 * pi)], "omega_fall", down_seq, -1)
+        self.assertAlmostEqual(clean[1], 0.1 * pi)
+        res = {"rise": ([row("omega_rise", 12.5 * pi, 12.7 * pi)], []), "up": ([row("omega_1", 4.7 * pi, 4.9 * pi)], []),
+               "down": ([row("omega_fall", 4.0 * pi, 3.0 * pi)], down_seq)}
+        m = ft.measure(res, 0.02)
+        self.assertAlmostEqual(m["omega_fall"][1], 0.1 * pi)
+        self.assertAlmostEqual(m["omega_fall"][3], 0.5 * pi)
+        w, rel, sig, _ = ft.residuals(m, ["omega_fall"], "penalty", 100.0)
+        self.assertAlmostEqual(sig[0], 0.1 / 3.24)
+        self.assertAlmostEqual(w[0], (3.5 - 3.24) / 0.1)  # (ω − paper)/σ: 2.6 σ, not 0.52
 
     def test_a_sweep_with_failed_tasks_is_kept_and_flagged(self):
         import tempfile

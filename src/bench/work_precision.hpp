@@ -127,7 +127,8 @@ std::string csv_line(const Row& r, const Reference& ref);
 
 namespace ajx::bench {
 
-// The fall of the bead on a ramp down (ω_fall, model.md): the first landing on the bottom ball.
+// The fall of the bead on a ramp down (ω_fall, docs/guide/thresholds.md): the first landing on
+// the bottom ball.
 // Samples every sample_dt; the landing time is extrapolated from the last sample before it,
 // t = t_k + (L2 - d)/(-L̇2) (error O(sample_dt² L̈2/L̇2)), and ω_fall = ω_m there.
 struct Fall {
@@ -137,7 +138,8 @@ struct Fall {
 };
 Fall first_fall(const Scene& scene, const Setting& setting, double sample_dt);
 
-// The loss of the lock on a ramp up (ω1, model.md): the balls fall half a turn behind the motor.
+// The loss of the lock on a ramp up (ω1, docs/guide/thresholds.md): the balls fall half a turn
+// behind the motor.
 // With the lag λ(t) = φ(t) − (θ1 + θ2)/2 (θ_i the balls' unwrapped lab azimuths, from samples
 // every sample_dt), the lock is lost where λ − λ(t0) first reaches π; t is interpolated linearly
 // between the samples that bracket it (error O(sample_dt² λ̈)), and ω1 = ω_m there.

@@ -1,5 +1,5 @@
 // Thresholds predicted from the branches of locked orbits, against the paper's ramps
-// (model.md, "Measured thresholds"). A locked orbit with the bead high is a stuck orbit that
+// (docs/guide/thresholds.md). A locked orbit with the bead high is a stuck orbit that
 // is admissible (taut, inside the static cone, between the stops) and linearly stable. For
 // each bead position s of a grid, every stuck branch found at a few starting ω_m is continued
 // in ω_m; the intervals where it is admissible and stable are collected, with the event that

@@ -1,6 +1,7 @@
 // Contact modes of the string and bead: the geometry of the two segments, the tensions
 // solved from the acceleration-level constraints, projection onto the constraint manifold,
-// plastic impacts, and the conditions that end a mode (model.md, "Modes").
+// plastic impacts, and the conditions that end a mode (docs/physics/model.md, "String, bead and
+// forces").
 #pragma once
 #include <Eigen/Core>
 

@@ -1,5 +1,6 @@
-// When a mode ends and what follows (model.md, "Modes"): the guard functions each mode
-// watches, as zero crossings located on the dense output, and the mode entered at a crossing.
+// When a mode ends and what follows (docs/physics/model.md, "String, bead and forces"): the
+// guard functions each mode watches, as zero crossings located on the dense output, and the
+// mode entered at a crossing.
 // Guards of omitted layers are watches: they count a violated assumption and switch nothing.
 #pragma once
 #include <functional>

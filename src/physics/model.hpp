@@ -36,7 +36,8 @@ struct Parameters {
 //  StickSlip    sliding with μ_k, sticking while the μ_s cone holds (the full model);
 //  Regularised  sgn ṡ replaced by tanh(ṡ/ε), no stuck mode: for comparison only (it creeps).
 enum class Friction { None, Kinetic, StickSlip, Regularised };
-// How T1/T2 depends on the deflection ψ of the string at the bead (model.md, "Forces").
+// How T1/T2 depends on the deflection ψ of the string at the bead
+// (docs/physics/model.md, "Friction").
 enum class FrictionLaw { Capstan, PointContact };
 // A couple about ẑ on the pair (physics/pair_couple.hpp): none, or kinetic friction between the
 // motor's rotation and the lower segment's (a diagnostic, not a part of the Astrojax).

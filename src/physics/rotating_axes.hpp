@@ -1,4 +1,4 @@
-// The equations in axes turning with the motor (model.md, "Geometry"): every vector of the lab
+// The equations in axes turning with the motor (docs/physics/model.md, "Drive"): each vector of the lab
 // state is expressed in axes rotated by the motor phase φ(t) about z,
 //   r' = Rz(−φ) r,   v' = Rz(−φ) v   (v the lab velocity, not the velocity seen in the frame).
 // The top then sits at a' = (R, 0, 0), ȧ' = R ω ŷ, ä' = R ω̇ ŷ − R ω² x̂: no sin/cos, and a

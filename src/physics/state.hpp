@@ -8,7 +8,7 @@
 
 namespace ajx::physics {
 
-// Which constraints are active (model.md, "Modes").
+// Which constraints are active (docs/physics/model.md, "String, bead and forces").
 enum class Mode : int {
   Sliding = 0,     // taut, bead sliding: L1 + L2 = l, one unknown tension, T1 = κ T2
   BottomStop = 1,  // bead resting on the bottom ball: L1 = l - d, L2 = d (a double pendulum)

@@ -1,4 +1,4 @@
-// The string and the friction law at the bead (model.md, "Forces").
+// The string and the friction law at the bead (docs/physics/model.md, "Friction").
 // Sliding: T1 = κ T2 with κ from the law, the deflection ψ = arccos(u1·u2) and σ = sgn ṡ.
 #pragma once
 #include "physics/drive.hpp"

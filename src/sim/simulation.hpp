@@ -64,7 +64,7 @@ struct Sample {
 };
 using SampleObserver = std::function<void(const Sample&)>;
 
-// An assumption of an omitted layer that the run found violated (model.md, "Modes").
+// An assumption of an omitted layer that the run found violated (docs/physics/layers.md).
 struct Violation {
   std::string what;          // e.g. "negative tension without the slack layer"
   long count = 0;            // times the run entered the violation

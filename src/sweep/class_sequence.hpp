@@ -7,7 +7,7 @@
 // default: a one-window excursion (the bead climbs and falls back within a window on a slow
 // ramp) is exactly such a window, and absorbing it would hide the paper's "rise" step.
 //
-// The paper's sequence (section 3.2, model.md), as steps in this order:
+// The paper's sequence (the paper's section 3.2; docs/guide/thresholds.md), as steps in this order:
 //   rise      up: fallen → not fallen (the bead starts to climb at ω_rise)
 //   circular  a circular orbit (locked or lagging) after the climb
 //   fall      down: circular → fallen (not-settled runs between allowed) at ω_fall

@@ -62,7 +62,7 @@ std::optional<Bracket> find_threshold(Threshold t, const std::vector<ClassedWind
           found = bracket(a, b);
         break;
       case Threshold::Omega2:  // the last circular orbit on the way up that gives way to a flower
-        // (through unsettled windows): model.md's ω2. A lock lost to a lag, through an
+        // (through unsettled windows): ω2 (docs/guide/thresholds.md). A lock lost to a lag, through an
         // unsettled window, is ω1's business, not this.
         if (a.direction > 0 && circular(a.cls)) {
           const std::size_t j = next_settled(w, i, a.direction);

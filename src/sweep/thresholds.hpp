@@ -1,5 +1,5 @@
 // The measured thresholds of one chain, found from its sequence of window classes along the
-// protocol (model.md, "Measured thresholds"). Each is a bracket: the two ω_m between which
+// protocol (docs/guide/thresholds.md). Each is a bracket: the two ω_m between which
 // the class changed (the mean ω_m of the last window before and of the first window after).
 //   ω_rise  rising ω_m: the first window that is no longer fallen after fallen ones (the bead
 //           starts to climb);
@@ -38,7 +38,7 @@ enum class Threshold { Rise, Fall, Omega1, Omega2 };
 inline constexpr std::array<Threshold, 4> kThresholds{Threshold::Rise, Threshold::Fall, Threshold::Omega1,
                                                       Threshold::Omega2};
 std::string_view to_string(Threshold t);     // "omega_rise", "omega_fall", "omega_1", "omega_2"
-double paper_value(Threshold t);             // the measured value of model.md [rad/s]
+double paper_value(Threshold t);             // the paper's measured value [rad/s]
 
 // Windows in protocol order (unclassified ones left out by the caller).
 std::optional<Bracket> find_threshold(Threshold t, const std::vector<ClassedWindow>& windows);
