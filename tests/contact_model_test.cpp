@@ -287,8 +287,10 @@ TEST(ContactModel, StribeckHoldsATableOneOrbitByCreepingThatShrinksWithEps) {
     EXPECT_TRUE(r.ok()) << r.failure;
     return (L1_T - L1_t0) / (T - t0);
   };
+  // The tanh law at the smaller ε: it has no creep equilibrium (μ_k tanh < μ*), so the bead
+  // slides off however small ε is.
   double drift_tanh = 0.0;
-  run(Friction::Regularised, 1e-3, drift_tanh);
+  run(Friction::Regularised, 1e-4, drift_tanh);
   double prev_speed = 1.0;
   for (const double eps : {1e-3, 1e-4}) {
     const Model law = [&] {
@@ -310,11 +312,11 @@ TEST(ContactModel, StribeckHoldsATableOneOrbitByCreepingThatShrinksWithEps) {
     std::printf("measured Stribeck ε = %.0e m/s (v_s = 1e-2): creep ṡ = %.4e m/s, expected %.4e (ṡ/ε = %.4f, "
                 "atanh(μ*/μ_s) = %.4f), largest |L1 − s*| %.2e m in %.0f s; tanh law: %.2e m\n",
                 eps, speed, expected, speed / eps, std::atanh(o.mu_edge / m.p.mu_static), drift, T, drift_tanh);
-    // The orbit's own μ* moves as the bead creeps by |ṡ*| T and as the unstable orbit departs
-    // (~e^{0.6 t}): 5 % on the creep speed covers both at these ε.
+    // The orbit's own μ* moves as the bead creeps by |ṡ*| T (1 mm at ε = 1e-3) and as the
+    // unstable orbit departs (~e^{0.6 t}): 5 % on the creep speed covers both at these ε.
     EXPECT_NEAR(speed, expected, 0.05 * std::abs(expected));
     EXPECT_LT(drift, 2.0 * std::abs(expected) * T + 1e-6);
-    EXPECT_GT(drift_tanh, 100.0 * drift);
+    if (eps == 1e-4) EXPECT_GT(drift_tanh, 20.0 * drift);  // at equal ε
     EXPECT_LT(std::abs(speed), 0.2 * prev_speed);
     prev_speed = std::abs(speed);
   }

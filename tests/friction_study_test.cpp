@@ -44,9 +44,11 @@ TEST(FrictionStudy, RegularisedTendsToTheKineticModel) {
   EXPECT_LT(dev[1], 1e-3);  // 1 mm of the 0.83 m string
 }
 
-// The Stribeck law creeps at ṡ ~ ε where the stick-slip model holds the bead, so its deviation
-// from the stick-slip model has an O(ε) part; its sliding coefficient exceeds μ_k by
-// (μ_s − μ_k) e^{-(ṡ/v_s)²}, an O(v_s) part. With v_s = 10 ε both shrink together.
+// The Stribeck law differs from stick-slip in three ways: it creeps at ṡ ~ ε where stick-slip
+// holds the bead (O(ε)); its peak falls short of μ_s by ~ Δ (kε/v_s)² with k a few (an earlier
+// breakaway); and while sliding its coefficient exceeds μ_k by Δ e^{-(ṡ/v_s)²} (O(v_s)). With
+// ε = v_s/100 the first two shrink with v_s, the second stays fixed: 10x smaller v_s must bring the
+// bead's end position much closer to the event-driven one.
 TEST(FrictionStudy, StribeckTendsToTheStickSlipModel) {
   const bench::Scene base =
       bench::load_scene(std::string(ASTROJAX_SOURCE_DIR) + "/sweeps/scenes/stick_slip_passage.toml", {}, 10.0);
@@ -55,17 +57,17 @@ TEST(FrictionStudy, StribeckTendsToTheStickSlipModel) {
   const double L1 = bench::bead_position(base, ref.final);
   double dev[2];
   int k = 0;
-  for (double eps : {1e-2, 1e-4}) {
-    bench::Scene r = bench::regularised(base, eps, physics::Friction::Stribeck);
-    r.model.layers.stribeck_speed = 10 * eps;
-    const bench::Outcome o = bench::run_point(r, {"dop853", 1e-10, 0.0}, 1, 0.0);
+  for (double v_s : {1e-2, 1e-3}) {
+    bench::Scene r = bench::regularised(base, v_s / 100, physics::Friction::Stribeck);
+    r.model.layers.stribeck_speed = v_s;
+    const bench::Outcome o = bench::run_point(r, {"dop853", 1e-8, 0.0}, 1, 0.0);
     ASSERT_EQ(o.status, "ok");
     dev[k++] = std::abs(bench::bead_position(r, o.final) - L1);
   }
-  std::printf("measured Stribeck (v_s = 10 ε) against stick-slip: |ΔL1| %.3e m at ε = 1e-2, %.3e m at 1e-4\n", dev[0],
-              dev[1]);
+  std::printf("measured Stribeck (ε = v_s/100) against stick-slip: |ΔL1| %.3e m at v_s = 1e-2, %.3e m at 1e-3\n",
+              dev[0], dev[1]);
   EXPECT_LT(dev[1], 0.1 * dev[0]);
-  EXPECT_LT(dev[1], 1e-3);
+  EXPECT_LT(dev[1], 1e-3);  // 1 mm of the 0.83 m string
 }
 
 }  // namespace
