@@ -254,6 +254,74 @@ TEST(ContactModel, StickSlipHoldsWhereTheRegularisedTwinCreeps) {
   EXPECT_GT(steps_reg, steps_event);
 }
 
+TEST(ContactModel, StribeckHoldsATableOneOrbitByCreepingThatShrinksWithEps) {
+  // The Table-1-like stuck orbit at 4.7π needs μ* between μ_k and μ_s. The tanh law saturates at
+  // μ_k, so its bead slides off. The Stribeck law f(v) = [μ_k + Δ e^{-(v/v_s)²}] tanh(v/ε) holds
+  // it where |f(ṡ)| = μ* on the rising branch: ṡ* = ε x with tanh x = μ*/(μ_s − Δ(1 − e^{-(εx/v_s)²}))
+  // → ṡ*/ε = atanh(μ*/μ_s) as ε/v_s → 0. The creep speed is linear in ε: the orbit is held to a
+  // drift ṡ* t that vanishes with ε. Direction: T1/T2 < 1 here, so the bead creeps up (ṡ < 0).
+  Model m = paper_model();
+  const double w = 4.7 * pi, s = 0.547, T = 1.0, t0 = 0.2;
+  const StuckOrbit o = stuck_orbit(m.p, w, s);
+  ASSERT_GT(o.mu_edge, m.p.mu_kinetic);
+  ASSERT_LT(o.mu_edge, m.p.mu_static);
+  ASSERT_LT(o.ratio, 1.0);
+  const MotorSchedule sched({{w, w, T}});
+  // The mean ṡ over [t0, T] (after the settling into creep, which takes ~ m ε / (T2 ψ μ'(0)) ≪ t0)
+  // and the largest departure of L1 from s* over the run.
+  const auto run = [&](Friction f, double eps, double& drift) {
+    Model mm = m;
+    mm.layers.friction = f;
+    mm.layers.regularisation = eps;
+    mm.layers.stribeck_speed = 1e-2;
+    State st = start_on(mm, sched, o, w);
+    st.contact = {Mode::Sliding, 0, 0.0};
+    sim::Simulation simulation(mm, sched, opts(1e-10));
+    double L1_t0 = 0.0, L1_T = 0.0;
+    drift = 0.0;
+    const sim::RunSummary r = simulation.run(st, T, 0.01, [&](const sim::Sample& smp) {
+      drift = std::max(drift, std::abs(smp.dyn.g.L1 - s));
+      if (std::abs(smp.t - t0) < 1e-9) L1_t0 = smp.dyn.g.L1;
+      if (std::abs(smp.t - T) < 1e-9) L1_T = smp.dyn.g.L1;
+    });
+    EXPECT_TRUE(r.ok()) << r.failure;
+    return (L1_T - L1_t0) / (T - t0);
+  };
+  // The tanh law at the smaller ε: it has no creep equilibrium (μ_k tanh < μ*), so the bead
+  // slides off however small ε is.
+  double drift_tanh = 0.0;
+  run(Friction::Regularised, 1e-4, drift_tanh);
+  double prev_speed = 1.0;
+  for (const double eps : {1e-3, 1e-4}) {
+    const Model law = [&] {
+      Model mm = m;
+      mm.layers.friction = Friction::Stribeck;
+      mm.layers.regularisation = eps;
+      mm.layers.stribeck_speed = 1e-2;
+      return mm;
+    }();
+    // ṡ* by bisection on the rising branch (f increases on (0, ε atanh-ish] for ε ≪ v_s).
+    double lo = 0.0, hi = 5.0 * eps;
+    for (int i = 0; i < 100; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (regularised_coefficient(law, mid) < o.mu_edge ? lo : hi) = mid;
+    }
+    const double expected = -lo;
+    double drift = 0.0;
+    const double speed = run(Friction::Stribeck, eps, drift);
+    std::printf("measured Stribeck ε = %.0e m/s (v_s = 1e-2): creep ṡ = %.4e m/s, expected %.4e (ṡ/ε = %.4f, "
+                "atanh(μ*/μ_s) = %.4f), largest |L1 − s*| %.2e m in %.0f s; tanh law: %.2e m\n",
+                eps, speed, expected, speed / eps, std::atanh(o.mu_edge / m.p.mu_static), drift, T, drift_tanh);
+    // The orbit's own μ* moves as the bead creeps by |ṡ*| T (1 mm at ε = 1e-3) and as the
+    // unstable orbit departs (~e^{0.6 t}): 5 % on the creep speed covers both at these ε.
+    EXPECT_NEAR(speed, expected, 0.05 * std::abs(expected));
+    EXPECT_LT(drift, 2.0 * std::abs(expected) * T + 1e-6);
+    if (eps == 1e-4) EXPECT_GT(drift_tanh, 20.0 * drift);  // at equal ε
+    EXPECT_LT(std::abs(speed), 0.2 * prev_speed);
+    prev_speed = std::abs(speed);
+  }
+}
+
 TEST(ContactModel, OmittedLayersReportTheirViolatedAssumptions) {
   // The kinetic layer on the spin-up where the full model sticks: it reports ṡ = 0 inside the
   // static cone. The slack layer off on a drop: a negative tension is reported, not hidden.

@@ -236,3 +236,37 @@ TEST(Simulation, AJammedPointContactEndsTheRunWithAReasonNotACrash) {
   EXPECT_NE(r.failure.find("jams"), std::string::npos) << r.failure;
   EXPECT_TRUE(s.y.allFinite());
 }
+
+TEST(Simulation, SampleSpansDeliverExactlyTheGridSamplesInsideThem) {
+  // With sample spans the run hands out the grid samples inside [begin, end) only, and each is
+  // bit-identical to the same sample of the unfiltered run (the steps do not depend on them).
+  // Spans that begin and end between and on grid points, and one past the run's end.
+  Model m;
+  m.p.drive_radius = 0.015;
+  const double pi = 3.141592653589793;
+  const MotorSchedule sched({{4 * pi, 6 * pi, 3.0}});
+  const double dt = 0.02;
+  const std::vector<std::pair<double, double>> spans{{0.0, 0.1}, {0.505, 1.0}, {1.37, 1.5}, {2.9, 4.0}};
+  std::vector<std::pair<double, Vec>> all, kept;
+  for (bool filtered : {false, true}) {
+    sim::RunOptions o = tight("dop853", 1e-9);
+    if (filtered) o.sample_spans = spans;
+    State s = table1_state(m, sched, 4 * pi);
+    sim::Simulation simulation(m, sched, o);
+    auto& out = filtered ? kept : all;
+    const sim::RunSummary r =
+        simulation.run(s, 3.0, dt, [&](const sim::Sample& smp) { out.emplace_back(smp.t, smp.y); }, 0.0);
+    ASSERT_TRUE(r.ok()) << r.failure;
+  }
+  std::vector<std::pair<double, Vec>> expected;
+  for (const auto& [t, y] : all)
+    for (const auto& [b, e] : spans)
+      if (t >= b && t < e) expected.emplace_back(t, y);
+  ASSERT_EQ(kept.size(), expected.size());
+  EXPECT_GT(kept.size(), 20u);
+  EXPECT_LT(kept.size(), all.size() / 2);
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    EXPECT_EQ(kept[i].first, expected[i].first);
+    EXPECT_EQ(kept[i].second, expected[i].second) << "t = " << kept[i].first;
+  }
+}

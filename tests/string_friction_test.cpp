@@ -70,3 +70,57 @@ TEST(StringFriction, PointContactJamsWhenTheConeIsTooWide) {
   // The capstan law is well posed for every ψ.
   EXPECT_NO_THROW(tension_ratio(FrictionLaw::Capstan, mu, 3.1, +1));
 }
+
+namespace {
+// The paper's coefficients, with the Stribeck layer at ε ≪ v_s.
+Model stribeck(double eps, double v_s) {
+  Model m;
+  m.layers.friction = Friction::Stribeck;
+  m.layers.regularisation = eps;
+  m.layers.stribeck_speed = v_s;
+  return m;
+}
+}  // namespace
+
+TEST(StringFriction, StribeckPeaksNearMuStaticAndTendsToMuKinetic) {
+  // f(v) = [μ_k + Δ e^{-(v/v_s)²}] tanh(v/ε), Δ = μ_s − μ_k. Both factors stay below their
+  // bounds, so f < μ_s everywhere; at v = kε, f >= μ_s − Δ (kε/v_s)² − μ_s (1 − tanh k), which
+  // for k = 5 and ε/v_s = 1e-3 bounds the peak from below. For v ≫ v_s, |f − μ_k| <=
+  // Δ e^{-(v/v_s)²} + μ_k (1 − tanh(v/ε)).
+  const double eps = 1e-5, v_s = 1e-2;
+  const Model m = stribeck(eps, v_s);
+  const double mu_s = m.p.mu_static, mu_k = m.p.mu_kinetic, delta = mu_s - mu_k;
+  double peak = 0.0, v_peak = 0.0;
+  for (double v = 1e-8; v < 1.0; v *= 1.01) {
+    const double f = regularised_coefficient(m, v);
+    ASSERT_LT(f, mu_s) << "v = " << v;
+    if (f > peak) peak = f, v_peak = v;
+  }
+  const double k = 5.0;
+  EXPECT_GE(peak, mu_s - delta * std::pow(k * eps / v_s, 2) - mu_s * (1.0 - std::tanh(k)));
+  EXPECT_GT(v_peak, eps);
+  EXPECT_LT(v_peak, 10 * k * eps);
+  for (double v : {5 * v_s, 10 * v_s, 1.0}) {
+    const double bound = delta * std::exp(-std::pow(v / v_s, 2)) + mu_k * (1.0 - std::tanh(v / eps));
+    EXPECT_NEAR(regularised_coefficient(m, v), mu_k, bound + 1e-16) << "v = " << v;
+  }
+  // The tanh law, by contrast, never exceeds μ_k.
+  Model tanh_law = m;
+  tanh_law.layers.friction = Friction::Regularised;
+  for (double v = 1e-8; v < 1.0; v *= 1.1) EXPECT_LE(regularised_coefficient(tanh_law, v), mu_k);
+}
+
+TEST(StringFriction, StribeckIsOddAndDissipative) {
+  // f(−v) = −f(v) exactly (exp(−x²) is even, tanh is odd), f(0) = 0, and the friction power
+  // (T1 − T2) ṡ = (κ − 1) T2 ṡ is never negative for either law of κ.
+  const Model m = stribeck(1e-3, 1e-2);
+  EXPECT_EQ(regularised_coefficient(m, 0.0), 0.0);
+  for (double v = 1e-7; v < 10.0; v *= 1.37) {
+    EXPECT_EQ(regularised_coefficient(m, -v), -regularised_coefficient(m, v)) << "v = " << v;
+    for (auto law : {FrictionLaw::Capstan, FrictionLaw::PointContact})
+      for (double sdot : {v, -v}) {
+        const double kappa = tension_ratio(law, regularised_mu(m, sdot), 1.0, regularised_sigma(m, sdot));
+        EXPECT_GE((kappa - 1.0) * sdot, 0.0);
+      }
+  }
+}

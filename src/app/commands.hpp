@@ -142,6 +142,7 @@ struct FrictionArgs {
   std::string output = "out/friction.csv";
   double horizon = 10.0;               // [s]
   std::vector<double> eps{1e-1, 1e-2, 1e-3, 1e-4, 1e-5};  // ε [m/s]
+  std::vector<std::string> laws{"regularised", "stribeck"};  // the regularised layers compared
   double rtol = 1e-8;                  // of dopri5 and dop853
   std::vector<double> rk4_steps{1e-3, 1e-4};
   std::vector<double> radau_steps{2e-3, 5e-4};

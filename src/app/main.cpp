@@ -210,12 +210,17 @@ int main(int argc, char** argv) {
 
   ajx::app::FrictionArgs fr;
   CLI::App* fr_cmd = bench_cmd->add_subcommand(
-      "friction", "Event-driven stick-slip against tanh(ṡ/ε) as ε -> 0: creep error and cost, explicit and implicit -> CSV");
+      "friction", "Event-driven stick-slip against the regularised laws (tanh(ṡ/ε), Stribeck) as ε -> 0: creep error "
+      "and cost, explicit and implicit -> CSV");
   fr_cmd->add_option("scene", fr.scene, "Run file with layers.friction = \"stick_slip\"")->required();
   fr_cmd->add_option("-o,--output", fr.output, "CSV output path")->capture_default_str();
   fr_cmd->add_option("-s,--set", fr.overrides, "Override a key of the scene (repeatable)");
   fr_cmd->add_option("--horizon", fr.horizon, "Run length [s]")->capture_default_str();
   fr_cmd->add_option("--eps", fr.eps, "ε values [m/s]")->delimiter(',');
+  fr_cmd->add_option("--laws", fr.laws,
+                     "Regularised layers: regularised (tanh, saturates at μ_k), stribeck (peak μ_s, decays to μ_k "
+                     "over layers.stribeck_speed; ε >= v_s is skipped)")
+      ->delimiter(',');
   fr_cmd->add_option("--rtol", fr.rtol, "rtol of dopri5 and dop853")->capture_default_str();
   fr_cmd->add_option("--rk4-steps", fr.rk4_steps, "Steps of RK4 [s]")->delimiter(',');
   fr_cmd->add_option("--radau-steps", fr.radau_steps, "Steps of Radau IIA [s]")->delimiter(',');

@@ -2,9 +2,9 @@
 
 namespace ajx::bench {
 
-Scene regularised(const Scene& base, double eps) {
+Scene regularised(const Scene& base, double eps, physics::Friction law) {
   Scene s = base;
-  s.model.layers.friction = physics::Friction::Regularised;
+  s.model.layers.friction = law;
   s.model.layers.regularisation = eps;
   // A stuck start has no meaning without a stuck mode: the same state, sliding (the
   // regularised law then holds it by creeping at ṡ ~ ε).

@@ -3,7 +3,9 @@
 // ones) and the cost of integrating it, which grows as ε shrinks for explicit methods
 // (stiffness ~ 1/ε) and need not for the implicit Radau IIA. tanh saturates at μ_k, so as
 // ε -> 0 the regularised law tends to the kinetic layer (the Filippov completion of Coulomb's
-// law with μ_k), not to stick-slip with μ_s > μ_k: both are compared.
+// law with μ_k), not to stick-slip with μ_s > μ_k: both are compared. The Stribeck law
+// [μ_k + (μ_s − μ_k) e^{-(ṡ/v_s)²}] tanh(ṡ/ε) peaks near μ_s and holds a stuck bead by creeping;
+// it tends to stick-slip as ε -> 0 and then v_s -> 0.
 #pragma once
 #include <string>
 #include <vector>
@@ -25,8 +27,10 @@ struct FrictionRow {
   double creep_kinetic = 0.0;     // |L1 of the regularised reference - L1 of the kinetic model| [m]
 };
 
-// The scene with the regularised friction layer at ε (the stick-slip scene otherwise).
-Scene regularised(const Scene& base, double eps);
+// The scene with a regularised friction layer at ε (the stick-slip scene otherwise): `law` is
+// Friction::Regularised (tanh, saturating at μ_k) or Friction::Stribeck (peak near μ_s, decaying
+// to μ_k over the scene's layers.stribeck_speed).
+Scene regularised(const Scene& base, double eps, physics::Friction law = physics::Friction::Regularised);
 // The scene with the kinetic layer: μ_k only, held by Filippov sliding at ṡ = 0.
 Scene kinetic(const Scene& base);
 

@@ -37,11 +37,12 @@ Dynamics evaluate(const Model& m, const TopKinematics& top, const Contact& c, co
   d.margins = {inf, inf};
   switch (c.mode) {
     case Mode::Sliding: {
-      // T1 = κ(ψ, σ) T2 with the mode's sliding direction σ, or tanh(ṡ/ε) when regularised.
-      const double sigma = m.layers.friction == Friction::Regularised
-                               ? std::tanh(d.g.L1_dot / m.layers.regularisation)
-                               : double(c.sigma);
-      const double kappa = tension_ratio(m.layers.friction_law, sliding_mu(m), d.g.psi, sigma);
+      // T1 = κ(ψ, σ) T2 with the mode's sliding direction σ and μ_k, or with μ(|ṡ|) tanh(ṡ/ε)
+      // when regularised.
+      const bool smooth = regularised(m);
+      const double sigma = smooth ? regularised_sigma(m, d.g.L1_dot) : double(c.sigma);
+      const double mu = smooth ? regularised_mu(m, d.g.L1_dot) : sliding_mu(m);
+      const double kappa = tension_ratio(m.layers.friction_law, mu, d.g.psi, sigma);
       d.T2 = F2 = sliding_tension_T2(p, d.g, f, top.a_ddot, kappa);
       d.T1 = F1 = kappa * d.T2;
       break;

@@ -49,7 +49,7 @@ std::vector<GuardSpec> guards(const Model& m, const Contact& c) {
       if (!L.bottom_stop) add(Guard::ReachBall, -1);
       if (!L.top_stop) add(Guard::ReachTop, -1);
       if (can_stick(m) && c.sigma != 0) add(Guard::Rest, -1);
-      if (L.friction == Friction::Regularised) add(Guard::WatchStick, 0);
+      if (regularised(m)) add(Guard::WatchStick, 0);
       tension();
       break;
     case Mode::Stuck:
@@ -172,7 +172,7 @@ Contact settle_bead(const Model& m, const TopFor& top_for, const Contact& c, con
       return c;
     }
     case Mode::Sliding: {
-      if (m.layers.friction == Friction::None || m.layers.friction == Friction::Regularised)
+      if (m.layers.friction == Friction::None || regularised(m))
         return {Mode::Sliding, 0, 0.0};
       const double sdot = geometry(top, y.segment<3>(idx::r1), y.segment<3>(idx::r2), y.segment<3>(idx::v1),
                                    y.segment<3>(idx::v2))

@@ -27,6 +27,10 @@ std::vector<ParameterIssue> validate(const Model& model) {
   need(p.tie_kinetic_torque <= p.tie_static_torque, "model.tie_kinetic_torque", p.tie_kinetic_torque,
        fmt::format("0 <= τ_k <= τ_s = {} N m", p.tie_static_torque));
   const Layers& L = model.layers;
+  // The Stribeck peak reaches near μ_s only where tanh(ṡ/ε) saturates before exp(−(ṡ/v_s)²) decays.
+  if (L.friction == Friction::Stribeck)
+    need(L.stribeck_speed > L.regularisation, "layers.stribeck_speed", L.stribeck_speed,
+         fmt::format("v_s > ε = layers.regularisation = {} m/s", L.regularisation));
   for (const LayerInfo& info : layer_table())
     if (info.kind == LayerInfo::Kind::Number && !info.in_range(L.*info.number))
       out.push_back({fmt::format("layers.{}", info.key), L.*info.number, info.range()});

@@ -35,7 +35,11 @@ struct Parameters {
 //               the Coulomb law), and the run reports it as a violated assumption;
 //  StickSlip    sliding with μ_k, sticking while the μ_s cone holds (the full model);
 //  Regularised  sgn ṡ replaced by tanh(ṡ/ε), no stuck mode: for comparison only (it creeps).
-enum class Friction { None, Kinetic, StickSlip, Regularised };
+//               It saturates at μ_k, so it cannot hold a bead that needs μ_k < μ* < μ_s;
+//  Stribeck     μ(ṡ) = [μ_k + (μ_s − μ_k) exp(−(ṡ/v_s)²)] tanh(ṡ/ε): the regularisation with a
+//               peak near μ_s at slip ~ ε (physics/string_friction.hpp), no stuck mode: it holds
+//               such a bead by creeping at ṡ ~ ε. For comparison only.
+enum class Friction { None, Kinetic, StickSlip, Regularised, Stribeck };
 // How T1/T2 depends on the deflection ψ of the string at the bead
 // (docs/physics/model.md, "Friction").
 enum class FrictionLaw { Capstan, PointContact };
@@ -46,7 +50,8 @@ enum class PairCouple { None, MotorClutch };
 struct Layers {
   Friction friction = Friction::StickSlip;
   FrictionLaw friction_law = FrictionLaw::Capstan;
-  double regularisation = 1e-3;      // ε of tanh(ṡ/ε) for Friction::Regularised [m/s]
+  double regularisation = 1e-3;      // ε of tanh(ṡ/ε) for Friction::Regularised and ::Stribeck [m/s]
+  double stribeck_speed = 1e-2;      // v_s, the slip speed over which the Stribeck peak decays [m/s]
   bool bottom_stop = true;           // one-sided contact L2 >= d
   bool top_stop = true;              // one-sided contact L1 >= s_min
   bool slack = true;                 // the string may go slack (else negative tensions are reported)

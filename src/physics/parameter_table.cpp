@@ -78,7 +78,7 @@ std::string parameter_columns() {
 // ---- layers -----------------------------------------------------------------------------
 
 namespace {
-constexpr std::string_view kFrictionWords[] = {"none", "kinetic", "stick_slip", "regularised"};
+constexpr std::string_view kFrictionWords[] = {"none", "kinetic", "stick_slip", "regularised", "stribeck"};
 constexpr std::string_view kFrictionLawWords[] = {"capstan", "point_contact"};
 constexpr std::string_view kTieWords[] = {"rigid", "clutch"};
 constexpr std::string_view kPairCoupleWords[] = {"none", "motor_clutch"};
@@ -88,15 +88,22 @@ const LayerInfo kLayers[] = {
     {"friction", LayerInfo::Kind::Word, kFrictionWords, nullptr, 0, 0, false, "",
      "bead–string friction: none (frictionless); kinetic (μ_k only, no stick: where the forces lie "
      "inside the μ_k cone at ṡ = 0 the bead is held and the run reports it); stick_slip (the full "
-     "Coulomb law, the default); regularised (sgn ṡ → tanh(ṡ/ε), no stuck mode, for comparison only)",
+     "Coulomb law, the default); regularised (sgn ṡ → tanh(ṡ/ε), saturates at μ_k, no stuck mode, for "
+     "comparison only); stribeck (μ_k sgn ṡ → [μ_k + (μ_s − μ_k) exp(−(ṡ/v_s)²)] tanh(ṡ/ε): a peak near μ_s "
+     "at slip ~ ε, so a bead needing μ_k < μ* < μ_s is held by creeping at ṡ ~ ε; no stuck mode, for "
+     "comparison only)",
      [](const Layers& L) { return std::string(kFrictionWords[int(L.friction)]); }},
     {"friction_law", LayerInfo::Kind::Word, kFrictionLawWords, nullptr, 0, 0, false, "",
      "how T1/T2 depends on the string's deflection ψ at the bead: capstan (belt friction over the "
      "wrap angle) or point_contact (a normal force at one point)",
      [](const Layers& L) { return std::string(kFrictionLawWords[int(L.friction_law)]); }},
     {"regularisation", LayerInfo::Kind::Number, {}, &Layers::regularisation, 0.0, 1e3, true, "m/s",
-     "ε of tanh(ṡ/ε) for friction = \"regularised\"",
+     "ε of tanh(ṡ/ε) for friction = \"regularised\" and \"stribeck\"",
      [](const Layers& L) { return fmt::format("{}", L.regularisation); }},
+    {"stribeck_speed", LayerInfo::Kind::Number, {}, &Layers::stribeck_speed, 0.0, 1e3, true, "m/s",
+     "v_s of friction = \"stribeck\": the slip speed over which μ falls from its peak μ_s to μ_k "
+     "(exp(−(ṡ/v_s)²)); the peak is near μ_s only while ε ≪ v_s",
+     [](const Layers& L) { return fmt::format("{}", L.stribeck_speed); }},
     {"bottom_stop", LayerInfo::Kind::Boolean, {}, nullptr, 0, 0, false, "",
      "one-sided contact L2 >= d of the bead on the bottom ball; off, a crossing is reported",
      [](const Layers& L) { return yes_no(L.bottom_stop); }},

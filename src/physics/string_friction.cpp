@@ -31,6 +31,23 @@ FrictionCone friction_cone(FrictionLaw law, double mu, double psi) {
   return {tension_ratio(law, mu, psi, -1), tension_ratio(law, mu, psi, +1)};
 }
 
+bool regularised(const Model& m) {
+  return m.layers.friction == Friction::Regularised || m.layers.friction == Friction::Stribeck;
+}
+
+double regularised_mu(const Model& m, double sdot) {
+  const Parameters& p = m.p;
+  if (m.layers.friction != Friction::Stribeck) return p.mu_kinetic;
+  const double x = sdot / m.layers.stribeck_speed;
+  return p.mu_kinetic + (p.mu_static - p.mu_kinetic) * std::exp(-x * x);
+}
+
+double regularised_sigma(const Model& m, double sdot) { return std::tanh(sdot / m.layers.regularisation); }
+
+double regularised_coefficient(const Model& m, double sdot) {
+  return regularised_mu(m, sdot) * regularised_sigma(m, sdot);
+}
+
 double sliding_mu(const Model& m) {
   return m.layers.friction == Friction::None ? 0.0 : m.p.mu_kinetic;
 }
@@ -40,7 +57,8 @@ double sticking_mu(const Model& m) {
     case Friction::StickSlip: return m.p.mu_static;
     case Friction::Kinetic: return m.p.mu_kinetic;
     case Friction::None:
-    case Friction::Regularised: return 0.0;
+    case Friction::Regularised:
+    case Friction::Stribeck: return 0.0;
   }
   return 0.0;
 }

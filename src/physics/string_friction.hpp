@@ -26,6 +26,18 @@ struct FrictionCone {
 };
 FrictionCone friction_cone(FrictionLaw law, double mu, double psi);
 
+// The regularised layers replace the sliding law's μ_k sgn ṡ by a smooth odd function of ṡ,
+// μ(|ṡ|) tanh(ṡ/ε), with μ(v) = μ_k (regularised: saturates at μ_k) or the Stribeck curve
+//   μ(v) = μ_k + (μ_s − μ_k) exp(−(v/v_s)²)
+// (stribeck: a peak near μ_s at v ~ ε when ε ≪ v_s, falling to μ_k for v ≫ v_s).
+bool regularised(const Model& m);
+// μ(|ṡ|) of the regularised layer (μ_k for `regularised`, the curve above for `stribeck`).
+double regularised_mu(const Model& m, double sdot);
+// tanh(ṡ/ε), the smooth direction.
+double regularised_sigma(const Model& m, double sdot);
+// The signed coefficient μ(|ṡ|) tanh(ṡ/ε) that replaces μ_k sgn ṡ.
+double regularised_coefficient(const Model& m, double sdot);
+
 // The coefficient while sliding: 0 without friction, μ_k otherwise.
 double sliding_mu(const Model& m);
 // The coefficient of the cone that holds a stuck or resting bead: μ_s with stick-slip, μ_k in

@@ -61,10 +61,24 @@ void Sampler::emit(double t, const Vec& y) {
   if (on_sample_) on_sample_(Sample{t, contact, ylab_, dyn, top, ctx_.s.impact_loss});
 }
 
+bool Sampler::wanted(double ts) {
+  const auto& spans = ctx_.opt.sample_spans;
+  if (spans.empty()) return true;
+  while (span_ < spans.size() && ts >= spans[span_].second) ++span_;
+  if (span_ < spans.size() && ts >= spans[span_].first) return true;
+  // The grid index one below the next span's first: the caller re-tests each grid time from
+  // there, so the jump does not depend on how (begin - origin)/dt rounds.
+  const double next = span_ < spans.size() ? spans[span_].first : t_end_ + 2.0 * sample_dt_;
+  next_sample_ = std::max(next_sample_ + 1, long(std::ceil((next - origin_) / sample_dt_)) - 1);
+  return false;
+}
+
 void Sampler::start() {
   if (sample_dt_ > 0.0 && origin_ + double(next_sample_) * sample_dt_ <= t_start_) {
-    emit(ctx_.s.t, ctx_.s.y);
-    ++next_sample_;
+    if (wanted(ctx_.s.t)) {
+      emit(ctx_.s.t, ctx_.s.y);
+      ++next_sample_;
+    }
   }
 }
 
@@ -90,6 +104,7 @@ bool Sampler::observe(const numerics::StepView& step) {
   while (sample_dt_ > 0.0) {
     const double ts = origin_ + double(next_sample_) * sample_dt_;
     if (ts > step.t1() || ts > t_end_) break;
+    if (!wanted(ts)) continue;  // next_sample_ moved on
     if (ts >= step.t0()) {
       step.at(ts, ybuf_);
       emit(ts, ybuf_);

@@ -44,12 +44,16 @@ class Sampler {
   };
   Rates azimuth_rates(double t, const numerics::Vec& y) const;
   void emit(double t, const numerics::Vec& y);
+  // Whether ts lies in a sample span (RunOptions::sample_spans); if not, next_sample_ jumps to
+  // just before the next span (past t_end when there is none).
+  bool wanted(double ts);
   void advance_azimuths(const numerics::StepView& step);
 
   RunContext& ctx_;
   const SampleObserver& on_sample_;
   double t_end_, sample_dt_, t_start_, origin_;
   long next_sample_;
+  std::size_t span_ = 0;  // the first sample span not yet behind the grid
   numerics::Vec ybuf_, ylab_, yend_;
   Azimuth az1_, az2_;
   double window_, t_window_;

@@ -4,6 +4,7 @@
 #include <functional>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "numerics/integrate.hpp"
@@ -51,6 +52,10 @@ struct RunOptions {
   // min_friction_power and omega_ball. Off (a sweep: its classifier measures the windows from
   // the samples), the observer skips their cost and they are NaN.
   bool run_statistics = true;
+  // Sample only at grid times inside these half-open spans [begin, end), sorted and disjoint
+  // (empty: every grid time). A sweep task keeps the samples of its windows only; each sample
+  // elsewhere would cost the dense output and an evaluate for nothing.
+  std::vector<std::pair<double, double>> sample_spans;
 };
 
 // One sample of the trajectory with the quantities derived from it.

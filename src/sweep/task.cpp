@@ -12,6 +12,10 @@ TaskOutput run_task(const ChainSetup& chain, const TaskSpan& span, physics::Stat
   const physics::MotorSchedule schedule(chain.protocol.schedule);
   sim::RunOptions run = chain.run;
   run.run_statistics = false;  // the windows are measured from the samples
+  for (int i = 0; i < span.num_windows; ++i) {  // and only the windows' samples are stored
+    const Window& win = chain.protocol.windows[std::size_t(span.first_window + i)];
+    run.sample_spans.emplace_back(win.t_begin, win.t_end);
+  }
   sim::Simulation simulation(chain.model, schedule, run);
   TaskOutput out;
   const auto& windows = chain.protocol.windows;
