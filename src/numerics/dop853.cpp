@@ -177,42 +177,55 @@ constexpr double d716 = -0.14972683625798562581422125276e+03;
 
 double Dop853::attempt(const System& f, double t, const Vec& y, double h, Vec& y_new,
                        const Tolerances& tol) {
+  return with_state_size(y.size(), [&]<int N>() { return attempt_n<N>(f, t, y, h, y_new, tol); });
+}
+
+// The stage combinations on fixed-size maps of the member vectors when N is a compile-time
+// size (vector.hpp): the same element-wise arithmetic, without the length loops.
+template <int N>
+double Dop853::attempt_n(const System& f, double t, const Vec& y, double h, Vec& y_new,
+                         const Tolerances& tol) {
+  using M = Eigen::Map<Eigen::Matrix<double, N, 1>, Eigen::Aligned16>;
   const auto n = y.size();
   y0_ = y;  // first: y_new may alias y
-  for (Vec* v : {&k2_, &k3_, &k4_, &k5_, &k6_, &k7_, &k8_, &k9_, &k10_, &k11_, &k12_}) v->resize(n);
+  for (Vec* v : {&tmp_, &y1_, &k2_, &k3_, &k4_, &k5_, &k6_, &k7_, &k8_, &k9_, &k10_, &k11_, &k12_})
+    v->resize(n);
   cache_.get(f, t, y0_, k1_, rhs_evals_);
+  const M y0(y0_.data(), n);
+  M y1(y1_.data(), n), tmp(tmp_.data(), n);
+  const M k1(k1_.data(), n), k2(k2_.data(), n), k3(k3_.data(), n), k4(k4_.data(), n), k5(k5_.data(), n),
+      k6(k6_.data(), n), k7(k7_.data(), n), k8(k8_.data(), n), k9(k9_.data(), n), k10(k10_.data(), n),
+      k11(k11_.data(), n), k12(k12_.data(), n);
 
-  tmp_ = y0_ + (h * a21) * k1_;
+  tmp = y0 + (h * a21) * k1;
   f(t + c2 * h, tmp_, k2_);
-  tmp_ = y0_ + h * (a31 * k1_ + a32 * k2_);
+  tmp = y0 + h * (a31 * k1 + a32 * k2);
   f(t + c3 * h, tmp_, k3_);
-  tmp_ = y0_ + h * (a41 * k1_ + a43 * k3_);
+  tmp = y0 + h * (a41 * k1 + a43 * k3);
   f(t + c4 * h, tmp_, k4_);
-  tmp_ = y0_ + h * (a51 * k1_ + a53 * k3_ + a54 * k4_);
+  tmp = y0 + h * (a51 * k1 + a53 * k3 + a54 * k4);
   f(t + c5 * h, tmp_, k5_);
-  tmp_ = y0_ + h * (a61 * k1_ + a64 * k4_ + a65 * k5_);
+  tmp = y0 + h * (a61 * k1 + a64 * k4 + a65 * k5);
   f(t + c6 * h, tmp_, k6_);
-  tmp_ = y0_ + h * (a71 * k1_ + a74 * k4_ + a75 * k5_ + a76 * k6_);
+  tmp = y0 + h * (a71 * k1 + a74 * k4 + a75 * k5 + a76 * k6);
   f(t + c7 * h, tmp_, k7_);
-  tmp_ = y0_ + h * (a81 * k1_ + a84 * k4_ + a85 * k5_ + a86 * k6_ + a87 * k7_);
+  tmp = y0 + h * (a81 * k1 + a84 * k4 + a85 * k5 + a86 * k6 + a87 * k7);
   f(t + c8 * h, tmp_, k8_);
-  tmp_ = y0_ + h * (a91 * k1_ + a94 * k4_ + a95 * k5_ + a96 * k6_ + a97 * k7_ + a98 * k8_);
+  tmp = y0 + h * (a91 * k1 + a94 * k4 + a95 * k5 + a96 * k6 + a97 * k7 + a98 * k8);
   f(t + c9 * h, tmp_, k9_);
-  tmp_ = y0_ + h * (a101 * k1_ + a104 * k4_ + a105 * k5_ + a106 * k6_ + a107 * k7_ + a108 * k8_ +
-                    a109 * k9_);
+  tmp = y0 + h * (a101 * k1 + a104 * k4 + a105 * k5 + a106 * k6 + a107 * k7 + a108 * k8 + a109 * k9);
   f(t + c10 * h, tmp_, k10_);
-  tmp_ = y0_ + h * (a111 * k1_ + a114 * k4_ + a115 * k5_ + a116 * k6_ + a117 * k7_ + a118 * k8_ +
-                    a119 * k9_ + a1110 * k10_);
+  tmp = y0 + h * (a111 * k1 + a114 * k4 + a115 * k5 + a116 * k6 + a117 * k7 + a118 * k8 + a119 * k9 +
+                  a1110 * k10);
   f(t + c11 * h, tmp_, k11_);
-  tmp_ = y0_ + h * (a121 * k1_ + a124 * k4_ + a125 * k5_ + a126 * k6_ + a127 * k7_ + a128 * k8_ +
-                    a129 * k9_ + a1210 * k10_ + a1211 * k11_);
+  tmp = y0 + h * (a121 * k1 + a124 * k4 + a125 * k5 + a126 * k6 + a127 * k7 + a128 * k8 + a129 * k9 +
+                  a1210 * k10 + a1211 * k11);
   f(t + h, tmp_, k12_);
   rhs_evals_ += 11;
 
-  // y1 = y0 + h sum b_i k_i; tmp_ holds the increment direction sum b_i k_i.
-  tmp_ =
-      b1 * k1_ + b6 * k6_ + b7 * k7_ + b8 * k8_ + b9 * k9_ + b10 * k10_ + b11 * k11_ + b12 * k12_;
-  y1_ = y0_ + h * tmp_;
+  // y1 = y0 + h sum b_i k_i; tmp holds the increment direction sum b_i k_i.
+  tmp = b1 * k1 + b6 * k6 + b7 * k7 + b8 * k8 + b9 * k9 + b10 * k10 + b11 * k11 + b12 * k12;
+  y1 = y0 + h * tmp;
 
   // Error (dop853.f): err5_i = h sum er_j k_j, err3_i = h (sum b k - bhh1 k1 - bhh2 k9 -
   // bhh3 k12); with s_i = atol + rtol max(|y0_i|, |y1_i|), E5 = sum (err5_i/s_i)^2,
@@ -220,10 +233,10 @@ double Dop853::attempt(const System& f, double t, const Vec& y, double h, Vec& y
   // err ~ |err5|^2/|err3| = O(h^8), so the controller treats it as an order-7 estimate.
   double e5 = 0.0, e3 = 0.0;
   for (Eigen::Index i = 0; i < n; ++i) {
-    const double sk = tol.atol + tol.rtol * std::max(std::abs(y0_[i]), std::abs(y1_[i]));
-    const double r3 = (tmp_[i] - bhh1 * k1_[i] - bhh2 * k9_[i] - bhh3 * k12_[i]) / sk;
-    const double r5 = (er1 * k1_[i] + er6 * k6_[i] + er7 * k7_[i] + er8 * k8_[i] + er9 * k9_[i] +
-                       er10 * k10_[i] + er11 * k11_[i] + er12 * k12_[i]) /
+    const double sk = tol.atol + tol.rtol * std::max(std::abs(y0[i]), std::abs(y1[i]));
+    const double r3 = (tmp[i] - bhh1 * k1[i] - bhh2 * k9[i] - bhh3 * k12[i]) / sk;
+    const double r5 = (er1 * k1[i] + er6 * k6[i] + er7 * k7[i] + er8 * k8[i] + er9 * k9[i] + er10 * k10[i] +
+                       er11 * k11[i] + er12 * k12[i]) /
                       sk;
     e3 += r3 * r3;
     e5 += r5 * r5;
@@ -244,6 +257,12 @@ double Dop853::attempt(const System& f, double t, const Vec& y, double h, Vec& y
 void Dop853::accept(const System& /*f*/) {}
 
 void Dop853::prepare_dense(const System& f) {
+  with_state_size(y0_.size(), [&]<int N>() { prepare_dense_n<N>(f); });
+}
+
+template <int N>
+void Dop853::prepare_dense_n(const System& f) {
+  using M = Eigen::Map<Eigen::Matrix<double, N, 1>, Eigen::Aligned16>;
   const auto n = y0_.size();
   const double t = t_, h = h_;
   const double t1 = t + h;
@@ -256,34 +275,40 @@ void Dop853::prepare_dense(const System& f) {
     ++rhs_evals_;
     cache_.offer(t1, y1_, k13_);
   }
-  k14_.resize(n);
-  k15_.resize(n);
-  k16_.resize(n);
-  tmp_ = y0_ + h * (a141 * k1_ + a147 * k7_ + a148 * k8_ + a149 * k9_ + a1410 * k10_ +
-                    a1411 * k11_ + a1412 * k12_ + a1413 * k13_);
+  for (Vec* v : {&k14_, &k15_, &k16_}) v->resize(n);
+  for (Vec& r : r_) r.resize(n);
+  const M y0(y0_.data(), n);
+  M y1(y1_.data(), n), tmp(tmp_.data(), n);
+  const M k1(k1_.data(), n), k6(k6_.data(), n), k7(k7_.data(), n), k8(k8_.data(), n), k9(k9_.data(), n),
+      k10(k10_.data(), n), k11(k11_.data(), n), k12(k12_.data(), n), k13(k13_.data(), n), k14(k14_.data(), n),
+      k15(k15_.data(), n), k16(k16_.data(), n);
+  tmp = y0 + h * (a141 * k1 + a147 * k7 + a148 * k8 + a149 * k9 + a1410 * k10 + a1411 * k11 + a1412 * k12 +
+                  a1413 * k13);
   f(t + c14 * h, tmp_, k14_);
-  tmp_ = y0_ + h * (a151 * k1_ + a156 * k6_ + a157 * k7_ + a158 * k8_ + a1511 * k11_ +
-                    a1512 * k12_ + a1513 * k13_ + a1514 * k14_);
+  tmp = y0 + h * (a151 * k1 + a156 * k6 + a157 * k7 + a158 * k8 + a1511 * k11 + a1512 * k12 + a1513 * k13 +
+                  a1514 * k14);
   f(t + c15 * h, tmp_, k15_);
-  tmp_ = y0_ + h * (a161 * k1_ + a166 * k6_ + a167 * k7_ + a168 * k8_ + a169 * k9_ + a1613 * k13_ +
-                    a1614 * k14_ + a1615 * k15_);
+  tmp = y0 + h * (a161 * k1 + a166 * k6 + a167 * k7 + a168 * k8 + a169 * k9 + a1613 * k13 + a1614 * k14 +
+                  a1615 * k15);
   f(t + c16 * h, tmp_, k16_);
   rhs_evals_ += 3;
 
   // cont(1..8) of dop853.f: r0 = y0, r1 = y1 - y0, r2 = h k1 - r1, r3 = r1 - h k13 - r2,
   // r4..r7 = h sum_i d_{k,i} k_i.
-  r_[0] = y0_;
-  r_[1] = y1_ - y0_;
-  r_[2] = h * k1_ - r_[1];
-  r_[3] = r_[1] - h * k13_ - r_[2];
-  r_[4] = h * (d41 * k1_ + d46 * k6_ + d47 * k7_ + d48 * k8_ + d49 * k9_ + d410 * k10_ +
-               d411 * k11_ + d412 * k12_ + d413 * k13_ + d414 * k14_ + d415 * k15_ + d416 * k16_);
-  r_[5] = h * (d51 * k1_ + d56 * k6_ + d57 * k7_ + d58 * k8_ + d59 * k9_ + d510 * k10_ +
-               d511 * k11_ + d512 * k12_ + d513 * k13_ + d514 * k14_ + d515 * k15_ + d516 * k16_);
-  r_[6] = h * (d61 * k1_ + d66 * k6_ + d67 * k7_ + d68 * k8_ + d69 * k9_ + d610 * k10_ +
-               d611 * k11_ + d612 * k12_ + d613 * k13_ + d614 * k14_ + d615 * k15_ + d616 * k16_);
-  r_[7] = h * (d71 * k1_ + d76 * k6_ + d77 * k7_ + d78 * k8_ + d79 * k9_ + d710 * k10_ +
-               d711 * k11_ + d712 * k12_ + d713 * k13_ + d714 * k14_ + d715 * k15_ + d716 * k16_);
+  M r0(r_[0].data(), n), r1(r_[1].data(), n), r2(r_[2].data(), n), r3(r_[3].data(), n), r4(r_[4].data(), n),
+      r5(r_[5].data(), n), r6(r_[6].data(), n), r7(r_[7].data(), n);
+  r0 = y0;
+  r1 = y1 - y0;
+  r2 = h * k1 - r1;
+  r3 = r1 - h * k13 - r2;
+  r4 = h * (d41 * k1 + d46 * k6 + d47 * k7 + d48 * k8 + d49 * k9 + d410 * k10 + d411 * k11 + d412 * k12 +
+            d413 * k13 + d414 * k14 + d415 * k15 + d416 * k16);
+  r5 = h * (d51 * k1 + d56 * k6 + d57 * k7 + d58 * k8 + d59 * k9 + d510 * k10 + d511 * k11 + d512 * k12 +
+            d513 * k13 + d514 * k14 + d515 * k15 + d516 * k16);
+  r6 = h * (d61 * k1 + d66 * k6 + d67 * k7 + d68 * k8 + d69 * k9 + d610 * k10 + d611 * k11 + d612 * k12 +
+            d613 * k13 + d614 * k14 + d615 * k15 + d616 * k16);
+  r7 = h * (d71 * k1 + d76 * k6 + d77 * k7 + d78 * k8 + d79 * k9 + d710 * k10 + d711 * k11 + d712 * k12 +
+            d713 * k13 + d714 * k14 + d715 * k15 + d716 * k16);
   dense_ready_ = true;
 }
 
@@ -292,9 +317,15 @@ void Dop853::prepare_dense(const System& f) {
 void Dop853::dense(const System& f, double theta, Vec& out) {
   if (!dense_ready_) prepare_dense(f);
   const double s = theta, s1 = 1.0 - theta;
-  out = r_[0] +
-        s * (r_[1] +
-             s1 * (r_[2] + s * (r_[3] + s1 * (r_[4] + s * (r_[5] + s1 * (r_[6] + s * r_[7]))))));
+  const auto n = y0_.size();
+  out.resize(n);
+  with_state_size(n, [&]<int N>() {
+    using C = Eigen::Map<const Eigen::Matrix<double, N, 1>, Eigen::Aligned16>;
+    const C r0(r_[0].data(), n), r1(r_[1].data(), n), r2(r_[2].data(), n), r3(r_[3].data(), n),
+        r4(r_[4].data(), n), r5(r_[5].data(), n), r6(r_[6].data(), n), r7(r_[7].data(), n);
+    Eigen::Map<Eigen::Matrix<double, N, 1>, Eigen::Aligned16>(out.data(), n) =
+        r0 + s * (r1 + s1 * (r2 + s * (r3 + s1 * (r4 + s * (r5 + s1 * (r6 + s * r7))))));
+  });
 }
 
 void Dop853::reset() { cache_.block(); }
