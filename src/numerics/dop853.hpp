@@ -18,6 +18,7 @@ class Dop853 final : public Stepper {
                  const Tolerances& tol) override;
   void accept(const System& f) override;
   void dense(const System& f, double theta, Vec& out) override;
+  bool dense_excursion(const System& f, Vec& e) override;
   void reset() override;
 
  private:

@@ -27,6 +27,7 @@ class GuardEvents {
   // The force guards of a mode (two cone margins, the tensions) share one evaluation at (t, y),
   // ctx.evaluation, with the right-hand side.
   double value(physics::Guard kind, bool force, double t, const numerics::Vec& y);
+  double top_travel(double t0, double t1) const;
 
   RunContext& ctx_;
   std::vector<physics::GuardSpec> specs_;
