@@ -257,12 +257,6 @@ double Dop853::attempt_n(const System& f, double t, const Vec& y, double h, Vec&
 void Dop853::accept(const System& /*f*/) {}
 
 void Dop853::prepare_dense(const System& f) {
-  with_state_size(y0_.size(), [&]<int N>() { prepare_dense_n<N>(f); });
-}
-
-template <int N>
-void Dop853::prepare_dense_n(const System& f) {
-  using M = Eigen::Map<Eigen::Matrix<double, N, 1>, Eigen::Aligned16>;
   const auto n = y0_.size();
   const double t = t_, h = h_;
   const double t1 = t + h;
@@ -275,40 +269,34 @@ void Dop853::prepare_dense_n(const System& f) {
     ++rhs_evals_;
     cache_.offer(t1, y1_, k13_);
   }
-  for (Vec* v : {&k14_, &k15_, &k16_}) v->resize(n);
-  for (Vec& r : r_) r.resize(n);
-  const M y0(y0_.data(), n);
-  M y1(y1_.data(), n), tmp(tmp_.data(), n);
-  const M k1(k1_.data(), n), k6(k6_.data(), n), k7(k7_.data(), n), k8(k8_.data(), n), k9(k9_.data(), n),
-      k10(k10_.data(), n), k11(k11_.data(), n), k12(k12_.data(), n), k13(k13_.data(), n), k14(k14_.data(), n),
-      k15(k15_.data(), n), k16(k16_.data(), n);
-  tmp = y0 + h * (a141 * k1 + a147 * k7 + a148 * k8 + a149 * k9 + a1410 * k10 + a1411 * k11 + a1412 * k12 +
-                  a1413 * k13);
+  k14_.resize(n);
+  k15_.resize(n);
+  k16_.resize(n);
+  tmp_ = y0_ + h * (a141 * k1_ + a147 * k7_ + a148 * k8_ + a149 * k9_ + a1410 * k10_ +
+                    a1411 * k11_ + a1412 * k12_ + a1413 * k13_);
   f(t + c14 * h, tmp_, k14_);
-  tmp = y0 + h * (a151 * k1 + a156 * k6 + a157 * k7 + a158 * k8 + a1511 * k11 + a1512 * k12 + a1513 * k13 +
-                  a1514 * k14);
+  tmp_ = y0_ + h * (a151 * k1_ + a156 * k6_ + a157 * k7_ + a158 * k8_ + a1511 * k11_ +
+                    a1512 * k12_ + a1513 * k13_ + a1514 * k14_);
   f(t + c15 * h, tmp_, k15_);
-  tmp = y0 + h * (a161 * k1 + a166 * k6 + a167 * k7 + a168 * k8 + a169 * k9 + a1613 * k13 + a1614 * k14 +
-                  a1615 * k15);
+  tmp_ = y0_ + h * (a161 * k1_ + a166 * k6_ + a167 * k7_ + a168 * k8_ + a169 * k9_ + a1613 * k13_ +
+                    a1614 * k14_ + a1615 * k15_);
   f(t + c16 * h, tmp_, k16_);
   rhs_evals_ += 3;
 
   // cont(1..8) of dop853.f: r0 = y0, r1 = y1 - y0, r2 = h k1 - r1, r3 = r1 - h k13 - r2,
   // r4..r7 = h sum_i d_{k,i} k_i.
-  M r0(r_[0].data(), n), r1(r_[1].data(), n), r2(r_[2].data(), n), r3(r_[3].data(), n), r4(r_[4].data(), n),
-      r5(r_[5].data(), n), r6(r_[6].data(), n), r7(r_[7].data(), n);
-  r0 = y0;
-  r1 = y1 - y0;
-  r2 = h * k1 - r1;
-  r3 = r1 - h * k13 - r2;
-  r4 = h * (d41 * k1 + d46 * k6 + d47 * k7 + d48 * k8 + d49 * k9 + d410 * k10 + d411 * k11 + d412 * k12 +
-            d413 * k13 + d414 * k14 + d415 * k15 + d416 * k16);
-  r5 = h * (d51 * k1 + d56 * k6 + d57 * k7 + d58 * k8 + d59 * k9 + d510 * k10 + d511 * k11 + d512 * k12 +
-            d513 * k13 + d514 * k14 + d515 * k15 + d516 * k16);
-  r6 = h * (d61 * k1 + d66 * k6 + d67 * k7 + d68 * k8 + d69 * k9 + d610 * k10 + d611 * k11 + d612 * k12 +
-            d613 * k13 + d614 * k14 + d615 * k15 + d616 * k16);
-  r7 = h * (d71 * k1 + d76 * k6 + d77 * k7 + d78 * k8 + d79 * k9 + d710 * k10 + d711 * k11 + d712 * k12 +
-            d713 * k13 + d714 * k14 + d715 * k15 + d716 * k16);
+  r_[0] = y0_;
+  r_[1] = y1_ - y0_;
+  r_[2] = h * k1_ - r_[1];
+  r_[3] = r_[1] - h * k13_ - r_[2];
+  r_[4] = h * (d41 * k1_ + d46 * k6_ + d47 * k7_ + d48 * k8_ + d49 * k9_ + d410 * k10_ +
+               d411 * k11_ + d412 * k12_ + d413 * k13_ + d414 * k14_ + d415 * k15_ + d416 * k16_);
+  r_[5] = h * (d51 * k1_ + d56 * k6_ + d57 * k7_ + d58 * k8_ + d59 * k9_ + d510 * k10_ +
+               d511 * k11_ + d512 * k12_ + d513 * k13_ + d514 * k14_ + d515 * k15_ + d516 * k16_);
+  r_[6] = h * (d61 * k1_ + d66 * k6_ + d67 * k7_ + d68 * k8_ + d69 * k9_ + d610 * k10_ +
+               d611 * k11_ + d612 * k12_ + d613 * k13_ + d614 * k14_ + d615 * k15_ + d616 * k16_);
+  r_[7] = h * (d71 * k1_ + d76 * k6_ + d77 * k7_ + d78 * k8_ + d79 * k9_ + d710 * k10_ +
+               d711 * k11_ + d712 * k12_ + d713 * k13_ + d714 * k14_ + d715 * k15_ + d716 * k16_);
   dense_ready_ = true;
 }
 
@@ -317,15 +305,9 @@ void Dop853::prepare_dense_n(const System& f) {
 void Dop853::dense(const System& f, double theta, Vec& out) {
   if (!dense_ready_) prepare_dense(f);
   const double s = theta, s1 = 1.0 - theta;
-  const auto n = y0_.size();
-  out.resize(n);
-  with_state_size(n, [&]<int N>() {
-    using C = Eigen::Map<const Eigen::Matrix<double, N, 1>, Eigen::Aligned16>;
-    const C r0(r_[0].data(), n), r1(r_[1].data(), n), r2(r_[2].data(), n), r3(r_[3].data(), n),
-        r4(r_[4].data(), n), r5(r_[5].data(), n), r6(r_[6].data(), n), r7(r_[7].data(), n);
-    Eigen::Map<Eigen::Matrix<double, N, 1>, Eigen::Aligned16>(out.data(), n) =
-        r0 + s * (r1 + s1 * (r2 + s * (r3 + s1 * (r4 + s * (r5 + s1 * (r6 + s * r7))))));
-  });
+  out = r_[0] +
+        s * (r_[1] +
+             s1 * (r_[2] + s * (r_[3] + s1 * (r_[4] + s * (r_[5] + s1 * (r_[6] + s * r_[7]))))));
 }
 
 // With s, 1 - s in [0, 1], each nested term of contd8 is at most the sum of the magnitudes

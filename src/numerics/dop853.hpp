@@ -25,8 +25,6 @@ class Dop853 final : public Stepper {
   template <int N>
   double attempt_n(const System& f, double t, const Vec& y, double h, Vec& y_new, const Tolerances& tol);
   void prepare_dense(const System& f);
-  template <int N>
-  void prepare_dense_n(const System& f);
 
   DerivativeCache cache_;
   double t_ = 0.0, h_ = 0.0;

@@ -99,10 +99,7 @@ Dynamics evaluate(const Model& m, const TopKinematics& top, const Contact& c, co
 void rhs(const Model& m, const MotorSchedule& schedule, const Contact& c, double t,
          const numerics::Vec& y, numerics::Vec& dydt) {
   const TopKinematics top = top_kinematics(m, schedule, c, t, y);
-  rates(top, evaluate(m, top, c, y, true), y, dydt);
-}
-
-void rates(const TopKinematics& top, const Dynamics& d, const numerics::Vec& y, numerics::Vec& dydt) {
+  const Dynamics d = evaluate(m, top, c, y, true);
   dydt.resize(y.size());
   dydt.segment<3>(idx::r1) = y.segment<3>(idx::v1);
   dydt.segment<3>(idx::r2) = y.segment<3>(idx::v2);

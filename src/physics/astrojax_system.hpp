@@ -31,10 +31,6 @@ struct Dynamics {
 Dynamics evaluate(const Model& m, const TopKinematics& top, const Contact& c, const numerics::Vec& y,
                   bool motion_only = false);
 
-// dy/dt in the layout of idx from d = evaluate(m, top, c, y) (motion_only or not: the
-// accelerations and powers are the same).
-void rates(const TopKinematics& top, const Dynamics& d, const numerics::Vec& y, numerics::Vec& dydt);
-
 // dy/dt in the layout of idx (accelerations and the three power quadratures).
 void rhs(const Model& m, const MotorSchedule& schedule, const Contact& c, double t,
          const numerics::Vec& y, numerics::Vec& dydt);

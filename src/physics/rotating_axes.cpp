@@ -22,11 +22,7 @@ TopKinematics top_in_rotating_axes(const MotorSchedule& schedule, double R, doub
 void rhs_in_rotating_axes(const Model& m, const MotorSchedule& schedule, const Contact& c, double t,
                           const numerics::Vec& y, numerics::Vec& dydt) {
   const TopKinematics top = top_in_rotating_axes(schedule, m.p.drive_radius, t);
-  rates_in_rotating_axes(top, evaluate(m, top, c, y, true), y, dydt);
-}
-
-void rates_in_rotating_axes(const TopKinematics& top, const Dynamics& d, const numerics::Vec& y,
-                            numerics::Vec& dydt) {
+  const Dynamics d = evaluate(m, top, c, y, true);
   const double w = top.omega;
   // Ω×x = ω (−x_y, x_x, 0)
   const auto omega_cross = [w](const auto& x) { return Vec3(-w * x.y(), w * x.x(), 0.0); };

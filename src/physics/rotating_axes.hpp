@@ -22,10 +22,6 @@ TopKinematics top_in_rotating_axes(const MotorSchedule& schedule, double drive_r
 void rhs_in_rotating_axes(const Model& m, const MotorSchedule& schedule, const Contact& c, double t,
                           const numerics::Vec& y, numerics::Vec& dydt);
 
-// The same from d = evaluate(m, top, c, y) at top = top_in_rotating_axes(schedule, R, t).
-void rates_in_rotating_axes(const TopKinematics& top, const Dynamics& d, const numerics::Vec& y,
-                            numerics::Vec& dydt);
-
 // y <- Rz(angle) y on the positions and velocities of both balls (the work integrals stay).
 // Lab to turning axes: angle = −φ(t); back: angle = +φ(t).
 void rotate_about_z(numerics::Vec& y, double angle);

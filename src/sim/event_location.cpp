@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "physics/state.hpp"
 #include "sim/step_bound.hpp"
 
 namespace ajx::sim {
@@ -11,11 +10,23 @@ namespace ajx::sim {
 using numerics::Vec;
 using physics::Guard;
 
+const physics::Dynamics& GuardEvents::DynamicsCache::at(double tq, const physics::TopKinematics& top,
+                                                        const Vec& yq, const physics::Model& m,
+                                                        const Contact& c) {
+  if (!(valid && tq == t && yq.size() == y.size() && (yq.array() == y.array()).all())) {
+    d = physics::evaluate(m, top, c, yq);
+    t = tq;
+    y = yq;
+    valid = true;
+  }
+  return d;
+}
+
 double GuardEvents::value(Guard kind, bool force, double t, const Vec& y) {
   const physics::TopKinematics top = ctx_.top_at(t, y);
   const Contact& contact = ctx_.contact();
   if (!physics::needs_dynamics(kind)) return physics::guard_value(kind, ctx_.model, top, contact, y);
-  return physics::guard_value(kind, ctx_.model, top, contact, y, ctx_.evaluation.at(t, top, y, ctx_.model, contact)) +
+  return physics::guard_value(kind, ctx_.model, top, contact, y, cache_.at(t, top, y, ctx_.model, contact)) +
          (force ? ctx_.band : 0.0);
 }
 
@@ -35,7 +46,7 @@ double GuardEvents::top_travel(double t0, double t1) const {
 void GuardEvents::arm() {
   specs_ = physics::guards(ctx_.model, ctx_.contact());
   events_.clear();
-  ctx_.evaluation.clear();  // the mode may have changed
+  cache_.valid = false;
   for (const auto& g : specs_) {
     const bool force = g.kind == Guard::SlipUp || g.kind == Guard::SlipDown || g.kind == Guard::Slacken;
     numerics::Event e{[this, kind = g.kind, force](double t, const Vec& y) { return value(kind, force, t, y); },

@@ -24,12 +24,20 @@ class GuardEvents {
   physics::Guard kind(int event_index) const { return specs_[std::size_t(event_index)].kind; }
 
  private:
-  // The force guards of a mode (two cone margins, the tensions) share one evaluation at (t, y),
-  // ctx.evaluation, with the right-hand side.
+  // The force guards of a mode (two cone margins, the tensions) share one evaluation at (t, y).
+  struct DynamicsCache {
+    bool valid = false;
+    double t = 0.0;
+    numerics::Vec y;
+    physics::Dynamics d;
+    const physics::Dynamics& at(double tq, const physics::TopKinematics& top, const numerics::Vec& yq,
+                                const physics::Model& m, const Contact& c);
+  };
   double value(physics::Guard kind, bool force, double t, const numerics::Vec& y);
   double top_travel(double t0, double t1) const;
 
   RunContext& ctx_;
+  DynamicsCache cache_;
   std::vector<physics::GuardSpec> specs_;
   std::vector<numerics::Event> events_;
 };

@@ -9,40 +9,6 @@
 
 namespace ajx::sim {
 
-// physics::evaluate (with the cone margins) at the last (t, y) the guards asked for, in the
-// current mode. The force guards of a mode share it, and so does the right-hand side: the guards
-// are evaluated at each step's end (t1, y1) before the next step's first stage f(t1, y1), which
-// then needs no evaluation of its own (its accelerations and powers are the same with or without
-// the margins). Cleared whenever the mode may have changed (GuardEvents::arm).
-class SharedEvaluation {
- public:
-  const physics::Dynamics& at(double t, const physics::TopKinematics& top, const numerics::Vec& y,
-                              const physics::Model& m, const Contact& c) {
-    if (!find(t, y)) {
-      d_ = physics::evaluate(m, top, c, y);
-      t_ = t;
-      y_ = y;
-      valid_ = true;
-    }
-    return d_;
-  }
-  // The evaluation at (t, y) if it is the one held (compared bitwise), else nullptr. The time
-  // decides almost every call (only a step's last stage shares t1 with its end).
-  const physics::Dynamics* find(double t, const numerics::Vec& y) const {
-    if (!valid_ || t != t_) [[likely]]
-      return nullptr;
-    return same_state(y) ? &d_ : nullptr;
-  }
-  void clear() { valid_ = false; }
-
- private:
-  bool same_state(const numerics::Vec& y) const;
-  bool valid_ = false;
-  double t_ = 0.0;
-  numerics::Vec y_;
-  physics::Dynamics d_;
-};
-
 // The axes of one run (physics/rotating_axes.hpp). In rotating axes every physics function
 // takes the top at φ = 0 and the rotated state y' (they are invariant under rotations about z).
 struct RunAxes {
@@ -69,9 +35,8 @@ struct RunAxes {
     schedule.phase(t, phi, w, wd);
     return phi;
   }
-  // ẏ = f(t, y) in these axes for the mode `contact` holds when f is called, taking the
-  // evaluation from `shared` when it holds (t, y).
-  numerics::System system(const Contact& contact, const SharedEvaluation& shared) const;
+  // ẏ = f(t, y) in these axes for the mode `contact` holds when f is called.
+  numerics::System system(const Contact& contact) const;
 };
 
 struct RunContext {
@@ -85,7 +50,6 @@ struct RunContext {
   // taut impacts have this restitution.
   double band = 0.0;
   double restitution = 0.0;
-  SharedEvaluation evaluation;  // the guards' and the right-hand side's (see SharedEvaluation)
 
   Contact& contact() { return s.contact; }
   const Contact& contact() const { return s.contact; }

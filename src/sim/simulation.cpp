@@ -37,7 +37,7 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
   RunContext ctx{model_, schedule_, opt_, RunAxes::choose(model_, schedule_, opt_.axes, s), s, sum, 0.0,
                  model_.layers.restitution};
   numerics::IntegrateOptions integ = step_options(ctx, *stepper);
-  const numerics::System f = ctx.axes.system(s.contact, ctx.evaluation);
+  const numerics::System f = ctx.axes.system(s.contact);
   GuardEvents guards(ctx);
   ViolationWatches watches(ctx);
   ChatterDetector chatter(ctx);
