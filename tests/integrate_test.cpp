@@ -505,6 +505,42 @@ TEST(IntegrateEvents, InteriorSamplesFindTheEarliestCrossing) {
   }
 }
 
+// Conservative advancement (Event::change_bound). x' = 1 is integrated exactly, so only h_bound
+// (0.2 s, k = 3: samples 0.05 s apart) keeps the steps short; g = 0.01 − (x − 5)² is positive on
+// (4.9, 5.1) only, a crossing and a recrossing 0.2 s apart. |Δg| = |Δx| |2 (x0 − 5) + Δx| ≤
+// e (2 |x0 − 5| + e) bounds its change over a step whose interpolant moves x by at most e. Far
+// from 5 the steps are certified and grow past the bound; the step that holds the excursion is
+// not, and its samples (0.05 s apart however long it is) see the rise at 4.9. A certificate that
+// lies (0: nothing can change) lets that step go unsampled, and the excursion is missed.
+TEST(IntegrateEvents, ConservativeAdvancementSkipsOnlyStepsThatCannotCross) {
+  const System f = [](double, const Vec&, Vec& d) { d[0] = 1.0; };
+  const auto g = [](double, const Vec& v) { return 0.01 - (v[0] - 5.0) * (v[0] - 5.0); };
+  const auto bound = [](double, double, const Vec& y0, const Vec& e) {
+    return e[0] * (2.0 * std::abs(y0[0] - 5.0) + e[0]);
+  };
+  const auto lie = [](double, double, const Vec&, const Vec&) { return 0.0; };
+  IntegrateOptions o;
+  o.tol = {1e-9, 1e-9};
+  o.h_init = 0.01;
+  o.h_max = 100.0;
+  o.event_samples = 3;
+  o.h_bound = [](double, const Vec&) { return 0.2; };
+  const auto solve = [&](const Event& ev) {
+    auto s = make_stepper("dop853");
+    Vec y = Vec::Zero(1);
+    return run(f, *s, 0.0, y, 10.0, o, std::span<const Event>(&ev, 1));
+  };
+  const auto capped = solve({g, 0, {}});
+  ASSERT_EQ(capped.status, IntegrateStatus::Event);
+  EXPECT_NEAR(capped.t, 4.9, 1e-12);
+  const auto certified = solve({g, 0, bound});
+  ASSERT_EQ(certified.status, IntegrateStatus::Event) << "the certified steps skipped the crossing";
+  EXPECT_NEAR(certified.t, 4.9, 1e-12);
+  EXPECT_GE(capped.steps, 4.9 / 0.2);  // every step bounded by 0.2 s
+  EXPECT_LT(4 * certified.steps, capped.steps) << "the certified steps were still bounded";
+  EXPECT_EQ(solve({g, 0, lie}).status, IntegrateStatus::Reached);  // the samples were needed
+}
+
 // A unit vector rotating at angular speed w: y' = w (-y2, y1). The projection y <- y/|y|
 // after every step keeps |y| = 1 to round-off, every step starts from the projected state
 // (seen through the observer at the step start), and the phase stays accurate.

@@ -177,6 +177,41 @@ TEST(StepBound, InteriorSamplesSeeThePullWithStepsLongerThanTheRate) {
   EXPECT_LE(*seen_fixed, t_exact + 1e-4 + 1e-7);
 }
 
+// Conservative advancement: the change of each length guard between two states y0, y1 with
+// |y1_i − y0_i| <= e_i and the top moved by |Δa| is within guard_change_bound (the triangle
+// inequality; sim/step_bound.hpp), over a spread of displacements and top angles; and the bound
+// is reached when both balls move straight apart along the links (it is not slack by a factor).
+TEST(StepBound, TheLengthGuardsChangeNoMoreThanTheirBound) {
+  using physics::Guard;
+  const config::RunConfig c = config::parse_run_config(scene("\"auto\""), "auto");
+  const physics::MotorSchedule schedule(c.schedule);
+  const physics::State s = sim::explicit_state(c.model, schedule, c.initial.r1, c.initial.r2, c.initial.v1,
+                                               c.initial.v2, physics::Mode::Slack);
+  const physics::Contact slack{physics::Mode::Slack, 0, 0.0};
+  const physics::TopKinematics top0 = schedule.top(kR, 0.0);
+  for (int k = 0; k < 200; ++k) {
+    numerics::Vec y1 = s.y;
+    for (int i = 0; i < 6; ++i) y1(i) += 0.03 * std::sin(1.7 * k + 2.3 * i + 0.4 * k * i);
+    const physics::TopKinematics top1 = schedule.top(kR, 0.0013 * k);
+    const double travel = (top1.a - top0.a).norm();
+    const numerics::Vec e = (y1 - s.y).cwiseAbs();
+    for (Guard g : {Guard::LandBottom, Guard::LandTop, Guard::Taut, Guard::ReachBall, Guard::ReachTop}) {
+      ASSERT_TRUE(sim::has_change_bound(g));
+      const double dg = physics::guard_value(g, c.model, top1, slack, y1) - physics::guard_value(g, c.model, top0, slack, s.y);
+      EXPECT_LE(std::abs(dg), sim::guard_change_bound(g, travel, e) * (1 + 1e-12)) << physics::to_string(g) << " " << k;
+    }
+  }
+  // Ball 2 pulled straight away from ball 1 along the link: ΔL2 = |Δr2| exactly.
+  numerics::Vec y1 = s.y;
+  const Vec3 u2 = (s.y.segment<3>(physics::idx::r2) - s.y.segment<3>(physics::idx::r1)).normalized();
+  y1.segment<3>(physics::idx::r2) += 0.01 * u2;
+  const double dL2 = physics::guard_value(Guard::LandBottom, c.model, top0, slack, y1) -
+                     physics::guard_value(Guard::LandBottom, c.model, top0, slack, s.y);
+  EXPECT_NEAR(dL2, sim::guard_change_bound(Guard::LandBottom, 0.0, (y1 - s.y).cwiseAbs()), 1e-15);
+  EXPECT_FALSE(sim::has_change_bound(Guard::Slacken));
+  EXPECT_FALSE(sim::has_change_bound(Guard::Rest));
+}
+
 TEST(StepBound, EventSamplesIsAWholeNumberInRange) {
   EXPECT_THROW(config::parse_run_config(scene("\"auto\"", 17), "bad"), config::ConfigError);
   std::string half = scene("\"auto\"", 1);

@@ -177,42 +177,55 @@ constexpr double d716 = -0.14972683625798562581422125276e+03;
 
 double Dop853::attempt(const System& f, double t, const Vec& y, double h, Vec& y_new,
                        const Tolerances& tol) {
+  return with_state_size(y.size(), [&]<int N>() { return attempt_n<N>(f, t, y, h, y_new, tol); });
+}
+
+// The stage combinations on fixed-size maps of the member vectors when N is a compile-time
+// size (vector.hpp): the same element-wise arithmetic, without the length loops.
+template <int N>
+double Dop853::attempt_n(const System& f, double t, const Vec& y, double h, Vec& y_new,
+                         const Tolerances& tol) {
+  using M = Eigen::Map<Eigen::Matrix<double, N, 1>, Eigen::Aligned16>;
   const auto n = y.size();
   y0_ = y;  // first: y_new may alias y
-  for (Vec* v : {&k2_, &k3_, &k4_, &k5_, &k6_, &k7_, &k8_, &k9_, &k10_, &k11_, &k12_}) v->resize(n);
+  for (Vec* v : {&tmp_, &y1_, &k2_, &k3_, &k4_, &k5_, &k6_, &k7_, &k8_, &k9_, &k10_, &k11_, &k12_})
+    v->resize(n);
   cache_.get(f, t, y0_, k1_, rhs_evals_);
+  const M y0(y0_.data(), n);
+  M y1(y1_.data(), n), tmp(tmp_.data(), n);
+  const M k1(k1_.data(), n), k2(k2_.data(), n), k3(k3_.data(), n), k4(k4_.data(), n), k5(k5_.data(), n),
+      k6(k6_.data(), n), k7(k7_.data(), n), k8(k8_.data(), n), k9(k9_.data(), n), k10(k10_.data(), n),
+      k11(k11_.data(), n), k12(k12_.data(), n);
 
-  tmp_ = y0_ + (h * a21) * k1_;
+  tmp = y0 + (h * a21) * k1;
   f(t + c2 * h, tmp_, k2_);
-  tmp_ = y0_ + h * (a31 * k1_ + a32 * k2_);
+  tmp = y0 + h * (a31 * k1 + a32 * k2);
   f(t + c3 * h, tmp_, k3_);
-  tmp_ = y0_ + h * (a41 * k1_ + a43 * k3_);
+  tmp = y0 + h * (a41 * k1 + a43 * k3);
   f(t + c4 * h, tmp_, k4_);
-  tmp_ = y0_ + h * (a51 * k1_ + a53 * k3_ + a54 * k4_);
+  tmp = y0 + h * (a51 * k1 + a53 * k3 + a54 * k4);
   f(t + c5 * h, tmp_, k5_);
-  tmp_ = y0_ + h * (a61 * k1_ + a64 * k4_ + a65 * k5_);
+  tmp = y0 + h * (a61 * k1 + a64 * k4 + a65 * k5);
   f(t + c6 * h, tmp_, k6_);
-  tmp_ = y0_ + h * (a71 * k1_ + a74 * k4_ + a75 * k5_ + a76 * k6_);
+  tmp = y0 + h * (a71 * k1 + a74 * k4 + a75 * k5 + a76 * k6);
   f(t + c7 * h, tmp_, k7_);
-  tmp_ = y0_ + h * (a81 * k1_ + a84 * k4_ + a85 * k5_ + a86 * k6_ + a87 * k7_);
+  tmp = y0 + h * (a81 * k1 + a84 * k4 + a85 * k5 + a86 * k6 + a87 * k7);
   f(t + c8 * h, tmp_, k8_);
-  tmp_ = y0_ + h * (a91 * k1_ + a94 * k4_ + a95 * k5_ + a96 * k6_ + a97 * k7_ + a98 * k8_);
+  tmp = y0 + h * (a91 * k1 + a94 * k4 + a95 * k5 + a96 * k6 + a97 * k7 + a98 * k8);
   f(t + c9 * h, tmp_, k9_);
-  tmp_ = y0_ + h * (a101 * k1_ + a104 * k4_ + a105 * k5_ + a106 * k6_ + a107 * k7_ + a108 * k8_ +
-                    a109 * k9_);
+  tmp = y0 + h * (a101 * k1 + a104 * k4 + a105 * k5 + a106 * k6 + a107 * k7 + a108 * k8 + a109 * k9);
   f(t + c10 * h, tmp_, k10_);
-  tmp_ = y0_ + h * (a111 * k1_ + a114 * k4_ + a115 * k5_ + a116 * k6_ + a117 * k7_ + a118 * k8_ +
-                    a119 * k9_ + a1110 * k10_);
+  tmp = y0 + h * (a111 * k1 + a114 * k4 + a115 * k5 + a116 * k6 + a117 * k7 + a118 * k8 + a119 * k9 +
+                  a1110 * k10);
   f(t + c11 * h, tmp_, k11_);
-  tmp_ = y0_ + h * (a121 * k1_ + a124 * k4_ + a125 * k5_ + a126 * k6_ + a127 * k7_ + a128 * k8_ +
-                    a129 * k9_ + a1210 * k10_ + a1211 * k11_);
+  tmp = y0 + h * (a121 * k1 + a124 * k4 + a125 * k5 + a126 * k6 + a127 * k7 + a128 * k8 + a129 * k9 +
+                  a1210 * k10 + a1211 * k11);
   f(t + h, tmp_, k12_);
   rhs_evals_ += 11;
 
-  // y1 = y0 + h sum b_i k_i; tmp_ holds the increment direction sum b_i k_i.
-  tmp_ =
-      b1 * k1_ + b6 * k6_ + b7 * k7_ + b8 * k8_ + b9 * k9_ + b10 * k10_ + b11 * k11_ + b12 * k12_;
-  y1_ = y0_ + h * tmp_;
+  // y1 = y0 + h sum b_i k_i; tmp holds the increment direction sum b_i k_i.
+  tmp = b1 * k1 + b6 * k6 + b7 * k7 + b8 * k8 + b9 * k9 + b10 * k10 + b11 * k11 + b12 * k12;
+  y1 = y0 + h * tmp;
 
   // Error (dop853.f): err5_i = h sum er_j k_j, err3_i = h (sum b k - bhh1 k1 - bhh2 k9 -
   // bhh3 k12); with s_i = atol + rtol max(|y0_i|, |y1_i|), E5 = sum (err5_i/s_i)^2,
@@ -220,10 +233,10 @@ double Dop853::attempt(const System& f, double t, const Vec& y, double h, Vec& y
   // err ~ |err5|^2/|err3| = O(h^8), so the controller treats it as an order-7 estimate.
   double e5 = 0.0, e3 = 0.0;
   for (Eigen::Index i = 0; i < n; ++i) {
-    const double sk = tol.atol + tol.rtol * std::max(std::abs(y0_[i]), std::abs(y1_[i]));
-    const double r3 = (tmp_[i] - bhh1 * k1_[i] - bhh2 * k9_[i] - bhh3 * k12_[i]) / sk;
-    const double r5 = (er1 * k1_[i] + er6 * k6_[i] + er7 * k7_[i] + er8 * k8_[i] + er9 * k9_[i] +
-                       er10 * k10_[i] + er11 * k11_[i] + er12 * k12_[i]) /
+    const double sk = tol.atol + tol.rtol * std::max(std::abs(y0[i]), std::abs(y1[i]));
+    const double r3 = (tmp[i] - bhh1 * k1[i] - bhh2 * k9[i] - bhh3 * k12[i]) / sk;
+    const double r5 = (er1 * k1[i] + er6 * k6[i] + er7 * k7[i] + er8 * k8[i] + er9 * k9[i] + er10 * k10[i] +
+                       er11 * k11[i] + er12 * k12[i]) /
                       sk;
     e3 += r3 * r3;
     e5 += r5 * r5;
@@ -295,6 +308,15 @@ void Dop853::dense(const System& f, double theta, Vec& out) {
   out = r_[0] +
         s * (r_[1] +
              s1 * (r_[2] + s * (r_[3] + s1 * (r_[4] + s * (r_[5] + s1 * (r_[6] + s * r_[7]))))));
+}
+
+// With s, 1 - s in [0, 1], each nested term of contd8 is at most the sum of the magnitudes
+// inside it, so |y_i(theta) - r0_i| <= |r1_i| + ... + |r7_i| for every theta in [0, 1].
+bool Dop853::dense_excursion(const System& f, Vec& e) {
+  if (!dense_ready_) prepare_dense(f);
+  e = r_[1].cwiseAbs();
+  for (int k = 2; k < 8; ++k) e += r_[k].cwiseAbs();
+  return true;
 }
 
 void Dop853::reset() { cache_.block(); }

@@ -18,9 +18,12 @@ class Dop853 final : public Stepper {
                  const Tolerances& tol) override;
   void accept(const System& f) override;
   void dense(const System& f, double theta, Vec& out) override;
+  bool dense_excursion(const System& f, Vec& e) override;
   void reset() override;
 
  private:
+  template <int N>
+  double attempt_n(const System& f, double t, const Vec& y, double h, Vec& y_new, const Tolerances& tol);
   void prepare_dense(const System& f);
 
   DerivativeCache cache_;

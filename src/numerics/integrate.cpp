@@ -47,6 +47,8 @@ constexpr double kFacMin = 0.2;
 constexpr double kFacMax = 10.0;
 constexpr double kBeta = 0.04;
 constexpr double kErrOldMin = 1e-4;
+// Guard samples of a step taken without the h_bound bound (conservative advancement) at most.
+constexpr double kMaxCertifiedSamples = 1000.0;
 
 // RMS of v_i / (atol + rtol |y_i|).
 double scaled_rms(const Vec& v, const Vec& y, const Tolerances& tol) {
@@ -165,15 +167,17 @@ IntegrateResult integrate(const System& f, Stepper& stepper, double t0, Vec& y, 
   // and its interior samples, IntegrateOptions::event_samples) cancel and are not seen.
   const std::size_t m = events.size();
   // g values: on the stack for up to kSmall events (the usual case), else on the heap, once.
-  // g0, g1: the step's ends; (ta_s, ga_s): each event's last sample with g != 0; gs: the current one.
+  // g0, g1: the step's ends; (ta_s, ga_s): each event's last sample with g != 0; gs: the current
+  // one; clear: 1 for an event that cannot cross in this step (conservative advancement).
   constexpr std::size_t kSmall = 16;
-  std::array<double, 5 * kSmall> g_small;
-  std::vector<double> g_heap(m > kSmall ? 5 * m : 0);
+  std::array<double, 6 * kSmall> g_small;
+  std::vector<double> g_heap(m > kSmall ? 6 * m : 0);
   double* g0 = m > kSmall ? g_heap.data() : g_small.data();
   double* g1 = g0 + m;
   double* ga_s = g1 + m;
   double* ta_s = ga_s + m;
   double* gs = ta_s + m;
+  double* clear = gs + m;
   for (std::size_t i = 0; i < m; ++i) g0[i] = events[i].g(t0, y);
 
   double t = t0;
@@ -181,6 +185,13 @@ IntegrateResult integrate(const System& f, Stepper& stepper, double t0, Vec& y, 
   // h_bound at the start state of the current step (adaptive methods with a bound): the interior
   // samples of a step are the fewest that keep them at most h_bound / (event_samples + 1) apart.
   double hb_start = std::numeric_limits<double>::infinity();
+  // Conservative advancement (IntegrateOptions::event_samples): possible when every event bounds
+  // its change over a step. near: the last certified step had an event that could cross (or none
+  // was certified yet), so h_bound bounds the steps.
+  const bool can_certify = samples_max > 0 && opt.h_bound && m > 0 &&
+                           std::all_of(events.begin(), events.end(), [](const Event& e) { return bool(e.change_bound); });
+  bool near = true;
+  Vec excursion(can_certify ? n : 0);
 
   // Events, observer and post-step hook after an accepted step [t, t1] of size hs whose end
   // state is y_new. Returns true when the integration ends here (res filled).
@@ -190,12 +201,26 @@ IntegrateResult integrate(const System& f, Stepper& stepper, double t0, Vec& y, 
         stepper.dense(f, (tq - t) / hs, y_ev);
         return events[i].g(tq, y_ev);
       };
-      // Interior samples: |hs| (k + 1) / hb_start spacings of the bound's, less the step end.
+      // Interior samples: |hs| (k + 1) / hb_start spacings of the bound's, less the step end; at
+      // most k while h_bound bounds the steps, as many as the spacing asks otherwise.
       int n = samples_max;
       if (n > 0 && std::isfinite(hb_start) && hb_start > 0.0)
-        n = static_cast<int>(
-            std::clamp(std::ceil(std::abs(hs) * (samples_max + 1) / hb_start) - 1.0, 0.0, double(samples_max)));
+        n = static_cast<int>(std::clamp(std::ceil(std::abs(hs) * (samples_max + 1) / hb_start) - 1.0, 0.0,
+                                        near ? double(samples_max) : kMaxCertifiedSamples));
       for (std::size_t i = 0; i < m; ++i) g1[i] = events[i].g(t1, y_new);
+      // A step that needs samples first asks which events can cross: |g0| above the bound on its
+      // change over the step keeps g0's sign on the whole interpolant (y still holds the start).
+      std::fill(clear, clear + m, 0.0);
+      if (can_certify && n > 0 && stepper.dense_excursion(f, excursion)) {
+        std::size_t n_clear = 0;
+        for (std::size_t i = 0; i < m; ++i)
+          if (std::abs(g0[i]) > events[i].change_bound(t, t1, y, excursion)) {
+            clear[i] = 1.0;
+            ++n_clear;
+          }
+        near = n_clear < m;
+        if (!near) n = 0;  // no event can cross: the step's end alone
+      }
       // Each event's bracket starts at (ta_s, ga_s): the step start, or the probe past a zero
       // start (NaN: the event cannot fire in this step).
       for (std::size_t i = 0; i < m; ++i) {
@@ -219,7 +244,7 @@ IntegrateResult integrate(const System& f, Stepper& stepper, double t0, Vec& y, 
           std::copy(g1, g1 + m, gs);
         } else {
           stepper.dense(f, (ts - t) / hs, y_ev);
-          for (std::size_t i = 0; i < m; ++i) gs[i] = events[i].g(ts, y_ev);
+          for (std::size_t i = 0; i < m; ++i) gs[i] = clear[i] != 0.0 ? ga_s[i] : events[i].g(ts, y_ev);
         }
         for (std::size_t i = 0; i < m; ++i) {
           const double ta = ta_s[i], ga = ga_s[i];
@@ -370,12 +395,11 @@ IntegrateResult integrate(const System& f, Stepper& stepper, double t0, Vec& y, 
       if (last && std::abs(hs) < h) h_next = std::max(h_next, h);  // cut short only by t_end
       h_next = std::min(h_next, opt.h_max);
       const double hb_end = opt.h_bound ? opt.h_bound(t1, y_new) : hb_start;
-      h_next = std::min(h_next, hb_end);
-      res.h_next = h_next;
+      res.h_next = std::min(h_next, hb_end);  // a continuation starts near the guards
       if (after_step(t1, hs)) return res;
       hb_start = hb_end;
       t = t1;
-      h = h_next;
+      h = near ? res.h_next : h_next;  // far from every guard (certified): h_bound does not bound it
       if (last) {
         res.status = IntegrateStatus::Reached;
         break;

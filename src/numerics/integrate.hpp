@@ -16,9 +16,14 @@ namespace ajx::numerics {
 // change after g has left zero counts. The located event time lies on the far side of the
 // crossing (within event_tol), so restarting from the returned state does not see the same
 // crossing again.
+// change_bound (optional) certifies that a step cannot cross (conservative advancement): given
+// e with e_i >= |y_i(t) - y0_i| on the step's interpolant over [t0, t1], it returns a bound on
+// |g(t, y(t)) - g(t0, y0)| over the step. A guard with |g(t0, y0)| above it keeps its sign
+// throughout the step, so the step needs no guard samples for it (IntegrateOptions::event_samples).
 struct Event {
   std::function<double(double t, const Vec& y)> g;
   int direction = 0;
+  std::function<double(double t0, double t1, const Vec& y0, const Vec& e)> change_bound;
 };
 
 // Interpolation over the last accepted step [t0, t1], handed to observers.
@@ -64,6 +69,12 @@ struct IntegrateOptions {
   // apart (h_bound at the step's start state; also for fixed-step methods, whose steps it does
   // not bound): a step that is already that short pays for none. Without h_bound, every step
   // uses all of them. 0: the step ends alone.
+  // Conservative advancement: when every event has a change_bound and the stepper an excursion
+  // bound (Stepper::dense_excursion), a step that would need samples first asks each event
+  // whether it can cross; those that cannot are not sampled. After a step in which no event
+  // could cross, the next step is not bounded by h_bound (it is far from every guard); a step
+  // so taken that turns out to need samples gets as many as keep them h_bound / (event_samples
+  // + 1) apart, and the bound applies again from then on.
   int event_samples = 0;
 };
 

@@ -42,6 +42,10 @@ class Stepper {
   // some interpolants evaluate extra stages lazily, at most once per step.
   virtual void dense(const System& f, double theta, Vec& out) = 0;
 
+  // Bounds e_i >= |y_i(t0 + theta h) - y_i(t0)| for all theta in [0, 1] on the interpolant of
+  // the last accepted step (what dense() returns). False when the method gives none.
+  virtual bool dense_excursion(const System& /*f*/, Vec& /*e*/) { return false; }
+
   // The state was changed outside the stepper (projection, impact, mode switch): drop any
   // stage reused from the previous step.
   virtual void reset() = 0;

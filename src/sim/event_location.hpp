@@ -34,6 +34,7 @@ class GuardEvents {
                                 const physics::Model& m, const Contact& c);
   };
   double value(physics::Guard kind, bool force, double t, const numerics::Vec& y);
+  double top_travel(double t0, double t1) const;
 
   RunContext& ctx_;
   DynamicsCache cache_;

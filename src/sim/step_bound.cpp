@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "physics/state.hpp"
 
@@ -28,6 +29,42 @@ double guard_rate(const physics::Parameters& p, const physics::TopKinematics& to
 double guard_step_bound(const physics::Parameters& p, const physics::TopKinematics& top, const numerics::Vec& y,
                         int event_samples) {
   return (event_samples + 1) * kRadiansPerStep / guard_rate(p, top, y);
+}
+
+bool has_change_bound(physics::Guard g) {
+  using physics::Guard;
+  switch (g) {
+    case Guard::LandBottom:
+    case Guard::WatchBottom:
+    case Guard::ReachBall:
+    case Guard::LandTop:
+    case Guard::WatchTop:
+    case Guard::ReachTop:
+    case Guard::Taut:
+      return true;
+    default:
+      return false;
+  }
+}
+
+double guard_change_bound(physics::Guard g, double top_travel, const numerics::Vec& e) {
+  using namespace physics::idx;
+  using physics::Guard;
+  const double d1 = e.segment<3>(r1).norm(), d2 = e.segment<3>(r2).norm();
+  switch (g) {
+    case Guard::LandBottom:
+    case Guard::WatchBottom:
+    case Guard::ReachBall:
+      return d1 + d2;
+    case Guard::LandTop:
+    case Guard::WatchTop:
+    case Guard::ReachTop:
+      return d1 + top_travel;
+    case Guard::Taut:
+      return 2.0 * d1 + d2 + top_travel;
+    default:
+      return std::numeric_limits<double>::infinity();
+  }
 }
 
 bool corotates(const physics::TopKinematics& top, const numerics::Vec& y) {

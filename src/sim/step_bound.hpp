@@ -9,6 +9,7 @@
 #pragma once
 #include "numerics/vector.hpp"
 #include "physics/drive.hpp"
+#include "physics/mode_transitions.hpp"
 #include "physics/model.hpp"
 
 namespace ajx::sim {
@@ -36,6 +37,21 @@ double guard_rate(const physics::Parameters& p, const physics::TopKinematics& to
 // event_samples interior points) at most kRadiansPerStep / Ω apart.
 double guard_step_bound(const physics::Parameters& p, const physics::TopKinematics& top, const numerics::Vec& y,
                         int event_samples = 0);
+
+// Conservative advancement (numerics::Event::change_bound). The bound above is needed only where
+// a guard can reach zero within the step. For the guards that are lengths of the chain,
+// g = L − c with L = |p − q| (L2 = |r2 − r1|, L1 = |r1 − a|, and L1 + L2 for Taut), the triangle
+// inequality gives |ΔL| ≤ |Δp| + |Δq| along the step, and on the integrator's interpolant
+// |Δr_b| ≤ |(e_x, e_y, e_z)| of ball b when e_i ≥ |y_i(t) − y_i(t0)| (numerics::Stepper::
+// dense_excursion). The top moves by |Δa| ≤ top_travel (see RunContext's use: 0 in the rotating
+// axes, where a' = (R, 0, 0); R ∫|ω| dt ≤ R h max(|ω(t0)|, |ω(t1)|), ω being linear within a
+// schedule segment, and at most the diameter 2R, in the lab). So
+//   L2 guards: |Δg| ≤ |Δr1| + |Δr2|;   L1 guards: |Δg| ≤ |Δr1| + |Δa|;   Taut: |Δg| ≤ 2|Δr1| + |Δr2| + |Δa|,
+// and a guard with |g(t0)| above its bound keeps its sign on the whole step: it needs neither the
+// bound nor guard samples there. The force guards (tensions, cone margins), Rest (ṡ) and the
+// tie's guards have no such bound: a mode with any of them keeps the bound at every step.
+bool has_change_bound(physics::Guard g);
+double guard_change_bound(physics::Guard g, double top_travel, const numerics::Vec& e);
 
 // The rule of axes = "auto": the balls co-rotate with the motor when their horizontal speeds are
 // smaller in the axes turning at ω (|v_h − ω ẑ×r|) than in the lab (|v_h|), summed over both
