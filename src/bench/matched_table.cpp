@@ -69,7 +69,8 @@ MatchedRatios ratios(const std::vector<MatchedPoint>& points, double target) {
   r.fastest_without = without.peer_name;
   double cvode = nan;
   for (const auto& [m, f_m] : method_names(points))
-    if (const MatchedPoint* p = cheapest(points, m, f_m, target); p && is_cvode_adams(m)) cvode = p->cpu_min();
+    if (const MatchedPoint* p = cheapest(points, m, f_m, target); p && is_cvode_adams(m) && f_m == "no guarantee")
+      cvode = p->cpu_min();
   r.cvode_over_plain = cvode / without.project;
   r.cvode_over_default = cvode / with.project;
   r.guarantee_cost = with.project / without.project - 1.0;
@@ -96,8 +97,9 @@ std::string matched_tables(const std::vector<MatchedPoint>& points, const std::v
     for (const auto& [m, f_m] : method_names(points)) {
       const MatchedPoint* p = cheapest(points, m, f_m, target);
       if (p)
-        out += fmt::format("    {:<14} {:<34} {:8.3f} ms  rtol {:.0e}  err {:.1e} m  evals {}\n", f_m, m,
-                           1e3 * p->cpu_min(), p->rtol, p->error, p->evals);
+        out += fmt::format("    {:<14} {:<34} {:8.3f} ms  rtol {:.0e}  err {:.1e} m  evals {:>7}  {:4.0f} ns/eval\n",
+                           f_m, m, 1e3 * p->cpu_min(), p->rtol, p->error, p->evals,
+                           1e9 * p->cpu_min() / double(std::max(1L, p->evals)));
       else
         out += fmt::format("    {:<14} {:<34}  not reached\n", f_m, m);
     }

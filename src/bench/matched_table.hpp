@@ -34,8 +34,8 @@ bool is_project(const std::string& method);
 bool is_cvode_adams(const std::string& method);
 
 // The ratios at one target error: the fastest peer's CPU over the project's in each family
-// (>= 1: the project is at least as fast), CVODE Adams over the project without the guarantee
-// (and over the default), and the guarantee's cost, default / no guarantee - 1. NaN where a
+// (>= 1: the project is at least as fast), CVODE Adams with its own root finding (the "no
+// guarantee" family) over the project without the guarantee and over the default, and the guarantee's cost, default / no guarantee - 1. NaN where a
 // side reaches no point.
 struct MatchedRatios {
   double with_guarantee = 0.0, without_guarantee = 0.0;

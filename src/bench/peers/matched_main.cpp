@@ -76,10 +76,12 @@ Method hand_method(const bench::Scene& s, const hand::Params& h, bool guarantee,
   };
 }
 
-Method cvode_method(const bench::Scene& s, const hand::Params& h) {
-  return [&s, h](double rtol) {
+Method cvode_method(const bench::Scene& s, const hand::Params& h, bool guarantee) {
+  return [&s, h, guarantee](double rtol) {
     hand::PeerOptions o;
     o.rtol = rtol;
+    o.guarantee = guarantee;
+    o.samples = s.run.integ.event_samples;
     o.projection_tol = s.run.projection_tol;
     numerics::Vec y = s.initial.y;
     physics::rotate_about_z(y, -phase(s, s.initial.t));
@@ -128,8 +130,8 @@ std::vector<Entry> methods(const bench::Scene& s, const hand::Params& h) {
     out.push_back({"hand odeint rkf78", fam, hand_method<Rkf78>(s, h, g, rkf78)});
     out.push_back({"hand odeint dopri5", fam, hand_method<Dopri5>(s, h, g, dopri5)});
     out.push_back({"hand odeint bulirsch-stoer", fam, hand_method<Bs>(s, h, g, bs)});
+    out.push_back({"hand CVODE Adams + CVodeRootInit", fam, cvode_method(s, h, g)});
   }
-  out.push_back({"hand CVODE Adams + CVodeRootInit", "no guarantee", cvode_method(s, h)});
   return out;
 }
 
