@@ -67,7 +67,7 @@ def main():
                 ax.axvspan(1e-14, floor, color="0.9", zorder=0)
             ax.set_xscale("log")
             ax.set_yscale("log")
-            ax.set_xlim(1e-13, 1e-3)
+            ax.set_xlim(1e-13, 1e-2)
             ax.invert_xaxis()
             ax.grid(True, which="major", alpha=0.3)
             ax.set_title(f"{scene}, horizon {T:g} s", fontsize=10)
@@ -76,8 +76,8 @@ def main():
     handles = [Line2D([], [], color=c, lw=2) for c in LABELS] + [
         Line2D([], [], color="0.3", ls="-", lw=1.5), Line2D([], [], color="0.3", ls="--", lw=1.5)]
     labels = list(LABELS.values()) + ["with the event guarantee", "without (step-end check / own root finding)"]
-    fig.legend(handles, labels, loc="upper center", ncol=4, fontsize=8.5, frameon=False)
-    fig.tight_layout(rect=(0, 0, 1, 0.95))
+    fig.legend(handles, labels, loc="upper center", ncol=3, fontsize=8.5, frameon=False)
+    fig.tight_layout(rect=(0, 0, 1, 0.93))
     fig.savefig(a.output, dpi=110)
     print("->", a.output)
 

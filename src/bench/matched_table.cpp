@@ -83,7 +83,7 @@ std::string matched_csv_header() {
 }
 
 std::string matched_csv_line(const MatchedPoint& p, double floor) {
-  return fmt::format("{},{},{},{},{:.3g},\"{}\",{:.6e},{},{},{},{:.6e},{:.6e},{:.6e}", p.scene, p.horizon, p.method,
+  return fmt::format("{},{},\"{}\",{},{:.3g},\"{}\",{:.6e},{},{},{},{:.6e},{:.6e},{:.6e}", p.scene, p.horizon, p.method,
                      p.family, p.rtol, p.status, p.error, p.same_mode ? 1 : 0, p.evals, p.cpu.size(), p.cpu_min(),
                      p.cpu_median(), floor);
 }
