@@ -115,4 +115,29 @@ std::string matched_tables(const std::vector<MatchedPoint>& points, const std::v
   return out;
 }
 
+std::string matched_summary(const std::vector<MatchedPoint>& points, const std::vector<double>& targets) {
+  std::string out =
+      "| scene | horizon | error | fastest peer / astrojax, with the guarantee | without the guarantee | "
+      "CVODE Adams + roots / astrojax (without, default) | cost of the guarantee |\n|---|---|---|---|---|---|---|\n";
+  std::vector<std::pair<std::string, double>> cases;
+  for (const MatchedPoint& p : points)
+    if (std::find(cases.begin(), cases.end(), std::pair{p.scene, p.horizon}) == cases.end())
+      cases.push_back({p.scene, p.horizon});
+  const auto ratio = [](double r, const std::string& who) {
+    return std::isnan(r) ? std::string("not reached") : fmt::format("{:.2f} ({})", r, who);
+  };
+  for (const auto& [scene, horizon] : cases) {
+    std::vector<MatchedPoint> sub;
+    for (const MatchedPoint& p : points)
+      if (p.scene == scene && p.horizon == horizon) sub.push_back(p);
+    for (double target : targets) {
+      const MatchedRatios r = ratios(sub, target);
+      out += fmt::format("| {} | {:g} s | {:.0e} m | {} | {} | {:.1f}, {:.1f} | {:+.0f} % |\n", scene, horizon, target,
+                         ratio(r.with_guarantee, r.fastest_with), ratio(r.without_guarantee, r.fastest_without),
+                         r.cvode_over_plain, r.cvode_over_default, 100.0 * r.guarantee_cost);
+    }
+  }
+  return out;
+}
+
 }  // namespace ajx::bench

@@ -50,4 +50,8 @@ std::string matched_csv_line(const MatchedPoint& p, double floor);
 // The printed tables: per target, each method's cheapest CPU [ms] with its error, then the ratios.
 std::string matched_tables(const std::vector<MatchedPoint>& points, const std::vector<double>& targets);
 
+// The ratios of every (scene, horizon) in the points at each target, as one Markdown table
+// (the report's summary is this output).
+std::string matched_summary(const std::vector<MatchedPoint>& points, const std::vector<double>& targets);
+
 }  // namespace ajx::bench

@@ -156,6 +156,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   std::ofstream csv(output);
+  std::vector<bench::MatchedPoint> all;
   csv << bench::matched_csv_header() << "\n";
   for (const std::string& path : paths) {
     for (double horizon : horizons) {
@@ -209,8 +210,11 @@ int main(int argc, char** argv) {
       csv.flush();
       std::printf("%s", bench::matched_tables(points, targets).c_str());
       std::fflush(stdout);
+      all.insert(all.end(), points.begin(), points.end());
     }
   }
+  std::printf("\nSummary (peer CPU / astrojax CPU, minimum over rounds; > 1: astrojax faster):\n%s",
+              bench::matched_summary(all, targets).c_str());
   std::printf("-> %s\n", output.c_str());
   return 0;
 }
