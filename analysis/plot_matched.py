@@ -9,7 +9,13 @@ markers: the run failed or ended in another contact mode than the reference. The
 verticals are the target errors 1e-6 and 1e-9 m; errors left of the grey band are below the
 reference's floor and not resolved.
 
+With --costs: also print, for every method that runs in both families, the cost of the
+guarantee at each target error: its cheapest CPU time with the guarantee over its cheapest
+without, minus 1 (the cheapest point reaching the error, status ok and the reference's final
+mode, as astrojax_matched counts it).
+
 Usage: /usr/bin/python3 analysis/plot_matched.py out/matched.csv -o analysis/figures/matched_comparison.png
+       [--costs 1e-6,1e-9]
 """
 import argparse
 import csv
@@ -32,13 +38,35 @@ def colour(method):
     return next(c for key, c in COLOURS if key in method)
 
 
+def cheapest(rows, scene, horizon, method, family, target):
+    cpu = [float(r["cpu_min_s"]) for r in rows if r["scene"] == scene and r["horizon_s"] == horizon
+           and r["method"] == method and r["family"] == family and r["status"] == "ok"
+           and r["same_final_mode"] == "1" and float(r["err_position_m"]) <= target]
+    return min(cpu) if cpu else float("nan")
+
+
+def print_costs(rows, targets):
+    print("cost of the guarantee (with / without - 1) per method:")
+    for scene, horizon in dict.fromkeys((r["scene"], r["horizon_s"]) for r in rows):
+        for method in dict.fromkeys(r["method"] for r in rows if r["family"] == "guarantee"):
+            if not any(r["method"] == method and r["family"] == "no guarantee" for r in rows):
+                continue
+            costs = [cheapest(rows, scene, horizon, method, "guarantee", e) /
+                     cheapest(rows, scene, horizon, method, "no guarantee", e) - 1 for e in targets]
+            print(f"  {scene:20s} {horizon:>4s} s  {method:34s} " +
+                  "  ".join(f"{e:.0e} m: {100 * c:+4.0f} %" for e, c in zip(targets, costs)))
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("csv")
     ap.add_argument("-o", "--output", default="out/matched.png")
+    ap.add_argument("--costs", help="target errors, e.g. 1e-6,1e-9: print the guarantee's cost per method")
     a = ap.parse_args()
     with open(a.csv, newline="") as f:
         rows = list(csv.DictReader(f))
+    if a.costs:
+        print_costs(rows, [float(x) for x in a.costs.split(",")])
     scenes = list(dict.fromkeys(r["scene"] for r in rows))
     horizons = sorted({float(r["horizon_s"]) for r in rows})
     fig, axes = plt.subplots(len(scenes), len(horizons), figsize=(5.2 * len(horizons), 3.9 * len(scenes)),
