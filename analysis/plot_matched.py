@@ -2,7 +2,8 @@
 """The matched comparison (docs/reports/matched-comparison.md): CPU time against the ACHIEVED
 position error, one panel per scene and horizon, from the CSV of `astrojax_matched`.
 
-Colour: the method (the project's dop853 in black, the hand-written odeint peers, CVODE Adams).
+Colour: the method (the project's dop853 in black, the hand-written odeint peers, CVODE Adams,
+ARKODE's ERK).
 Line: solid with the event guarantee (steps capped at (k+1)/Omega, guards sampled inside the
 step), dashed without it (guards checked at step ends, or CVODE's own root finding). Hollow
 markers: the run failed or ended in another contact mode than the reference. The dotted
@@ -28,10 +29,11 @@ import matplotlib.pyplot as plt
 from matplotlib.lines import Line2D
 
 COLOURS = [("astrojax", "black"), ("rkf78", "tab:blue"), ("dopri5", "tab:orange"),
-           ("bulirsch", "tab:green"), ("CVODE", "tab:red")]
+           ("bulirsch", "tab:green"), ("CVODE", "tab:red"), ("ARKODE", "tab:purple")]
 LABELS = {"black": "astrojax dop853 (the project)", "tab:blue": "hand-written peer: odeint rkf78",
           "tab:orange": "hand-written peer: odeint dopri5", "tab:green": "hand-written peer: odeint Bulirsch-Stoer",
-          "tab:red": "hand-written peer: CVODE Adams + CVodeRootInit"}
+          "tab:red": "hand-written peer: CVODE Adams + CVodeRootInit",
+          "tab:purple": "hand-written peer: ARKODE ERK Fehlberg 7(8) + ERKStepRootInit"}
 
 
 def colour(method):

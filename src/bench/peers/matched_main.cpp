@@ -4,8 +4,8 @@
 //    event_samples = 3) against the hand-written peers given the same guarantee (steps capped
 //    at (k+1)/Ω, guards sampled at the same interior points);
 //  - without it: the project with event_samples = 0 and no step bound from the guards,
-//    against the hand-written peers with a step-end sign check and CVODE Adams with
-//    CVodeRootInit on the same guards.
+//    against the hand-written peers with a step-end sign check, CVODE Adams with
+//    CVodeRootInit and ARKODE's ERKStep (Fehlberg 7(8)) with ERKStepRootInit on the same guards.
 // The peers integrate their own right-hand side (bench/peers/hand_model.hpp); the driver first
 // prints how far it is from the project's at the scene's start and at the reference's end.
 // Every (method, rtol) is timed once per round, rounds interleaved, so that load on the shared
@@ -52,9 +52,12 @@ struct Entry {
   Method run;
 };
 
-template <class Controlled>
-Method hand_method(const bench::Scene& s, const hand::Params& h, bool guarantee, std::function<Controlled(double)> make) {
-  return [&s, h, guarantee, make](double rtol) {
+// A peer on the scene: its options from the scene's run options, its start state in the
+// rotating axes, its final state back in the lab axes for bench::compare.
+using Runner = std::function<hand::PeerRun(hand::Contact c, const hand::Y& y0, double t0, double t1,
+                                           const hand::PeerOptions& o)>;
+Method peer_method(const bench::Scene& s, bool guarantee, Runner run) {
+  return [&s, guarantee, run](double rtol) {
     hand::PeerOptions o;
     o.rtol = rtol;
     o.guarantee = guarantee;
@@ -65,8 +68,7 @@ Method hand_method(const bench::Scene& s, const hand::Params& h, bool guarantee,
     hand::Y y0;
     std::copy(y.data(), y.data() + 12, y0.begin());
     const double t1 = s.initial.t + s.horizon;
-    const hand::PeerRun r =
-        hand::run_peer(h, hand_contact(s.initial.contact), y0, s.initial.t, t1, make(rtol), o, s.schedule.breakpoints());
+    const hand::PeerRun r = run(hand_contact(s.initial.contact), y0, s.initial.t, t1, o);
     Result out{s.initial, r.evals, r.status};
     std::copy(r.y.begin(), r.y.end(), out.final.y.data());
     physics::rotate_about_z(out.final.y, phase(s, t1));
@@ -76,27 +78,21 @@ Method hand_method(const bench::Scene& s, const hand::Params& h, bool guarantee,
   };
 }
 
-Method cvode_method(const bench::Scene& s, const hand::Params& h, bool guarantee) {
-  return [&s, h, guarantee](double rtol) {
-    hand::PeerOptions o;
-    o.rtol = rtol;
-    o.guarantee = guarantee;
-    o.samples = s.run.integ.event_samples;
-    o.projection_tol = s.run.projection_tol;
-    numerics::Vec y = s.initial.y;
-    physics::rotate_about_z(y, -phase(s, s.initial.t));
-    hand::Y y0;
-    std::copy(y.data(), y.data() + 12, y0.begin());
-    const double t1 = s.initial.t + s.horizon;
-    const hand::PeerRun r =
-        hand::run_cvode_adams(h, hand_contact(s.initial.contact), y0, s.initial.t, t1, o, s.schedule.breakpoints());
-    Result out{s.initial, r.evals, r.status};
-    std::copy(r.y.begin(), r.y.end(), out.final.y.data());
-    physics::rotate_about_z(out.final.y, phase(s, t1));
-    out.final.t = t1;
-    out.final.contact = physics::Contact(project_mode(r.contact.mode), r.contact.sigma, r.contact.s_star);
-    return out;
-  };
+template <class Controlled>
+Method hand_method(const bench::Scene& s, const hand::Params& h, bool guarantee, std::function<Controlled(double)> make) {
+  return peer_method(s, guarantee, [&s, h, make](hand::Contact c, const hand::Y& y0, double t0, double t1,
+                                                  const hand::PeerOptions& o) {
+    return hand::run_peer(h, c, y0, t0, t1, make(o.rtol), o, s.schedule.breakpoints());
+  });
+}
+
+// A SUNDIALS peer: run_cvode_adams or run_arkode_f78.
+template <class Run>
+Method sundials_method(const bench::Scene& s, const hand::Params& h, bool guarantee, Run solver) {
+  return peer_method(s, guarantee, [&s, h, solver](hand::Contact c, const hand::Y& y0, double t0, double t1,
+                                                   const hand::PeerOptions& o) {
+    return solver(h, c, y0, t0, t1, o, s.schedule.breakpoints());
+  });
 }
 
 Method project_method(const bench::Scene& scene, bool guarantee) {
@@ -130,7 +126,8 @@ std::vector<Entry> methods(const bench::Scene& s, const hand::Params& h) {
     out.push_back({"hand odeint rkf78", fam, hand_method<Rkf78>(s, h, g, rkf78)});
     out.push_back({"hand odeint dopri5", fam, hand_method<Dopri5>(s, h, g, dopri5)});
     out.push_back({"hand odeint bulirsch-stoer", fam, hand_method<Bs>(s, h, g, bs)});
-    out.push_back({"hand CVODE Adams + CVodeRootInit", fam, cvode_method(s, h, g)});
+    out.push_back({"hand CVODE Adams + CVodeRootInit", fam, sundials_method(s, h, g, hand::run_cvode_adams)});
+    out.push_back({"hand ARKODE ERK f78 + ERKStepRootInit", fam, sundials_method(s, h, g, hand::run_arkode_f78)});
   }
   return out;
 }
