@@ -7,7 +7,7 @@
 #   ./setup.sh docs        install, build the program, build the documentation site offline (build/site)
 #   ./setup.sh test-long   install, build, run the long physics validations (ctest -L long)
 #   ./setup.sh install | build
-#   ./setup.sh peers       also install Boost and SUNDIALS, build astrojax_peers (benchmarks only)
+#   ./setup.sh peers       also install Boost and SUNDIALS, build astrojax_peers and astrojax_matched (benchmarks only)
 #   ./setup.sh test-cluster  also installs slurm-wlm and munge: the cluster scripts on a Slurm started here (ctest -L cluster)
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -96,7 +96,7 @@ case "${1:-}" in
   test) PACKAGES+=("${DOCS_PACKAGES[@]}"); install; build; (cd "$BUILD_DIR" && ctest -L unit -j"$(nproc)" --output-on-failure) ;;
   peers) PACKAGES+=("${PEER_PACKAGES[@]}"); install
          cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DASTROJAX_PEERS=ON >/dev/null
-         cmake --build "$BUILD_DIR" -j"$(nproc)" --target astrojax astrojax_peers ;;
+         cmake --build "$BUILD_DIR" -j"$(nproc)" --target astrojax astrojax_peers astrojax_matched ;;
   test-long) install; build; (cd "$BUILD_DIR" && ctest -L long --output-on-failure) ;;
   test-cluster) PACKAGES+=("${CLUSTER_PACKAGES[@]}"); install; build; (cd "$BUILD_DIR" && ctest -L cluster --output-on-failure) ;;
   *) sed -n '2,11p' "$0" | sed 's/^# \{0,1\}//'; exit 2 ;;
