@@ -236,21 +236,20 @@ Enum enum_word(Reader& r, std::string_view key, Enum fallback, std::span<const s
   return Enum(std::find(words.begin(), words.end(), w) - words.begin());
 }
 
-// [model]: each number in its range (the parameter table), then the bounds between them.
-// The bounds between keys (physics::validate), once the model or the layers are read.
+// The bounds between keys (physics::validate), once the model and the layers are read.
 void require_valid(const physics::Model& model, std::string_view file) {
   for (const auto& issue : physics::validate(model))
     throw ConfigError(fmt::format("{}: key '{}': {} is out of range; allowed {}", file, issue.key,
                                   issue.value, issue.allowed));
 }
 
+// [model]: each number in its range (the parameter table); the bounds between them follow the layers.
 void parse_model(const toml::table& root, std::string_view file, CommonConfig& c) {
   Reader r(subtable(root, "model", file), "model", file);
   physics::Parameters& p = c.model.p;
   for (const physics::ParameterInfo& m : physics::kParameters)
     p.*m.field = r.number(m.key, p.*m.field, m.lo, m.hi, m.lo_open, m.hi_open);
   r.reject_unknown();
-  require_valid(c.model, file);
 }
 
 // [layers]: the words and numbers of the layer table; a clutch tie and the pair couple need their torques in [model].
@@ -275,7 +274,6 @@ void parse_layers(const toml::table& root, std::string_view file, CommonConfig& 
   if (c.model.layers.pair_couple == physics::PairCouple::MotorClutch && !couple_torque_given)
     r.fail("pair_couple", "\"motor_clutch\" needs model.couple_torque (τ_c >= 0 [N m])");
   r.reject_unknown();
-  require_valid(c.model, file);
 }
 
 // [integrator]: the method, its tolerances or step, and the step bound from the guards.
@@ -375,6 +373,7 @@ void parse_initial(const toml::table& root, std::string_view file, CommonConfig&
 void parse_common(const toml::table& root, std::string_view file, CommonConfig& c) {
   parse_model(root, file, c);
   parse_layers(root, file, c);
+  require_valid(c.model, file);
   parse_integrator(root, file, c);
   parse_initial(root, file, c);
 }
