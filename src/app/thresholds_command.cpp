@@ -362,9 +362,23 @@ std::map<long long, std::pair<int, int>> held_levels(const std::vector<sweep::Cl
   return out;
 }
 
+// The bottom ball's stored samples, read from the file once, when a chain first needs them.
+struct BottomBallSamples {
+  const io::File& f;
+  io::Array<std::int32_t> count;
+  io::Array<double> r2;  // chains × windows × samples × 3
+  bool read = false;
+  void load() {
+    if (read) return;
+    count = f.read_int32s("samples/count");
+    r2 = f.read_doubles("samples/r2");
+    read = true;
+  }
+};
+
 // The lag's Hopf point from a chain that holds levels up through the flower's onset and back
 // down over them; none without a flower that lasts to the top of the way up.
-std::optional<Onset> flower_onset(const io::File& f, const SweepWindows& sw, std::size_t c, double span) {
+std::optional<Onset> flower_onset(BottomBallSamples& samples, const SweepWindows& sw, std::size_t c, double span) {
   using sweep::OrbitClass;
   const auto levels = held_levels(sw.chains[c]);
   std::vector<std::pair<double, int>> ups;  // (ω_m, window) on the way up
@@ -381,8 +395,9 @@ std::optional<Onset> flower_onset(const io::File& f, const SweepWindows& sw, std
   on.last_lag = std::numeric_limits<double>::quiet_NaN();
   for (const auto& [w, index] : ups)
     if (w < *first_flower && class_at(sw.chains[c], index) == OrbitClass::LaggingCircular) on.last_lag = w;
-  const auto& count = f.read_int32s("samples/count");
-  const io::Array<double> r2 = f.read_doubles("samples/r2");  // chains × windows × samples × 3
+  samples.load();
+  const auto& count = samples.count;
+  const io::Array<double>& r2 = samples.r2;
   const std::size_t cap = r2.dims[2];
   const auto a2 = [&](int w) {
     const double r = sw.radius_bottom_std(c, std::size_t(w)) / sw.radius_bottom_mean(c, std::size_t(w));
@@ -715,7 +730,8 @@ int thresholds_command(const ThresholdsArgs& args) {
     const io::File f = io::File::open_read(args.input);
     results::checked_format_version(f, args.input);
     sw = read_sweep_windows(f, settings);
-    for (std::size_t c = 0; c < sw.chains.size(); ++c) onsets.push_back(flower_onset(f, sw, c, args.onset_span));
+    BottomBallSamples samples{f, {}, {}};
+    for (std::size_t c = 0; c < sw.chains.size(); ++c) onsets.push_back(flower_onset(samples, sw, c, args.onset_span));
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s: cannot read a sweep file: %s\n", args.input.c_str(), e.what());
     return kExitBadInput;
