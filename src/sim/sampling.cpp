@@ -118,16 +118,32 @@ bool Sampler::observe(const numerics::StepView& step) {
 // Azimuths in increments small enough to unwrap (< 0.25 rad, with the rates of both ends of
 // the step). One increment takes the end state and leaves the interpolant alone (DOP853's
 // costs 3 extra evaluations per step).
+// ω_ball needs θ only from the window's start: steps before it are not followed at all, and
+// the azimuths start (θ = 0) from the interpolated state at t_window.
 // The increments are measured in the integrator's axes or in the other frame (the lab or
 // the rotating one, turned by β = ∓φ against them), whichever the balls turn slower in.
 void Sampler::advance_azimuths(const numerics::StepView& step) {
   step.end(yend_);
   const Rates rate_end = azimuth_rates(step.t1(), yend_);
-  const double dt_step = std::abs(step.t1() - step.t0());
-  const double own = std::max(rate_start_.own, rate_end.own), other = std::max(rate_start_.other, rate_end.other);
-  const bool use_other = other < own;
-  const int n = 1 + int(std::min(1e3, std::min(own, other) * dt_step / 0.25));
+  const Rates rate_begin = rate_start_;
   rate_start_ = rate_end;
+  double t0 = step.t0();
+  if (!window_started_) {
+    if (step.t1() < t_window_) return;
+    if (t_window_ < step.t1()) {
+      step.at(t_window_, ybuf_);
+    } else {
+      ybuf_ = yend_;
+    }
+    az1_.reset(ybuf_.segment<3>(physics::idx::r1));
+    az2_.reset(ybuf_.segment<3>(physics::idx::r2));
+    window_started_ = true;
+    t0 = t_window_;
+  }
+  const double dt = std::abs(step.t1() - t0);
+  const double own = std::max(rate_begin.own, rate_end.own), other = std::max(rate_begin.other, rate_end.other);
+  const bool use_other = other < own;
+  const int n = 1 + int(std::min(1e3, std::min(own, other) * dt / 0.25));
   // β(t): the other frame's angle against the integrator's axes (−φ from rotating axes to the
   // lab, +φ from the lab to rotating axes).
   const auto beta = [&](double t) {
@@ -136,24 +152,14 @@ void Sampler::advance_azimuths(const numerics::StepView& step) {
     ctx_.schedule.phase(t, phi, w, wd);
     return ctx_.axes.rotating ? -phi : phi;
   };
-  double beta_prev = beta(step.t0());
+  double beta_prev = beta(t0);
   for (int k = 1; k <= n; ++k) {
-    const double t = step.t0() + (step.t1() - step.t0()) * k / n;
+    const double t = t0 + (step.t1() - t0) * k / n;
     const double beta_t = beta(t);
     if (k == n)
       ybuf_ = yend_;
     else
       step.at(t, ybuf_);
-    if (!window_started_ && t >= t_window_) {
-      Vec yw(ctx_.s.y.size());
-      step.at(t_window_, yw);
-      const double dbw = beta(t_window_) - beta_prev;
-      Azimuth a1 = az1_, a2 = az2_;
-      a1.advance(yw.segment<3>(physics::idx::r1), dbw);
-      a2.advance(yw.segment<3>(physics::idx::r2), dbw);
-      theta_window_ = 0.5 * (a1.theta + a2.theta);
-      window_started_ = true;
-    }
     az1_.advance(ybuf_.segment<3>(physics::idx::r1), beta_t - beta_prev);
     az2_.advance(ybuf_.segment<3>(physics::idx::r2), beta_t - beta_prev);
     beta_prev = beta_t;
@@ -165,8 +171,10 @@ void Sampler::finish() {
   const double t = ctx_.s.t;
   if (window_ > 0 && window_started_) {
     const double theta_axes_window = ctx_.axes.angle(std::max(t_window_, t_start_));  // the axes' angle at t_window
+    // (θ1 + θ2)/2 counts from t_window (the azimuths start there) in the integrator's axes; the
+    // axes' own turn since then adds.
     sum.omega_ball =
-        (0.5 * (az1_.theta + az2_.theta) - theta_window_ + ctx_.axes.angle(t) - theta_axes_window) / (t - t_window_);
+        (0.5 * (az1_.theta + az2_.theta) + ctx_.axes.angle(t) - theta_axes_window) / (t - t_window_);
   }
   if (!std::isfinite(sum.min_tension)) sum.min_tension = 0.0;
   if (!std::isfinite(sum.min_friction_power)) sum.min_friction_power = 0.0;

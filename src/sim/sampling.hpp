@@ -57,7 +57,6 @@ class Sampler {
   numerics::Vec ybuf_, ylab_, yend_;
   Azimuth az1_, az2_;
   double window_, t_window_;
-  double theta_window_ = 0.0;  // (θ1 + θ2)/2 at t_window
   bool window_started_;
   Rates rate_start_;
 };
