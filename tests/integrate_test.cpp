@@ -9,6 +9,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
+#include <memory>
 #include <limits>
 #include <new>
 #include <numbers>
@@ -503,6 +505,55 @@ TEST(IntegrateEvents, InteriorSamplesFindTheEarliestCrossing) {
     EXPECT_EQ(r.event_index, k == 0 ? 0 : 1) << k;
     EXPECT_NEAR(r.t, k == 0 ? 0.9 : 0.4, 2e-13) << k;
   }
+}
+
+// Guard samples are first taken on the stepper's cheap interpolant (DOP853: cubic Hermite) and a
+// step goes on to the dense output only when they show a sign change. A stepper whose cheap
+// interpolant lies shows what each half does: one that invents a sign change (y moved to the
+// centre of an excursion the trajectory never reaches) still ends without an event, because the
+// dense output confirms nothing; one that hides the excursion (always y0) misses it, so the
+// detection really runs on the cheap interpolant. The honest DOP853 finds it at 0.4
+// (InteriorSamplesSeeAnExcursionInsideOneStep).
+namespace lying {
+class Stepper final : public numerics::Stepper {
+ public:
+  explicit Stepper(std::function<void(double theta, Vec& out)> cheap)
+      : inner_(make_stepper("dop853")), cheap_(std::move(cheap)) {}
+  std::string_view name() const override { return "lying dop853"; }
+  int order() const override { return inner_->order(); }
+  bool adaptive() const override { return inner_->adaptive(); }
+  double attempt(const System& f, double t, const Vec& y, double h, Vec& y_new, const Tolerances& tol) override {
+    y0_ = y;
+    return inner_->attempt(f, t, y, h, y_new, tol);
+  }
+  void accept(const System& f) override { inner_->accept(f); }
+  void dense(const System& f, double theta, Vec& out) override { inner_->dense(f, theta, out); }
+  bool cheap_interpolant(const System&, double theta, Vec& out) override {
+    out = y0_;
+    cheap_(theta, out);
+    return true;
+  }
+  void reset() override { inner_->reset(); }
+
+ private:
+  std::unique_ptr<numerics::Stepper> inner_;
+  std::function<void(double, Vec&)> cheap_;
+  Vec y0_;
+};
+}  // namespace lying
+
+TEST(IntegrateEvents, CheapSamplesAreConfirmedOnTheDenseOutput) {
+  // Positive only for y0 in (1.4, 1.6); the trajectory has y0 = t <= 1.
+  const Event far[] = {{[](double, const Vec& v) { return 0.01 - (v[0] - 1.5) * (v[0] - 1.5); }, 0}};
+  lying::Stepper invents([](double, Vec& out) { out[0] = 1.5; });
+  Vec y = Vec::Zero(2);
+  const auto r = run(excursion::f, invents, 0.0, y, 1.0, excursion::one_step(5), far);
+  EXPECT_EQ(r.status, IntegrateStatus::Reached) << "an event the trajectory does not have, at " << r.t;
+
+  const Event ev[] = {{excursion::g, 0}};
+  lying::Stepper hides([](double, Vec&) {});
+  y = Vec::Zero(2);
+  EXPECT_EQ(run(excursion::f, hides, 0.0, y, 1.0, excursion::one_step(5), ev).status, IntegrateStatus::Reached);
 }
 
 // Conservative advancement (Event::change_bound). x' = 1 is integrated exactly, so only h_bound

@@ -221,6 +221,36 @@ TEST(StepperDense, InterpolatesStepEnds) {
   }
 }
 
+// DOP853's cheap interpolant (for guard samples) is the cubic Hermite through (y0, f0) and
+// (y1, f1). On y' = 4t³ from 0 (y = t⁴, integrated exactly by the order-8 step and by the
+// order-7 dense output), Hermite interpolation misses by exactly (y⁽⁴⁾/4!) h⁴ θ²(1 − θ)² =
+// h⁴ θ²(1 − θ)², so its value is (θh)⁴ − h⁴ θ²(1 − θ)², to round-off; on y' = 3t² (a cubic) it
+// is exact. No stage beyond f(t1, y1) is spent: that one is the next step's k1.
+TEST(StepperDense, Dop853CheapInterpolantIsTheCubicHermite) {
+  for (int degree : {3, 4}) {
+    const System f = [degree](double t, const Vec&, Vec& d) { d[0] = degree * std::pow(t, degree - 1); };
+    auto s = make_stepper("dop853");
+    const double h = 0.5;
+    Vec y0 = Vec::Zero(1), y1(1), out(1), dense(1);
+    s->attempt(f, 0.0, y0, h, y1, kLoose);
+    s->accept(f);
+    const long evals = s->rhs_evals();
+    for (double theta : {0.0, 0.25, 0.5, 0.8, 1.0}) {
+      ASSERT_TRUE(s->cheap_interpolant(f, theta, out));
+      const double exact = std::pow(theta * h, degree);
+      const double miss = degree == 4 ? std::pow(h, 4) * theta * theta * (1 - theta) * (1 - theta) : 0.0;
+      EXPECT_NEAR(out[0], exact - miss, 1e-15) << degree << " theta " << theta;
+    }
+    EXPECT_EQ(s->rhs_evals(), evals + 1) << "only f(t1, y1)";
+    s->dense(f, 0.5, dense);
+    EXPECT_NEAR(dense[0], std::pow(0.5 * h, degree), 1e-15);
+  }
+  for (const char* m : {"euler", "rk4", "dopri5", "radau_iia"}) {
+    Vec out(1);
+    EXPECT_FALSE(make_stepper(m)->cheap_interpolant({}, 0.5, out)) << m;
+  }
+}
+
 // RHS evaluations per step: Euler 1, RK4 4, Dopri5 6 (+1 on the first step, FSAL), DOP853
 // 12 (its f(t1, y1) is the next k1). Lazy dense output: +1 (Hermite f1, then reused as the
 // next k1, so a step with dense output costs no more than without overall), +3 for DOP853 (its

@@ -248,6 +248,7 @@ double Dop853::attempt_n(const System& f, double t, const Vec& y, double h, Vec&
   t_ = t;
   h_ = h;
   dense_ready_ = false;
+  hermite_ready_ = false;
   y_new = y1_;
   return err;
 }
@@ -256,10 +257,11 @@ double Dop853::attempt_n(const System& f, double t, const Vec& y, double h, Vec&
 // dense() (k13), whichever comes first, and shared through the cache.
 void Dop853::accept(const System& /*f*/) {}
 
-void Dop853::prepare_dense(const System& f) {
+// r0..r3 of the dense output, which alone are the cubic Hermite interpolant through (y0, f0) and
+// (y1, f1): r0 = y0, r1 = y1 - y0, r2 = h k1 - r1, r3 = r1 - h k13 - r2.
+void Dop853::prepare_hermite(const System& f) {
   const auto n = y0_.size();
-  const double t = t_, h = h_;
-  const double t1 = t + h;
+  const double t1 = t_ + h_;
   // Stage 13 = f(t1, y1), shared with the next step's k1.
   if (cache_.holds(t1, y1_)) {
     k13_ = cache_.value();
@@ -269,6 +271,17 @@ void Dop853::prepare_dense(const System& f) {
     ++rhs_evals_;
     cache_.offer(t1, y1_, k13_);
   }
+  r_[0] = y0_;
+  r_[1] = y1_ - y0_;
+  r_[2] = h_ * k1_ - r_[1];
+  r_[3] = r_[1] - h_ * k13_ - r_[2];
+  hermite_ready_ = true;
+}
+
+void Dop853::prepare_dense(const System& f) {
+  const auto n = y0_.size();
+  const double t = t_, h = h_;
+  if (!hermite_ready_) prepare_hermite(f);
   k14_.resize(n);
   k15_.resize(n);
   k16_.resize(n);
@@ -283,12 +296,7 @@ void Dop853::prepare_dense(const System& f) {
   f(t + c16 * h, tmp_, k16_);
   rhs_evals_ += 3;
 
-  // cont(1..8) of dop853.f: r0 = y0, r1 = y1 - y0, r2 = h k1 - r1, r3 = r1 - h k13 - r2,
-  // r4..r7 = h sum_i d_{k,i} k_i.
-  r_[0] = y0_;
-  r_[1] = y1_ - y0_;
-  r_[2] = h * k1_ - r_[1];
-  r_[3] = r_[1] - h * k13_ - r_[2];
+  // cont(1..8) of dop853.f: r0..r3 from prepare_hermite, r4..r7 = h sum_i d_{k,i} k_i.
   r_[4] = h * (d41 * k1_ + d46 * k6_ + d47 * k7_ + d48 * k8_ + d49 * k9_ + d410 * k10_ +
                d411 * k11_ + d412 * k12_ + d413 * k13_ + d414 * k14_ + d415 * k15_ + d416 * k16_);
   r_[5] = h * (d51 * k1_ + d56 * k6_ + d57 * k7_ + d58 * k8_ + d59 * k9_ + d510 * k10_ +
@@ -308,6 +316,13 @@ void Dop853::dense(const System& f, double theta, Vec& out) {
   out = r_[0] +
         s * (r_[1] +
              s1 * (r_[2] + s * (r_[3] + s1 * (r_[4] + s * (r_[5] + s1 * (r_[6] + s * r_[7]))))));
+}
+
+bool Dop853::cheap_interpolant(const System& f, double theta, Vec& out) {
+  if (!hermite_ready_) prepare_hermite(f);
+  const double s = theta, s1 = 1.0 - theta;
+  out = r_[0] + s * (r_[1] + s1 * (r_[2] + s * r_[3]));
+  return true;
 }
 
 // With s, 1 - s in [0, 1], each nested term of contd8 is at most the sum of the magnitudes

@@ -18,6 +18,9 @@ class Dop853 final : public Stepper {
                  const Tolerances& tol) override;
   void accept(const System& f) override;
   void dense(const System& f, double theta, Vec& out) override;
+  // The cubic Hermite interpolant through (y0, f0) and (y1, f1): the first four terms of the
+  // dense output, with no extra stage (f1 is the next step's k1).
+  bool cheap_interpolant(const System& f, double theta, Vec& out) override;
   bool dense_excursion(const System& f, Vec& e) override;
   void reset() override;
 
@@ -25,6 +28,7 @@ class Dop853 final : public Stepper {
   template <int N>
   double attempt_n(const System& f, double t, const Vec& y, double h, Vec& y_new, const Tolerances& tol);
   void prepare_dense(const System& f);
+  void prepare_hermite(const System& f);
 
   DerivativeCache cache_;
   double t_ = 0.0, h_ = 0.0;
@@ -33,6 +37,7 @@ class Dop853 final : public Stepper {
   Vec k13_, k14_, k15_, k16_;  // f(t1, y1) and the 3 extra dense-output stages
   Vec r_[8];                   // dense-output polynomial (cont(1..8) of dop853.f)
   bool dense_ready_ = false;
+  bool hermite_ready_ = false;  // r_[0..3] hold the Hermite terms (also true once dense_ready_)
 };
 
 }  // namespace ajx::numerics

@@ -193,6 +193,28 @@ IntegrateResult integrate(const System& f, Stepper& stepper, double t0, Vec& y, 
   bool near = true;
   Vec excursion(can_certify ? n : 0);
 
+  // Whether any event changes sign between the n interior samples of the step [t, t1] (size hs)
+  // and its ends on the stepper's cheap interpolant, each from its bracket start (ta_s, ga_s);
+  // the events certified not to cross (clear) are skipped. Uses gs as scratch.
+  bool cheap_detection = true;
+  auto sign_change_seen = [&](double t_step, double t1, double hs, int n_samples) {
+    std::copy(ga_s, ga_s + m, gs);
+    for (int j = 1; j <= n_samples + 1; ++j) {
+      const double ts = j == n_samples + 1 ? t1 : t_step + hs * (static_cast<double>(j) / (n_samples + 1));
+      if (j <= n_samples && !stepper.cheap_interpolant(f, (ts - t_step) / hs, y_ev)) {
+        cheap_detection = false;  // the method has none: never ask again
+        return true;
+      }
+      for (std::size_t i = 0; i < m; ++i) {
+        if (clear[i] != 0.0 || std::isnan(gs[i]) || dir * (ts - ta_s[i]) <= 0.0) continue;
+        const double g = j == n_samples + 1 ? g1[i] : events[i].g(ts, y_ev);
+        if (crosses(gs[i], g, events[i].direction)) return true;
+        if (g != 0.0) gs[i] = g;
+      }
+    }
+    return false;
+  };
+
   // Events, observer and post-step hook after an accepted step [t, t1] of size hs whose end
   // state is y_new. Returns true when the integration ends here (res filled).
   auto after_step = [&](double t1, double hs) -> bool {
@@ -234,6 +256,11 @@ IntegrateResult integrate(const System& f, Stepper& stepper, double t0, Vec& y, 
           if (ga_s[i] == 0.0) ga_s[i] = std::numeric_limits<double>::quiet_NaN();
         }
       }
+      // The samples first on the stepper's cheap interpolant, where it has one (DOP853's cubic
+      // Hermite through both ends, no extra stage): if no event changes sign between them there,
+      // the step's end alone is checked. Only a step where one does samples again on the dense
+      // output and locates the crossing there.
+      if (n > 0 && cheap_detection && !sign_change_seen(t, t1, hs, n)) n = 0;
       int best = -1;
       double t_best = t1;
       // Sub-intervals between consecutive samples, in time order; the first one in which any

@@ -42,6 +42,11 @@ class Stepper {
   // some interpolants evaluate extra stages lazily, at most once per step.
   virtual void dense(const System& f, double theta, Vec& out) = 0;
 
+  // An interpolant of the last accepted step cheaper than dense(), for looking for sign changes
+  // of the guards (numerics::integrate confirms and locates any it sees on dense()): fills out
+  // and returns true, or returns false when the method has none.
+  virtual bool cheap_interpolant(const System& /*f*/, double /*theta*/, Vec& /*out*/) { return false; }
+
   // Bounds e_i >= |y_i(t0 + theta h) - y_i(t0)| for all theta in [0, 1] on the interpolant of
   // the last accepted step (what dense() returns). False when the method gives none.
   virtual bool dense_excursion(const System& /*f*/, Vec& /*e*/) { return false; }

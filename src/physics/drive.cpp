@@ -14,6 +14,7 @@ MotorSchedule::MotorSchedule(std::vector<DriveSegment> segments, double phi0)
     if (!(s.duration > 0.0)) throw std::invalid_argument("motor schedule segment has duration <= 0");
     t_begin_.push_back(t);
     phi_begin_.push_back(phi);
+    rate_.push_back((s.omega_end - s.omega_begin) / s.duration);  // once here, not at every evaluation
     // φ advances by the mean ω over a linear ramp.
     phi += 0.5 * (s.omega_begin + s.omega_end) * s.duration;
     t += s.duration;
@@ -22,12 +23,15 @@ MotorSchedule::MotorSchedule(std::vector<DriveSegment> segments, double phi0)
 
 void MotorSchedule::phase(double t, double& phi, double& omega, double& omega_dot) const {
   // The last segment whose start is <= t (the first one for t < 0).
-  auto it = std::upper_bound(t_begin_.begin(), t_begin_.end(), t);
-  const std::size_t k = it == t_begin_.begin() ? 0 : std::size_t(it - t_begin_.begin()) - 1;
+  std::size_t k = 0;
+  if (t_begin_.size() > 1) {
+    auto it = std::upper_bound(t_begin_.begin(), t_begin_.end(), t);
+    k = it == t_begin_.begin() ? 0 : std::size_t(it - t_begin_.begin()) - 1;
+  }
   const DriveSegment& s = segs_[k];
   const double tau = t - t_begin_[k];
   if (tau <= s.duration) {
-    omega_dot = (s.omega_end - s.omega_begin) / s.duration;
+    omega_dot = rate_[k];
     omega = s.omega_begin + omega_dot * tau;
     phi = phi_begin_[k] + s.omega_begin * tau + 0.5 * omega_dot * tau * tau;
   } else {  // past the end: hold the final ω

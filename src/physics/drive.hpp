@@ -56,6 +56,7 @@ class MotorSchedule {
   std::vector<DriveSegment> segs_;
   std::vector<double> t_begin_;    // [s]
   std::vector<double> phi_begin_;  // φ at each segment start [rad]
+  std::vector<double> rate_;       // ω̇ = (ω_end − ω_begin)/duration of each segment [rad/s²]
 };
 
 }  // namespace ajx::physics

@@ -125,11 +125,12 @@ BENCHMARK_CAPTURE(BM_step, radau_iia, "radau_iia", 2e-3);
 // The full run path per right-hand-side evaluation: sim::Simulation::run with the product's
 // defaults (DOP853, rotating axes, guard events with the certified step bound, projection),
 // 1 s of the orbit per iteration, without samples and with the sweeps' 100 Hz samples, and
-// without the guards' step bound.
+// without the guards' step bound, and with the run statistics of `astrojax run` (ω_ball over the
+// last half second here: the balls' azimuths followed on the interpolant).
 // s_per_eval = CPU time / RHS evaluations (printed as ...n: nanoseconds), to set against BM_rhs_rotating/sliding (the bare
 // right-hand side). The state is the seed orbit (sliding, taut) or the bead resting on the
 // bottom ball of sweeps/scenes/bottom_stop_fast.toml at 15π rad/s.
-void BM_run(benchmark::State& st, bool bottom, double sample_rate, bool bound = true) {
+void BM_run(benchmark::State& st, bool bottom, double sample_rate, bool bound = true, bool statistics = false) {
   const Fixture& fx = fixture();
   const physics::MotorSchedule fast{{{15 * std::numbers::pi, 15 * std::numbers::pi, 1e6}}};
   const physics::MotorSchedule& schedule = bottom ? fast : fx.schedule;
@@ -141,7 +142,7 @@ void BM_run(benchmark::State& st, bool bottom, double sample_rate, bool bound = 
                                    physics::Mode::BottomStop)
              : fx.s0;
   sim::RunOptions opt;
-  opt.run_statistics = false;  // as a sweep runs it
+  opt.run_statistics = statistics;  // off: as a sweep runs it
   opt.guard_step_bound = bound;
   sim::Simulation simulation(fx.model, schedule, opt);
   long evals = 0, samples = 0;
@@ -161,6 +162,7 @@ BENCHMARK_CAPTURE(BM_run, bottom_stop_fast_100Hz, true, 100.0)->Unit(benchmark::
 // Without the guards' step bound (h ≤ 4/Ω): the most a cheaper certified bound could save.
 BENCHMARK_CAPTURE(BM_run, sliding_no_bound, false, 0.0, false)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_run, bottom_stop_fast_no_bound, true, 0.0, false)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_run, bottom_stop_fast_statistics, true, 0.0, true, true)->Unit(benchmark::kMicrosecond);
 
 // Collects the mean CPU time per iteration, then prints the overhead table.
 class OverheadReporter : public benchmark::ConsoleReporter {
