@@ -99,7 +99,8 @@ void integrator_keys(std::vector<KeyInfo>& k) {
     k.push_back(std::move(m));
   }
   k.push_back(whole("integrator", "event_samples", 0, 16, "3 with max_step = \"auto\", else 0",
-                    "guard samples inside each step, on the dense output"));
+                    "guard samples inside each step, on the step's cubic Hermite interpolant (confirmed on the dense "
+                    "output where they show a sign change)"));
   k.push_back(other("integrator", "axes", "word", "", "rotating, lab, auto", "rotating",
                     "the axes integrated in: turning with the motor, the lab's, or chosen per run; input, output "
                     "and samples are in the lab axes either way; a clutch tie always uses lab"));

@@ -63,8 +63,11 @@ struct IntegrateOptions {
   // time scale of the events' guards (sim/step_bound.hpp); absent: h_max alone.
   std::function<double(double t, const Vec& y)> h_bound;
   // Guard samples inside each accepted step: up to this many equally spaced interior points
-  // where the events' g are evaluated on the dense output, so that a crossing that goes and
-  // comes back between the step's ends is still seen if a sample falls past it. With h_bound,
+  // where the events' g are evaluated, so that a crossing that goes and comes back between the
+  // step's ends is still seen if a sample falls past it. They are taken on the stepper's cheap
+  // interpolant where it has one (Stepper::cheap_interpolant; DOP853's cubic Hermite, error
+  // ≤ h⁴ max|y⁽⁴⁾|/384), and again on the dense output, which confirms and locates, only in a
+  // step where those show a sign change. With h_bound,
   // a step uses the fewest samples that keep them at most h_bound(t, y) / (event_samples + 1)
   // apart (h_bound at the step's start state; also for fixed-step methods, whose steps it does
   // not bound): a step that is already that short pays for none. Without h_bound, every step

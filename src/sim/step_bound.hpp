@@ -4,8 +4,8 @@
 // oscillating at rate Ω with amplitude A stays past a level A − δ for 2 arccos(1 − δ/A)/Ω; with
 // steps h ≤ c/Ω every excursion deeper than δ = A (1 − cos(c/2)) outlasts a step and contains
 // a step end. c = 1: any excursion deeper than 12 % of the guard's amplitude is seen.
-// With k guard samples inside each step (numerics::IntegrateOptions::event_samples, on the dense
-// output) the same holds for the samples 1/Ω apart, and the step may be (k + 1)/Ω.
+// With k guard samples inside each step (numerics::IntegrateOptions::event_samples, on the step's
+// interpolant) the same holds for the samples 1/Ω apart, and the step may be (k + 1)/Ω.
 #pragma once
 #include "numerics/vector.hpp"
 #include "physics/drive.hpp"
