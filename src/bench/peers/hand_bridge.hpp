@@ -18,4 +18,12 @@ double phase(const Scene& s, double t);  // φ of the motor [rad]
 // axes, at a state given in the lab axes.
 double rhs_mismatch(const Scene& s, const hand::Params& h, const physics::State& lab);
 
+// CPU time of one right-hand-side evaluation at the state lab, the project's
+// (physics::rhs_in_rotating_axes through numerics::System, as a stepper calls it) and the peer's
+// (hand::rhs), each the least of 5 interleaved batches of n calls at a new time each call [s].
+struct RhsCost {
+  double project, hand;
+};
+RhsCost rhs_cost(const Scene& s, const hand::Params& h, const physics::State& lab, long n = 200000);
+
 }  // namespace ajx::bench
