@@ -10,8 +10,10 @@
 
 namespace ajx::physics {
 
-Dynamics evaluate(const Model& m, const TopKinematics& top, const Contact& c, const numerics::Vec& y,
-                  bool motion_only) {
+// flatten: the kernels of the other concept files are inlined into one body (the folder is one
+// translation unit, src/physics/CMakeLists.txt), which lets their divisions and square roots overlap.
+[[gnu::flatten]] Dynamics evaluate(const Model& m, const TopKinematics& top, const Contact& c,
+                                   const numerics::Vec& y, bool motion_only) {
   const Parameters& p = m.p;
   const Vec3 r1 = y.segment<3>(idx::r1), r2 = y.segment<3>(idx::r2);
   const Vec3 v1 = y.segment<3>(idx::v1), v2 = y.segment<3>(idx::v2);
@@ -97,8 +99,8 @@ Dynamics evaluate(const Model& m, const TopKinematics& top, const Contact& c, co
   return d;
 }
 
-void rhs(const Model& m, const MotorSchedule& schedule, const Contact& c, double t,
-         const numerics::Vec& y, numerics::Vec& dydt) {
+[[gnu::flatten]] void rhs(const Model& m, const MotorSchedule& schedule, const Contact& c, double t,
+                          const numerics::Vec& y, numerics::Vec& dydt) {
   const TopKinematics top = top_kinematics(m, schedule, c, t, y);
   const Dynamics d = evaluate(m, top, c, y, true);
   dydt.resize(y.size());

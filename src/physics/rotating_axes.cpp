@@ -19,8 +19,9 @@ TopKinematics top_in_rotating_axes(const MotorSchedule& schedule, double R, doub
   return k;
 }
 
-void rhs_in_rotating_axes(const Model& m, const MotorSchedule& schedule, const Contact& c, double t,
-                          const numerics::Vec& y, numerics::Vec& dydt) {
+// flatten: as physics::evaluate (astrojax_system.cpp), the drive and the dynamics in one body.
+[[gnu::flatten]] void rhs_in_rotating_axes(const Model& m, const MotorSchedule& schedule, const Contact& c,
+                                           double t, const numerics::Vec& y, numerics::Vec& dydt) {
   const TopKinematics top = top_in_rotating_axes(schedule, m.p.drive_radius, t);
   const Dynamics d = evaluate(m, top, c, y, true);
   const double w = top.omega;
