@@ -10,7 +10,8 @@
 // prints how far it is from the project's at the scene's start and at the reference's end.
 // Every (method, rtol) is timed once per round, rounds interleaved, so that load on the shared
 // machine hits all alike; the table keeps the MINIMUM CPU time over the rounds (the median is
-// in the CSV). Built only with -DASTROJAX_PEERS=ON.
+// in the CSV). With --warm N each timed run follows N untimed runs of the same point, so that it
+// starts with warm caches, as every task of a long sweep does. Built only with -DASTROJAX_PEERS=ON.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
@@ -146,6 +147,7 @@ int main(int argc, char** argv) {
   std::vector<double> horizons{10.0, 100.0}, targets{1e-6, 1e-9};
   std::vector<double> rtols{1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12};
   int rounds = 5;
+  int warm = 0;
   app.add_option("scenes", paths, "Run files (sweeps/scenes/*.toml)")->required();
   app.add_option("-o,--output", output, "CSV output path")->capture_default_str();
   app.add_option("-s,--set", overrides, "Override a key in every scene");
@@ -153,6 +155,10 @@ int main(int argc, char** argv) {
   app.add_option("--targets", targets, "Position errors of the tables [m]")->delimiter(',');
   app.add_option("--rtols", rtols, "Relative tolerances (atol = 1e-3 rtol)")->delimiter(',');
   app.add_option("--rounds", rounds, "Interleaved timing rounds (the minimum is kept)")->capture_default_str();
+  app.add_option("--warm", warm, "Untimed runs of each point just before its timed run in every round "
+                 "(0: the timed run starts with caches holding the previous method's code and data)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 100));
   CLI11_PARSE(app, argc, argv);
 
   std::ofstream csv(output);
@@ -197,6 +203,7 @@ int main(int argc, char** argv) {
           for (double r : rtols) {
             bench::MatchedPoint& pt = points[i++];
             if (round > 0 && pt.status != "ok") continue;
+            for (int k = 0; k < warm; ++k) e.run(r);  // warm: the same run, untimed
             const double c0 = bench::cpu_seconds();
             const Result res = e.run(r);
             pt.cpu.push_back(bench::cpu_seconds() - c0);
