@@ -178,14 +178,17 @@ check "stopped worker: the master ends within 60 s ($waited s)" "[ $master_ended
 check "stopped worker: exit 0 (got $rc), the rank named" "[ $rc -eq 0 ] && grep -q 'rank 2: no result after' stop.h5.out"
 check "stopped worker: the file is complete and equals the uninterrupted one" "[ ! -e stop.h5.part ] && same stop.h5 straight.h5"
 
-# A worker waiting for work does not spin: one chain in one long task, so one worker works and
-# the other waits; their CPU over 3 s.
-start_mpi idle.h5 0 --set "grid.drive_radius=[0.01]" --set protocol.windows_per_task=1000 --set integrator.step=2e-5
+# A worker waiting for work does not spin: one chain in one long task (RK4 at 5 µs: about 15 s
+# of CPU, interrupted after 4), so one worker works and the other waits; their CPU over 3 s,
+# both ranks still running at its end.
+start_mpi idle.h5 0 --set "grid.drive_radius=[0.01]" --set protocol.windows_per_task=1000 --set integrator.step=5e-6
 sleep 1
 a1=$(ticks "$rank1"); a2=$(ticks "$rank2")
 sleep 3
 b1=$(ticks "$rank1"); b2=$(ticks "$rank2")
+both_running=0; running "$rank1" && running "$rank2" && both_running=1
 kill -USR1 "$mp"; wait_mpi "$mp" 60 "$out"
+check "the idle test's one task outlasts its measurement (both workers still running after 4 s)" "[ $both_running -eq 1 ]"
 busy=$(( b1 - a1 > b2 - a2 ? b1 - a1 : b2 - a2 )); idle=$(( b1 - a1 > b2 - a2 ? b2 - a2 : b1 - a1 ))
 echo "CPU over 3 s [1/100 s]: working worker $busy, waiting worker $idle"
 check "a waiting worker uses less than a tenth of the working one's CPU ($idle vs $busy)" "[ $busy -gt 0 ] && [ $((10 * idle)) -lt $busy ]"
