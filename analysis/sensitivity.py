@@ -268,6 +268,8 @@ def report(path, out, values, table, hist, hist_paths):
         for r in hist:
             lines.append(f"| {os.path.basename(r['file'])} | {r['settle']:g} | {r['omega']:.2f} | {r['seed']} | {r['kick']} | {r['s']:.4f} | "
                          f"{r['omega_ball']:.4f} | {fmt(r['omega_H'], 3)} |")
+        if not hist:
+            lines += ["", "- none of these chains ends on the lag: no history of them gives an s"]
         if hist:
             s = np.array([r["s"] for r in hist])
             h = np.array([r["omega_H"] for r in hist])
