@@ -19,9 +19,11 @@ For every copy it asserts:
 """
 import os
 import re
+import shutil
 import subprocess
 import sys
 import tempfile
+from concurrent.futures import ThreadPoolExecutor
 
 import h5py
 import numpy as np
@@ -97,6 +99,8 @@ def main():
     astrojax, src = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
     work = sys.argv[3] if len(sys.argv) > 3 else tempfile.mkdtemp(prefix="astrojax-damaged-")
     os.makedirs(work, exist_ok=True)
+    for old in ("run", "corpus"):  # a rerun starts afresh
+        shutil.rmtree(os.path.join(work, old), ignore_errors=True)
     source = os.path.join(work, "source.h5")
     rc, so, se = run([astrojax, "sweep", os.path.join(src, "tests/damaged/tiny_grouped.toml"), "-o", source, "-q",
                       "--force"], work)
@@ -111,28 +115,35 @@ def main():
     if len(corpus) < 60:
         print(f"FAIL: only {len(corpus)} damaged copies")
         return 1
-    base, problems = readers(astrojax, source, work)
+    os.makedirs(os.path.join(work, "run", "undamaged"))
+    base, problems = readers(astrojax, source, os.path.join(work, "run", "undamaged"))
     if problems or any(v[0] != 0 for v in base.values()):
         print(f"FAIL: the undamaged file: {problems} {[(k, v[0]) for k, v in base.items()]}")
         return 1
-    fails, differ, refused, flagged = [], 0, 0, 0
-    for name, path, dataset, what in corpus:
-        got, problems = readers(astrojax, path, work)
-        rc, so, se = run([astrojax, "verify", path], work)
+    def one(case):
+        name, path, dataset, what = case
+        own = os.path.join(work, "run", name)  # each case's outputs apart: the cases run side by side
+        os.makedirs(own)
+        got, problems = readers(astrojax, path, own)
+        rc, so, se = run([astrojax, "verify", path], own)
         problems += check_exit("verify", rc, so, se, path, refuses_on_stderr=False)
         changed = [k for k in got if got[k] != base[k]]
-        refused += any(got[k][0] != 0 for k in got)
-        flagged += rc != 0
         if changed:
-            differ += 1
             if rc == 0:
                 problems.append(f"the output of {', '.join(changed)} differs, yet verify says ok")
             elif not names_damage(so, dataset):
                 problems.append(f"verify does not name {dataset}: {so.strip()[-300:]}")
         if rc != 0 and "DAMAGED" not in so:
             problems.append(f"verify exit {rc} without DAMAGED: {so.strip()[-200:]}{se.strip()[-200:]}")
-        for p in problems:
-            fails.append(f"{name} ({what}): {p}")
+        return (bool(changed), any(got[k][0] != 0 for k in got), rc != 0,
+                [f"{name} ({what}): {p}" for p in problems])
+
+    with ThreadPoolExecutor(max_workers=4) as pool:
+        results = list(pool.map(one, corpus))
+    differ = sum(r[0] for r in results)
+    refused = sum(r[1] for r in results)
+    flagged = sum(r[2] for r in results)
+    fails = [f for r in results for f in r[3]]
     print(f"{len(corpus)} damaged copies: {differ} change a reader's output (each caught by verify unless listed "
           f"below), {refused} refused by a reader, {flagged} flagged by verify")
     for f in fails:
