@@ -10,7 +10,6 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "config/text.hpp"
 #include "io/journal.hpp"
 #include "results/reclassify.hpp"
 #include "results/sweep_file.hpp"
@@ -42,7 +41,7 @@ std::string at(const io::Dims& d, std::size_t i) {
 
 std::string quoted(const std::vector<std::string>& v) {
   std::vector<std::string> out;
-  for (const std::string& s : v) out.push_back("'" + config::printable(s) + "'");
+  for (const std::string& s : v) out.push_back("'" + s + "'");  // escaped where printed
   return fmt::format("{}", fmt::join(out, ", "));
 }
 
@@ -169,9 +168,9 @@ void check_class_table(const SweepReader& in, std::vector<std::string>& damaged)
   const auto colour = in.file().open_dataset("classes/colour").read_strings();
   for (std::size_t k = 0; k < sweep::kNumOrbitClasses; ++k) {
     if (description[k] != sweep::kOrbitClasses[k].description)
-      damaged.push_back(fmt::format("/classes/description at [{}]: '{}', not this program's", k, config::printable(description[k])));
+      damaged.push_back(fmt::format("/classes/description at [{}]: '{}', not this program's", k, description[k]));
     if (colour[k] != sweep::kOrbitClasses[k].colour)
-      damaged.push_back(fmt::format("/classes/colour at [{}]: '{}', this program's is '{}'", k, config::printable(colour[k]),
+      damaged.push_back(fmt::format("/classes/colour at [{}]: '{}', this program's is '{}'", k, colour[k],
                                     sweep::kOrbitClasses[k].colour));
   }
 }

@@ -13,7 +13,8 @@ namespace ajx::results {
 
 struct VerifyReport {
   std::vector<std::string> notes;    // what was found that is not damage
-  std::vector<std::string> damaged;  // one line each, naming the dataset and the index
+  std::vector<std::string> damaged;  // one line each, naming the dataset and the index; raw
+                                     // file contents: escape them where printed
 };
 
 VerifyReport verify_sweep_file(const std::string& path);
