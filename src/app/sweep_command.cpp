@@ -385,7 +385,7 @@ void write_sweep_provenance(io::Group& prov, const SweepArgs& args, int ranks, c
   prov.set_attribute("work_seconds", work);  // summed over ranks: integration alone
   prov.set_attribute("master_result_seconds", fs.result_seconds);  // classify, journal, write
   prov.set_attribute("version", results::program_version());
-  prov.set_attribute("git_commit", results::program_commit());  // at configure time
+  prov.set_attribute("git_commit", results::program_commit());  // when built
 }
 
 // Rank 0 after the farm: the file finished (and renamed when complete), the summary line, the
