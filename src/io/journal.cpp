@@ -176,7 +176,10 @@ JournalContents Journal::read(const std::filesystem::path& path) {
 }
 
 bool Journal::in_use(const std::filesystem::path& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  // Opened for writing where allowed: NFS emulates flock with fcntl locks, whose exclusive kind
+  // needs a descriptor open for writing.
+  int fd = ::open(path.c_str(), O_RDWR | O_CLOEXEC);
+  if (fd < 0) fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) return false;
   const bool held = ::flock(fd, LOCK_EX | LOCK_NB) != 0 && errno == EWOULDBLOCK;
   ::close(fd);  // releases the lock if it was taken here
