@@ -312,7 +312,7 @@ TEST(SweepConfig, BadGroupsAndVariantsNameFileAndKey) {
 TEST(SweepConfig, SetIsRefusedAlikeInPlainAndGroupedSweeps) {
   const std::string grouped_text = kGrouped;
   const std::string plain_text = grouped_text.substr(0, grouped_text.find("[variant.rigid]"));
-  for (const std::string set : {"nosuch.x=1", "mоdel.drag=0.5", "modle.drag=0.5"}) {
+  for (const std::string set : {"nosuch.x=1", "mоdel.drag=0.5", "modl.drag=0.5"}) {
     const std::string table = set.substr(0, set.find('.'));
     const std::string grouped = grouped_error(kGrouped, {set}), plain = grouped_error(plain_text, {set});
     const std::string expected = "g.toml: key '" + table + "': unknown key";

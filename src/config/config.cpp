@@ -672,6 +672,19 @@ struct GroupSpec {
   toml::table tables;  // its model, layers, integrator, initial, protocol or hold, grid
 };
 
+// A key of a variant or a group that is neither one of its own (`own`) nor a table it may set:
+// refused naming the nearest of both, as a mistyped key of [model] is.
+void reject_unknown_part_keys(Reader& r, const std::set<std::string>& own, const std::set<std::string>& tables) {
+  std::set<std::string> allowed = own;
+  allowed.insert(tables.begin(), tables.end());
+  for (const auto& [k, v] : r.table())
+    if (!allowed.count(std::string(k.str()))) {
+      const std::string near = closest(k.str(), allowed);
+      r.fail(k.str(), fmt::format("unknown key{}; allowed: {}", near.empty() ? "" : " (did you mean '" + near + "'?)",
+                                  fmt::join(allowed, ", ")));
+    }
+}
+
 // [variant.NAME] tables: label and the tables they set. None: one unnamed variant.
 std::vector<VariantSpec> read_variants(const toml::table& root, std::string_view file) {
   std::vector<VariantSpec> out;
@@ -693,6 +706,7 @@ std::vector<VariantSpec> read_variants(const toml::table& root, std::string_view
       r.known(tk.str());
       spec.tables.insert(tk.str(), tv);
     }
+    reject_unknown_part_keys(r, {"label"}, kVariantTables);
     r.reject_unknown();
     out.push_back(std::move(spec));
   }
@@ -750,6 +764,7 @@ std::vector<GroupSpec> read_groups(const toml::table& root, const std::vector<Va
       r.known(tk.str());
       g.tables.insert(tk.str(), tv);
     }
+    reject_unknown_part_keys(r, {"name", "purpose", "variants"}, kGroupTables);
     if (g.tables.contains("protocol") && g.tables.contains("hold"))
       r.fail("hold", "a group has either [group.protocol] (ramps, steps) or [group.hold], not both");
     out.push_back(std::move(g));
