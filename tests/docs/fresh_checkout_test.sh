@@ -14,7 +14,8 @@ ln -s "$bin" "$copy/build/astrojax"
 check "the copy has no generated page" "[ ! -e '$copy/docs/reference/cli.md' ] && [ ! -e '$copy/docs/figures' ]"
 
 (cd "$copy" && mkdocs build --strict --quiet) > "$work/build.out" 2>&1
-check "mkdocs build --strict in a fresh checkout: exit 0 ($(tail -3 "$work/build.out"))" "[ $? -eq 0 ]"
+rc=$?
+check "mkdocs build --strict in a fresh checkout: exit 0 (exit $rc: $(tail -3 "$work/build.out"))" "[ $rc -eq 0 ]"
 check "the generated pages and figures are in the site" \
   "grep -q 'astrojax sweep' '$copy/site/reference/cli.html' && grep -q 'drive_radius' '$copy/site/reference/configuration.html' && ls '$copy'/site/figures/*.png > /dev/null"
 check "MathJax linked into the site" "[ -e '$copy/site/mathjax/MathJax.js' ]"
@@ -22,8 +23,9 @@ check "MathJax linked into the site" "[ -e '$copy/site/mathjax/MathJax.js' ]"
 # Without a built program: a clear error naming what to do, no traceback.
 mv "$copy/build/astrojax" "$copy/build/astrojax.away"
 (cd "$copy" && mkdocs build --strict --quiet) > "$work/nobin.out" 2>&1
-check "no built program: mkdocs fails saying to build it ($(grep -m1 -i error "$work/nobin.out"))" \
-  "[ $? -ne 0 ] && grep -q './setup.sh build' '$work/nobin.out' && ! grep -q Traceback '$work/nobin.out'"
+rc=$?
+check "no built program: mkdocs fails saying to build it (exit $rc: $(grep -m1 -i error "$work/nobin.out"))" \
+  "[ $rc -ne 0 ] && grep -q './setup.sh build' '$work/nobin.out' && ! grep -q Traceback '$work/nobin.out'"
 mv "$copy/build/astrojax.away" "$copy/build/astrojax"
 
 port=$(/usr/bin/python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
