@@ -25,6 +25,16 @@ bad bad_range "orbits.range" "lo < hi" --set "orbits.range=[2.0,1.0]"
 bad lag_rigid_tie "layers.tie" "clutch" --lag --s 0.4589
 bad lag_without_s "--lag" "--s" --lag --set layers.tie=clutch --set model.tie_static_torque=1e-3 \
   --set model.tie_kinetic_torque=9e-4
+# --map: the second parameter is a continuation parameter (the list named), not ω; --s given;
+# the curves known, hopf only with the clutch; the range contains the model's value.
+bad map_not_continuation "--map 'top_stop': not a continuation parameter" "drive_radius, contact_distance" \
+  --map top_stop --s 0.4589
+bad map_omega "--map 'omega'" "allowed: " --map omega --s 0.4589
+bad map_without_s "--map" "--s" --map drive_radius
+bad map_hopf_rigid "layers.tie" "clutch" --map drive_radius --s 0.4589 --curves hopf
+bad map_unknown_curve "--curves" "cone_down" --map drive_radius --s 0.4589 --curves wobble
+bad map_range "--range 0.02 0.03" "drive_radius = 0.01" --map drive_radius --s 0.4589 --range 0.02 0.03
+bad map_with_continue "--map cannot be combined" "--continue" --map drive_radius --s 0.4589 --continue omega
 
 # --lag: the one set's lagging orbit at s = 0.4589 m, its Hopf point and the CSV.
 "$bin" orbits "$cfg" --lag --s 0.4589 --omega 10pi --set layers.tie=clutch --set model.drive_radius=0.015 \
