@@ -203,20 +203,21 @@ int orbits_map(const config::OrbitsConfig& cfg, const std::vector<double>& omega
   std::vector<MapRow> points, meets;
   std::vector<std::string> stops;
   int id = 0;
-  for (double s : cfg.orbits.s)
-    for (CurveKind kind : kinds_asked(args, m)) {
-      const std::vector<Curve> curves = threshold_curves(m, P, kind, s, opt);
-      if (curves.empty())
+  for (double s : cfg.orbits.s) {
+    const std::vector<CurveKind> kinds = kinds_asked(args, m);
+    const std::vector<Curve> curves = threshold_curves(m, P, kinds, s, opt);
+    for (CurveKind kind : kinds)
+      if (std::none_of(curves.begin(), curves.end(), [&](const Curve& c) { return c.kind == kind; }))
         std::printf("\nno %s point at s = %.4f m for the model's %s (none on the branches continued in omega)\n",
                     std::string(to_string(kind)).c_str(), s, P.c_str());
-      for (const Curve& c : curves) {
-        ++id;
-        print_curve(id, c, P);
-        stops.push_back(fmt::format("curve {}: {}", id, c.stop_reason));
-        for (const CurvePoint& q : c.points) points.push_back({id, kind, s, "curve", q});
-        for (const Codim2Point& q : c.meets) meets.push_back({id, kind, s, q.kind, q.at});
-      }
+    for (const Curve& c : curves) {
+      ++id;
+      print_curve(id, c, P);
+      stops.push_back(fmt::format("curve {}: {}", id, c.stop_reason));
+      for (const CurvePoint& q : c.points) points.push_back({id, c.kind, s, "curve", q});
+      for (const Codim2Point& q : c.meets) meets.push_back({id, c.kind, s, q.kind, q.at});
     }
+  }
   try {
     if (!args.curves_csv.empty()) {
       std::vector<MapRow> all = points;

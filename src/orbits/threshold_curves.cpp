@@ -394,8 +394,25 @@ bool matches(CurveKind k, EventKind e) {
 
 }  // namespace
 
-std::vector<CurveStart> curve_starts(const physics::Model& m, CurveKind kind, double s, const CurveOptions& opt0) {
-  const CurveOptions opt = resolved(m, "s", s, opt0);
+namespace {
+// The one-parameter events of every stuck branch at s, continued in ω both ways from the orbits
+// at each start frequency (a branch already traced is not traced again).
+std::vector<BranchEvent> stuck_events(const physics::Model& m, double s, const CurveOptions& opt) {
+  std::vector<BranchEvent> events;
+  std::vector<std::vector<BranchPoint>> traced;
+  for (double w0 : opt.start_omega)
+    for (const SteadyOrbit& o : orbits_at({m, w0, Closure::Stuck, s})) {
+      if (std::any_of(traced.begin(), traced.end(),
+                      [&](const std::vector<BranchPoint>& b) { return on_branch(b, o, m.p.string_length); }))
+        continue;
+      traced.push_back(omega_path(m, s, w0, unknowns(o), opt, events));
+    }
+  return events;
+}
+
+// The starts of `kind` among the events (hopf: from the lag's branches).
+std::vector<CurveStart> starts_of(const physics::Model& m, CurveKind kind, double s, const CurveOptions& opt,
+                                  const std::vector<BranchEvent>& events) {
   std::vector<CurveStart> raw;
   if (kind == CurveKind::Hopf) {
     if (!m.layers.tie_clutch) throw std::invalid_argument("the hopf curve needs [layers] tie = \"clutch\"");
@@ -408,22 +425,15 @@ std::vector<CurveStart> curve_starts(const physics::Model& m, CurveKind kind, do
                       [&](const LagBranch& b) { return on_branch(b.points, o, m.p.string_length); }))
         continue;
       const LagBranch& br = done.emplace_back(lag_branch(m, o, lo, hi));
+      // A Hopf point whose τ no motor speed passes (ω_m NaN: τ < τ_k) is no lag the clutch drives.
       for (const LagEvent& e : br.events)
-        if (e.complex_pair && (e.kind == LagEventKind::StabilityLoss || e.kind == LagEventKind::StabilityGain))
+        if (e.complex_pair && (e.kind == LagEventKind::StabilityLoss || e.kind == LagEventKind::StabilityGain) &&
+            std::isfinite(e.at.omega_m))
           raw.push_back({kind, s, e.at.orbit.omega, unknowns(e.at.orbit)});
     }
   } else {
-    std::vector<std::vector<BranchPoint>> traced;
-    for (double w0 : opt.start_omega)
-      for (const SteadyOrbit& o : orbits_at({m, w0, Closure::Stuck, s})) {
-        if (std::any_of(traced.begin(), traced.end(),
-                        [&](const std::vector<BranchPoint>& b) { return on_branch(b, o, m.p.string_length); }))
-          continue;
-        std::vector<BranchEvent> events;
-        traced.push_back(omega_path(m, s, w0, unknowns(o), opt, events));
-        for (const BranchEvent& e : events)
-          if (matches(kind, e.kind)) raw.push_back({kind, s, e.lambda, unknowns(e.orbit)});
-      }
+    for (const BranchEvent& e : events)
+      if (matches(kind, e.kind)) raw.push_back({kind, s, e.lambda, unknowns(e.orbit)});
   }
   // The same event found from two starts of one branch: kept once.
   std::vector<CurveStart> out;
@@ -436,6 +446,12 @@ std::vector<CurveStart> curve_starts(const physics::Model& m, CurveKind kind, do
   }
   std::sort(out.begin(), out.end(), [](const CurveStart& a, const CurveStart& b) { return a.omega < b.omega; });
   return out;
+}
+}  // namespace
+
+std::vector<CurveStart> curve_starts(const physics::Model& m, CurveKind kind, double s, const CurveOptions& opt0) {
+  const CurveOptions opt = resolved(m, "s", s, opt0);
+  return starts_of(m, kind, s, opt, kind == CurveKind::Hopf ? std::vector<BranchEvent>{} : stuck_events(m, s, opt));
 }
 
 Curve follow_curve(const physics::Model& m, const std::string& parameter, const CurveStart& start,
@@ -488,24 +504,35 @@ Curve follow_curve(const physics::Model& m, const std::string& parameter, const 
   return cv;
 }
 
-std::vector<Curve> threshold_curves(const physics::Model& m, const std::string& parameter, CurveKind kind, double s,
-                                    const CurveOptions& opt) {
+std::vector<Curve> threshold_curves(const physics::Model& m, const std::string& parameter,
+                                    const std::vector<CurveKind>& kinds, double s, const CurveOptions& opt0) {
+  const CurveOptions opt = resolved(m, "s", s, opt0);
+  const bool stuck = std::any_of(kinds.begin(), kinds.end(), [](CurveKind k) { return k != CurveKind::Hopf; });
+  const std::vector<BranchEvent> events = stuck ? stuck_events(m, s, opt) : std::vector<BranchEvent>{};
   std::vector<Curve> out;
-  for (const CurveStart& st : curve_starts(m, kind, s, opt)) {
-    // A start on a curve already followed (the curve passes p0 more than once) adds nothing.
-    const double p0 = parameter_value({m, st.omega, Closure::Stuck, s}, parameter);
-    const bool on = std::any_of(out.begin(), out.end(), [&](const Curve& c) {
-      for (std::size_t i = 0; i + 1 < c.points.size(); ++i) {
-        const CurvePoint &a = c.points[i], &b = c.points[i + 1];
-        if ((a.p - p0) * (b.p - p0) > 0 || a.p == b.p) continue;
-        const double t = (p0 - a.p) / (b.p - a.p);
-        if (std::abs(a.omega + t * (b.omega - a.omega) - st.omega) < 1e-4 * st.omega) return true;
-      }
-      return false;
-    });
-    if (!on) out.push_back(follow_curve(m, parameter, st, opt));
+  for (CurveKind kind : kinds) {
+    const std::size_t first = out.size();
+    for (const CurveStart& st : starts_of(m, kind, s, opt, events)) {
+      // A start on a curve already followed (the curve passes p0 more than once) adds nothing.
+      const double p0 = parameter_value({m, st.omega, Closure::Stuck, s}, parameter);
+      const bool on = std::any_of(out.begin() + first, out.end(), [&](const Curve& c) {
+        for (std::size_t i = 0; i + 1 < c.points.size(); ++i) {
+          const CurvePoint &a = c.points[i], &b = c.points[i + 1];
+          if ((a.p - p0) * (b.p - p0) > 0 || a.p == b.p) continue;
+          const double t = (p0 - a.p) / (b.p - a.p);
+          if (std::abs(a.omega + t * (b.omega - a.omega) - st.omega) < 1e-4 * st.omega) return true;
+        }
+        return false;
+      });
+      if (!on) out.push_back(follow_curve(m, parameter, st, opt0));
+    }
   }
   return out;
+}
+
+std::vector<Curve> threshold_curves(const physics::Model& m, const std::string& parameter, CurveKind kind, double s,
+                                    const CurveOptions& opt) {
+  return threshold_curves(m, parameter, std::vector<CurveKind>{kind}, s, opt);
 }
 
 }  // namespace ajx::orbits

@@ -82,7 +82,8 @@ struct CurveOptions {
 
 // The starts of `kind` at the bead position s: the events of that kind on the one-parameter
 // continuations in ω (continuation.hpp) of every stuck branch at s (hopf: the complex
-// crossings of lag_branch, lagging_orbit.hpp), each polished on the extended system.
+// crossings of lag_branch, lagging_orbit.hpp, over ω_b in [lag_lo, lag_hi], where a motor speed
+// gives the lag's τ), each polished on the extended system.
 std::vector<CurveStart> curve_starts(const physics::Model& m, CurveKind kind, double s, const CurveOptions& opt);
 
 // The curve through `start` followed both ways in `parameter`, with its codimension-2 points.
@@ -92,5 +93,8 @@ Curve follow_curve(const physics::Model& m, const std::string& parameter, const 
 // Every curve of `kind` at s in `parameter`: one per start not already on a curve followed.
 std::vector<Curve> threshold_curves(const physics::Model& m, const std::string& parameter, CurveKind kind, double s,
                                     const CurveOptions& opt);
+// The same for several kinds, the branches in ω that give the starts traced once for all.
+std::vector<Curve> threshold_curves(const physics::Model& m, const std::string& parameter,
+                                    const std::vector<CurveKind>& kinds, double s, const CurveOptions& opt);
 
 }  // namespace ajx::orbits

@@ -23,12 +23,12 @@ int main() {
     CurveOptions opt;
     opt.p_lo = 0.005;
     opt.p_hi = 0.025;
-    for (CurveKind k : {CurveKind::ConeUp, CurveKind::ConeDown, CurveKind::Fold})
-      for (const Curve& c : threshold_curves(m, "drive_radius", k, 0.4589, opt)) {
-        ++curves;
-        points += c.points.size();
-        meets += c.meets.size();
-      }
+    for (const Curve& c :
+         threshold_curves(m, "drive_radius", {CurveKind::ConeUp, CurveKind::ConeDown, CurveKind::Fold}, 0.4589, opt)) {
+      ++curves;
+      points += c.points.size();
+      meets += c.meets.size();
+    }
   }
   const double cpu = double(std::clock() - t0) / CLOCKS_PER_SEC;
   std::printf("continuation map of (R, d): %d values of d x curves in R over [5, 25] mm (cone_up, cone_down, fold)\n",
