@@ -71,8 +71,19 @@ def fail(message):
 
 # The newest layout of run and sweep files this library reads (root attribute format_version;
 # 1 when absent): 2 added /resolved (the configuration in force as values) and, in sweeps,
-# /windows/phi_begin (the motor phase at each window start).
-FORMAT_VERSION = 2
+# /windows/phi_begin (the motor phase at each window start); 3 stores lists of strings as string
+# arrays (one element per item) and the orbit classes as /classes; 4 made motor_work and
+# motor_power the motor's at the rod with a clutch (string_work, string_power, clutch_loss,
+# clutch_power, /trajectory/chi new).
+FORMAT_VERSION = 4
+
+
+def text_list(obj, name, sep):
+    """A list-of-strings attribute: a string array (format 3) or one string joined by `sep`."""
+    v = obj.attrs.get(name, "")
+    if isinstance(v, np.ndarray):
+        return [as_text(x) for x in v]
+    return as_text(v).split(sep)
 
 
 def format_version(f, path):
@@ -123,7 +134,10 @@ class Sweep:
             fail(f"{path}: not a sweep file (no /windows): make one with `astrojax sweep`")
         with h5py.File(path, "r") as f:
             w = f["windows"]
-            self.class_names = parse_names(text_attr(w["class"], "names"))
+            if "classes" in f:
+                self.class_names = {k: as_text(n) for k, n in enumerate(f["classes/name"][:])}
+            else:
+                self.class_names = parse_names(text_attr(w["class"], "names"))
             self.cls = w["class"][:]
             self.omega_begin = w["omega_m_begin"][:]
             self.omega_end = w["omega_m_end"][:]
@@ -135,23 +149,22 @@ class Sweep:
             self.stats = {name: w[name][:] for name in w if w[name].ndim == 2 and name not in layout}
             ch = f["chains"]
             self.model = ch["model"][:]
-            self.model_columns = [c.split(" [")[0] for c in text_attr(ch["model"], "columns").split(",")]
-            axes = text_attr(ch, "axes")
-            self.axes = [a for a in axes.split(",") if a]
+            self.model_columns = [c.split(" [")[0] for c in text_list(ch["model"], "columns", ",")]
+            self.axes = [a for a in text_list(ch, "axes", ",") if a]
             self.grid = ch["grid_values"][:] if "grid_values" in ch else np.zeros((self.cls.shape[0], 0))
             self.hold_omega = ch["hold_omega"][:] if "hold_omega" in ch else None
             self.seed = ch["seed"][:] if "seed" in ch else None
-            self.seed_names = text_attr(ch["seed"], "names").split(",") if "seed" in ch else []
+            self.seed_names = text_list(ch["seed"], "names", ",") if "seed" in ch else []
             self.perturbation = ch["perturbation"][:] if "perturbation" in ch else None
             # A grouped sweep: each chain's group and model variant (indices into the names).
             self.group = ch["group"][:] if "group" in ch else None
-            self.group_names = text_attr(ch["group"], "names").split("\n") if "group" in ch else []
-            self.group_purposes = text_attr(ch["group"], "purposes").split("\n") if "group" in ch else []
+            self.group_names = text_list(ch["group"], "names", "\n") if "group" in ch else []
+            self.group_purposes = text_list(ch["group"], "purposes", "\n") if "group" in ch else []
             self.variant = ch["variant"][:] if "variant" in ch else None
-            self.variant_names = text_attr(ch["variant"], "names").split("\n") if "variant" in ch else []
-            self.variant_labels = text_attr(ch["variant"], "labels").split("\n") if "variant" in ch else []
+            self.variant_names = text_list(ch["variant"], "names", "\n") if "variant" in ch else []
+            self.variant_labels = text_list(ch["variant"], "labels", "\n") if "variant" in ch else []
             self.start_seed = ch["start_seed"][:] if "start_seed" in ch else None
-            self.start_seed_names = text_attr(ch["start_seed"], "names").split("\n") if "start_seed" in ch else []
+            self.start_seed_names = text_list(ch["start_seed"], "names", "\n") if "start_seed" in ch else []
             self.sample_rate = float(f["samples"].attrs.get("sample_rate", np.nan))
             prov = f["provenance"] if "provenance" in f else None
             self.provenance = {k: text_attr(prov, k) for k in prov.attrs} if prov is not None else {}

@@ -542,7 +542,7 @@ def main():
             seen.add(layer_key(m["layers"]))
             stair_sets.append((name, m))
     with h5py.File(os.path.join(work, f"{layer_tag(FULL)}_ramp.h5"), "r") as f:
-        cols = ajx.text_attr(f["chains"]["model"], "columns").split(",")
+        cols = ajx.text_list(f["chains"]["model"], "columns", ",")
         vals = f["chains"]["model"][0]
     model = ", ".join(f"{c.strip()} {v:g}" for c, v in zip(cols, vals))
     meta = {"model": model,

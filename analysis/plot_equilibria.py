@@ -109,7 +109,8 @@ def main(argv=None):
     if args.sweep:
         with h5py.File(args.sweep, "r") as f:
             w = f["windows"]
-            names = {int(k): v for k, v in (item.split(" ", 1) for item in text(w["class"].attrs["names"]).split(","))}
+            names = (dict(enumerate(text(n) for n in f["classes/name"][:])) if "classes" in f else
+                     {int(k): v for k, v in (item.split(" ", 1) for item in text(w["class"].attrs["names"]).split(","))})
             cls = w["class"][:].ravel()
             wm = (0.5 * (w["omega_m_begin"][:] + w["omega_m_end"][:])).ravel()
             rb = w["radius_bead_mean"][:].ravel()

@@ -51,7 +51,7 @@ def model_values(path, defaults):
     """[model] values from the run's stored config and its --set overrides (one per line)."""
     with h5py.File(path, "r") as f:
         cfg = tomllib.loads(ajx.as_text(f["config"][()]))
-        overrides = ajx.text_attr(f["config"], "overrides")
+        overrides = "\n".join(ajx.text_list(f["config"], "overrides", "\n"))
     model = cfg.get("model", {})
     out = {k: float(model.get(k, v)) for k, v in defaults.items()}
     for item in filter(None, overrides.splitlines()):
@@ -67,7 +67,7 @@ def couple_values(path):
     τ_c = 0 when layers.pair_couple is not "motor_clutch" (physics::Model's defaults otherwise)."""
     with h5py.File(path, "r") as f:
         cfg = tomllib.loads(ajx.as_text(f["config"][()]))
-        overrides = ajx.text_attr(f["config"], "overrides")
+        overrides = "\n".join(ajx.text_list(f["config"], "overrides", "\n"))
     layer = cfg.get("layers", {}).get("pair_couple", "none")
     for item in filter(None, overrides.splitlines()):
         key, _, value = item.strip().partition("=")

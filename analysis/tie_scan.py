@@ -47,7 +47,7 @@ def string_params(path):
     import tomllib
     with h5py.File(path, "r") as f:
         text = ajx.as_text(f["config"][()])
-        overrides = ajx.text_attr(f["config"], "overrides")
+        overrides = "\n".join(ajx.text_list(f["config"], "overrides", "\n"))
     model = tomllib.loads(text).get("model", {})
     l, d = model.get("string_length", 0.826), model.get("contact_distance", 0.03)
     for kv in overrides.splitlines():

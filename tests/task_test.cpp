@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "one_set.hpp"
+#include "physics/state_row.hpp"
 #include "sim/simulation.hpp"
 #include "sweep/seeds.hpp"
 #include "sweep/task.hpp"
@@ -78,6 +80,37 @@ TEST(Task, EveryWindowClosesItsEnergyBalance) {
   }
 }
 
+TEST(Task, EveryWindowClosesTheMotorsLedgerWithTheClutch) {
+  // The tie clutch of the main job (tests/one_set.hpp) from the circular_high seed, held at 10π:
+  // the tie slips and the orbit lags. Over every window the motor's power at the rod splits as
+  // P_m = P_string + P_clutch + dE_tie/dt, and P_string = P_drag + P_other + dE/dt, both to the
+  // quadratures' error (~rtol of the work, 1e-7 of the largest power leaves three orders). The
+  // clutch takes a real share (the measurement: 58 % in the steady lag).
+  ChainSetup c;
+  c.model = one_parameter_set();
+  const double w = 10 * pi;
+  c.protocol = compile({Segment{Segment::Kind::Steps, {}, {w, w + 0.4, 3, 1.0, 2.0, 1.0}}}, w);  // 3 windows
+  c.run.method = "dop853";
+  c.run.integ.tol.rtol = 1e-10;
+  c.run.integ.tol.atol = 1e-12;
+  c.sample_rate = 50.0;
+  const physics::MotorSchedule sched(c.protocol.schedule);
+  const TaskOutput out = run_task(c, split(c.protocol, 8).front(), seed_state(c.model, sched, "circular_high", w, 0, 0.0));
+  ASSERT_TRUE(out.ok) << out.failure;
+  ASSERT_FALSE(out.windows.empty());
+  for (const WindowRecord& r : out.windows) {
+    const WindowPowers p = window_powers(r);
+    const double dt = r.last.t - r.first.t, tie_rate = (r.last.tie_energy - r.first.tie_energy) / dt;
+    const double scale = std::max({std::abs(p.motor), std::abs(p.string), p.drag, std::abs(p.energy_rate)});
+    EXPECT_NEAR(p.motor, p.string + p.clutch + tie_rate, 1e-7 * scale) << "window " << r.index;
+    EXPECT_NEAR(p.string, p.drag + p.other + p.energy_rate, 1e-7 * scale) << "window " << r.index;
+    EXPECT_GT(p.clutch, 0.1 * p.motor) << "window " << r.index;
+  }
+  const WindowPowers last = window_powers(out.windows.back());
+  std::printf("measured clutch lag at 10π, last window: P_m %.4e W, P_string %.4e W, P_clutch %.4e W (%.0f %%)\n",
+              last.motor, last.string, last.clutch, 100 * last.clutch / last.motor);
+}
+
 TEST(Task, TheMotorSustainsALockedOrbitAndNothingMore) {
   // Started on the stable locked orbit at 6π (the locked_orbit seed: an equilibrium of the
   // co-rotating frame to Newton's round-off), the motor's mean power equals drag's and E does
@@ -142,6 +175,37 @@ TEST(Task, EncodingRoundTripsExactly) {
   EXPECT_EQ(st.t, out.final_state.t);
   std::vector<std::byte> cut(bytes.begin(), bytes.end() - 3);
   EXPECT_THROW(decode_output(cut), std::runtime_error);
+}
+
+// The state row (physics/state_row.hpp), the one codec of the carry and /tasks/final_state:
+// every field, the tie's χ and χ̇ too, back bit for bit; a rigid tie's row has NaN χ and
+// decodes to the 15 components it had.
+TEST(Task, TheStateRowRoundTripsEveryField) {
+  physics::State s;
+  s.t = 12.5;
+  s.contact = physics::Contact(physics::Mode::Stuck, -1, 0.4321);
+  s.contact.tie = {true, -1, 0.25};
+  s.impact_loss = 1.5e-3;
+  s.y.resize(physics::idx::dim_tie);
+  for (int k = 0; k < physics::idx::dim_tie; ++k) s.y(k) = 0.1 * k - 0.7;
+  const std::vector<double> row = physics::state_row(s);
+  ASSERT_EQ(row.size(), physics::kStateCols);
+  ASSERT_EQ(physics::state_column_names().size(), physics::kStateCols);
+  const physics::State back = physics::state_from_row(row);
+  EXPECT_EQ(physics::state_row(back), row);
+  EXPECT_EQ(back.y, s.y);
+  EXPECT_EQ(back.contact.mode, s.contact.mode);
+  EXPECT_EQ(back.contact.sigma, -1);
+  EXPECT_EQ(back.contact.s_star, 0.4321);
+  EXPECT_TRUE(back.contact.tie.slip);
+  EXPECT_EQ(back.contact.tie.sigma, -1);
+  EXPECT_EQ(back.contact.tie.offset, 0.25);
+  EXPECT_EQ(decode_state(encode(s)).y, s.y);
+  s.y.conservativeResize(physics::idx::dim);
+  const std::vector<double> rigid = physics::state_row(s);
+  EXPECT_TRUE(std::isnan(rigid[physics::kStateChiColumn]));
+  EXPECT_EQ(physics::state_from_row(rigid).y.size(), physics::idx::dim);
+  EXPECT_EQ(physics::state_from_row(rigid).y, s.y);
 }
 
 TEST(Task, AFailedIntegrationComesBackWithItsReasonAndLastGoodState) {

@@ -2,8 +2,11 @@
 
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "physics/energy.hpp"
+#include "physics/state_row.hpp"
+#include "physics/tie.hpp"
 #include "sweep/codec.hpp"
 
 namespace ajx::sweep {
@@ -37,8 +40,11 @@ TaskOutput run_task(const ChainSetup& chain, const TaskSpan& span, physics::Stat
     rec.T1.push_back(s.dyn.T1);
     rec.T2.push_back(s.dyn.T2);
     rec.mode.push_back(static_cast<std::int32_t>(s.contact.mode));
-    rec.last = {s.t, s.y(physics::idx::motor_work), s.y(physics::idx::drag_loss),
-                s.y(physics::idx::friction_loss) + s.impact_loss, physics::mechanical_energy(chain.model.p, s.y)};
+    const bool ledger = physics::has_ledger(s.y);
+    rec.last = {s.t, s.y(ledger ? physics::idx::rod_work : physics::idx::motor_work), s.y(physics::idx::drag_loss),
+                s.y(physics::idx::friction_loss) + s.impact_loss, physics::mechanical_energy(chain.model.p, s.y),
+                s.y(physics::idx::motor_work), ledger ? s.y(physics::idx::clutch_loss) : 0.0,
+                physics::tie_energy(chain.model.p, s.y)};
     if (rec.size() == 1) rec.first = rec.last;
   };
   start.t = span.t_begin;
@@ -62,7 +68,8 @@ WindowPowers window_powers(const WindowRecord& rec) {
     return {nan, nan, nan, nan};
   }
   return {(rec.last.motor_work - rec.first.motor_work) / dt, (rec.last.drag_loss - rec.first.drag_loss) / dt,
-          (rec.last.other_loss - rec.first.other_loss) / dt, (rec.last.energy - rec.first.energy) / dt};
+          (rec.last.other_loss - rec.first.other_loss) / dt, (rec.last.energy - rec.first.energy) / dt,
+          (rec.last.string_work - rec.first.string_work) / dt, (rec.last.clutch_loss - rec.first.clutch_loss) / dt};
 }
 
 std::vector<OrbitClassification> classify_windows(const ChainSetup& chain, const TaskOutput& out,
@@ -90,30 +97,12 @@ std::vector<OrbitClassification> classify_windows(const ChainSetup& chain, const
 }
 
 namespace {
-void put_state(ByteWriter& w, const physics::State& s) {
-  w.put(s.t);
-  w.put(static_cast<std::int32_t>(s.contact.mode));
-  w.put(static_cast<std::int32_t>(s.contact.sigma));
-  w.put(s.contact.s_star);
-  w.put(s.impact_loss);
-  w.put(static_cast<std::int32_t>(s.contact.tie.slip));
-  w.put(static_cast<std::int32_t>(s.contact.tie.sigma));
-  w.put(s.contact.tie.offset);
-  w.put_vector(std::vector<double>(s.y.data(), s.y.data() + s.y.size()));
-}
+// The state travels as its row (physics/state_row.hpp), bit for bit.
+void put_state(ByteWriter& w, const physics::State& s) { w.put_vector(physics::state_row(s)); }
 physics::State get_state(ByteReader& r) {
-  physics::State s;
-  s.t = r.get<double>();
-  s.contact.mode = static_cast<physics::Mode>(r.get<std::int32_t>());
-  s.contact.sigma = r.get<std::int32_t>();
-  s.contact.s_star = r.get<double>();
-  s.impact_loss = r.get<double>();
-  s.contact.tie.slip = r.get<std::int32_t>() != 0;
-  s.contact.tie.sigma = r.get<std::int32_t>();
-  s.contact.tie.offset = r.get<double>();
-  const auto y = r.get_vector<double>();
-  s.y = numerics::Vec::Map(y.data(), Eigen::Index(y.size()));
-  return s;
+  const auto row = r.get_vector<double>();
+  if (row.size() != physics::kStateCols) throw std::runtime_error("state: wrong number of columns");
+  return physics::state_from_row(row);
 }
 }  // namespace
 
