@@ -280,6 +280,45 @@ class Sweep:
         return handles
 
 
+class Curves:
+    """The threshold curves of `astrojax orbits CONFIG --map PARAM -o FILE.h5` (/curves): each
+    point of each curve, and the codimension-2 points where two curves meet. Columns by name
+    (`p` the second parameter, `omega_m` the threshold in rad/s, `kind` a code of KINDS)."""
+
+    KINDS = {0: "fold", 1: "cone_up", 2: "cone_down", 3: "hopf"}
+
+    def __init__(self, path):
+        self.path = path
+        try:
+            f = h5py.File(path, "r")
+        except OSError as e:
+            fail(f"{path}: cannot read as HDF5: {e}")
+        with f:
+            format_version(f, path)
+            if "curves" not in f:
+                fail(f"{path}: no /curves; write one with `astrojax orbits CONFIG --map PARAM --s S -o FILE.h5`")
+            g = f["curves"]
+            self.parameter = text_attr(g, "parameter")
+            self.parameter_symbol = text_attr(g, "parameter_symbol")
+            self.parameter_unit = text_attr(g, "parameter_unit")
+            self.points = {k: g["points"][k][:] for k in g["points"]}
+            self.codim2 = {k: g["codim2"][k][:] for k in g["codim2"]}
+            names = text_attr(g["codim2"], "names")
+            self.codim2_names = names.split(",") if names else []
+            self.resolved = resolved(f["resolved"]) if "resolved" in f else {}
+
+    def curve_ids(self, kinds):
+        """The ids of the curves of the given kind names, in order."""
+        codes = [k for k, v in self.KINDS.items() if v in kinds]
+        return [int(i) for i in np.unique(self.points["curve_id"]) if
+                int(self.points["kind"][self.points["curve_id"] == i][0]) in codes]
+
+    def curve(self, curve_id):
+        """The columns of one curve, in order along it."""
+        m = self.points["curve_id"] == curve_id
+        return {k: v[m] for k, v in self.points.items()}
+
+
 def sweep_for_plot(args):
     """The sweep of a plotting script, its chains with classified windows (--chains), their
     thresholds and their grid-point groups."""

@@ -64,6 +64,9 @@ def make():
     # tiny work-precision and stability scan (about 1 s together).
     run([ASTROJAX, "orbits", os.path.join(SOURCE, "sweeps/orbits.toml"), "--continue", "omega", "--s", "0.5443",
          "--range", "10", "30", "-o", data("equilibria.h5")])
+    # For plot_map.py: the cone_down and fold curves over R at the documented set (about 1 s).
+    run([ASTROJAX, "orbits", os.path.join(SOURCE, "sweeps/orbits_map.toml"), "--map", "drive_radius",
+         "--curves", "cone_down,fold", "--range", "0.01", "0.02", "-o", data("map.h5")])
     run([ASTROJAX, "bench", "work-precision", os.path.join(SOURCE, "sweeps/scenes/locked_circular.toml"),
          "--methods", "dop853,rk4", "--rtols", "1e-4,1e-6", "--steps", "0.01,0.005", "--horizon", "1",
          "--repeats", "1", "-o", data("work_precision.csv")])
@@ -416,6 +419,38 @@ class studies(ImageChecks):
 
     def test_equilibria(self):
         self.figure("plot_equilibria.py", data("equilibria.png"), data("equilibria.h5"), "--sweep", data("phase.h5"))
+
+    def map_figure(self, out, *args):
+        # Thresholds are drawn in black and grey only (astrojax_analysis.py): no colour to find.
+        if os.path.exists(out):
+            os.remove(out)
+        script("plot_map.py", *args, "-o", out)
+        self.assert_png(out, *png_size(out), coloured=False)
+
+    def test_map(self):
+        self.map_figure(data("map.png"), data("map.h5"))
+
+    def test_map_with_brackets_and_bad_input(self):
+        # A sweep's brackets overlaid (the form a sweep map's `thresholds --csv` gives).
+        with open(data("brackets.csv"), "w") as f:
+            f.write("symbol,p,before,after\nomega_fall,0.012,10.0,10.6\nomega_fall,0.018,10.3,10.9\n")
+        self.map_figure(data("map_brackets.png"), data("map.h5"), "--brackets", data("brackets.csv"))
+        with open(data("brackets_bad.csv"), "w") as f:
+            f.write("symbol,p,lo\nomega_fall,0.012,x\n")
+        rc, out = script("plot_map.py", data("map.h5"), "--brackets", data("brackets_bad.csv"), "-o",
+                         data("map_bad.png"), check=False)
+        self.assertEqual(rc, 2, out)
+        self.assertIn("symbol, p, before, after", out)
+        rc, out = script("plot_map.py", data("phase.h5"), "-o", data("map_bad.png"), check=False)
+        self.assertEqual(rc, 2, out)
+        self.assertIn("no /curves", out)
+        # The reader: every curve point is on its curve's kind, and the codim-2 names match rows.
+        from astrojax_analysis import Curves
+        c = Curves(data("map.h5"))
+        self.assertEqual(c.parameter, "drive_radius")
+        self.assertEqual(c.parameter_unit, "m")
+        self.assertEqual(len(c.codim2_names), len(c.codim2["p"]))
+        self.assertTrue(c.curve_ids(("cone_down",)))
 
     def test_work_precision(self):
         self.figure("plot_work_precision.py", data("work_precision.png"), data("work_precision.csv"))

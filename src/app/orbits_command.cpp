@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "app/commands.hpp"
+#include "app/orbits_map.hpp"
 #include "results/provenance.hpp"
 #include "results/sweep_reader.hpp"
 #include "config/config.hpp"
@@ -365,6 +366,7 @@ config::OrbitsConfig parse_orbits(const OrbitsArgs& args, std::vector<double>& o
     throw config::ConfigError("--lag: give the bead's position with --s (repeatable)");
   if (args.lag && !(p.drive_radius > 0.0))
     throw config::ConfigError(fmt::format("{}: --lag needs key 'model.drive_radius' > 0", cfg.source_name));
+  check_map_args(args, cfg);
   return cfg;
 }
 
@@ -571,6 +573,7 @@ int orbits_command(const OrbitsArgs& args) {
   }
   print_model(cfg);
   if (args.lag) return lag_report(cfg, omegas, args);
+  if (!args.map_parameter.empty()) return orbits_map(cfg, omegas, args);
 
   const std::vector<Row> table = orbit_table(cfg, omegas, args.all);
   Branches br;
