@@ -2,13 +2,17 @@
 # Builds the documentation site offline: writes the generated reference pages from a built
 # astrojax, copies the committed figures into docs/figures/, then runs mkdocs build --strict
 # (a broken link, a missing page or any other warning fails), and checks every #anchor.
-#   tests/docs/build_docs.sh ASTROJAX SITE_DIR
+#   tests/docs/build_docs.sh ASTROJAX SITE_DIR [WEB_DIR]
 # Generated, git-ignored: docs/reference/cli.md (every command's --help),
-# docs/reference/configuration.md (astrojax keys --markdown), docs/figures/*.png.
+# docs/reference/configuration.md (astrojax keys --markdown), docs/figures/*.png, docs/live/
+# (the live page from WEB_DIR, the WebAssembly build of ./setup.sh web; ./setup.sh docs gives it.
+# Without WEB_DIR, as the docs tests of the default suite run it, docs/live/index.html says
+# that this copy of the site was built without the page and how to build it).
 set -euo pipefail
-[ $# -eq 2 ] || { echo "usage: $0 ASTROJAX SITE_DIR" >&2; exit 2; }
+[ $# -eq 2 ] || [ $# -eq 3 ] || { echo "usage: $0 ASTROJAX SITE_DIR [WEB_DIR]" >&2; exit 2; }
 bin=$(realpath "$1")
 site=$(realpath -m "$2")
+web=${3:+$(realpath "$3")}
 cd "$(dirname "$0")/../.."
 [ -x "$bin" ] || { echo "error: $1 is not an executable astrojax" >&2; exit 2; }
 
@@ -75,6 +79,22 @@ fi
 
 mkdir -p docs/figures
 cp analysis/figures/*.png docs/figures/
+
+rm -rf docs/live
+mkdir -p docs/live
+if [ -n "$web" ]; then
+  for f in index.html live.js live.css astrojax.js; do
+    [ -f "$web/$f" ] || { echo "error: $web/$f is missing: ./setup.sh web builds it" >&2; exit 1; }
+    cp "$web/$f" docs/live/
+  done
+else
+  cat > docs/live/index.html <<'HTML'
+<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8"><title>Astrojax, live: not in this build</title></head>
+<body><p>This copy of the site was built without the live page (the engine compiled to
+WebAssembly). <code>./setup.sh docs</code> builds the site with it.</p></body></html>
+HTML
+fi
 
 mkdocs build --strict --quiet -f mkdocs.yml -d "$site"
 # mkdocs checks the pages links point to, not their #anchors: this does.
