@@ -416,8 +416,9 @@
     const behind = factor < 0.95 * speed || fps < 50;
     const b = $('behind');
     b.hidden = !behind;
-    b.textContent = behind ? `This computer cannot keep up: the motion runs at ${factor.toFixed(2)}× real time ` +
-        `instead of ${speed}×${fps < 50 ? `, at ${fps.toFixed(0)} frames/s` : ''}.` : '';
+    const slow = factor < 0.95 * speed ? `the motion runs at ${factor.toFixed(2)}× real time instead of ${speed}×` : '';
+    const jerky = fps < 50 ? `it draws ${fps.toFixed(0)} frames a second instead of 60` : '';
+    b.textContent = behind ? `This computer cannot keep up: ${[slow, jerky].filter((x) => x).join(', and ')}.` : '';
     meter.wall = meter.sim = meter.cost = meter.frames = 0;
   }
 
