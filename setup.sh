@@ -119,5 +119,5 @@ case "${1:-}" in
          cmake --build "$BUILD_DIR" -j"$(nproc)" --target astrojax astrojax_peers astrojax_matched ;;
   test-long) install; build; (cd "$BUILD_DIR" && ctest -L long --output-on-failure) ;;
   test-cluster) PACKAGES+=("${CLUSTER_PACKAGES[@]}"); install; build; (cd "$BUILD_DIR" && ctest -L cluster --output-on-failure) ;;
-  *) sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; exit 2 ;;
+  *) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 2 ;;
 esac
