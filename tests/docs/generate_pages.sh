@@ -79,3 +79,16 @@ mkdir -p docs/figures
 for f in analysis/figures/*.png; do
   cmp -s "$f" "docs/figures/${f##*/}" || cp "$f" docs/figures/
 done
+
+# The live page's place in the site (docs/live/, git-ignored): ./setup.sh docs copies the
+# WebAssembly build there (tests/docs/build_docs.sh with a WEB_DIR); without it, a page that
+# says so.
+if [ ! -f docs/live/index.html ]; then
+  mkdir -p docs/live
+  cat > docs/live/index.html <<'HTML'
+<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8"><title>Astrojax, live: not in this build</title></head>
+<body><p>This copy of the site was built without the live page (the engine compiled to
+WebAssembly). <code>./setup.sh docs</code> builds the site with it.</p></body></html>
+HTML
+fi
