@@ -105,7 +105,7 @@ def sweep_orbits(args):
             title = (f"{sweep.class_name(c, k)}\nω_m = {sweep.omega_mean[c, k] / PI:.2f}π {arrow}, ω_ball = " +
                      (f"{wb / PI:.2f}π rad/s" if np.isfinite(wb) else "undefined"))
         else:
-            title = (f"{sweep.chain_label(c)}, window {k}: ω_m {sweep.omega_mean[c, k] / PI:.2f}π {arrow}, "
+            title = (f"{ajx.for_figure(sweep.chain_label(c), 200)}, window {k}: ω_m {sweep.omega_mean[c, k] / PI:.2f}π {arrow}, "
                      f"{sweep.class_name(c, k)}, ω_ball " + (f"{wb / PI:.2f}π rad/s" if np.isfinite(wb) else "undefined"))
         out.append((title, s, R))
     return out
@@ -251,4 +251,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    main()
+    ajx.run(main)

@@ -947,7 +947,7 @@ class fit(unittest.TestCase):
     SIGMA = np.array([0.01, 0.02, 0.05])                  # σ_k of the relative residuals
 
     def test_covariance_of_a_linear_model(self):
-        import fit_thresholds as ft
+        from astrojax_analysis import fit as ft
         # Full rank, m > n, χ² below m − n: C = (AᵀWA)⁻¹ exactly (the scale S drops out).
         W = np.diag(1 / self.SIGMA**2)
         expected = np.linalg.inv(self.A.T @ W @ self.A)
@@ -962,7 +962,7 @@ class fit(unittest.TestCase):
         self.assertEqual(ft.covariance(self.A[:2], self.SIGMA[:2], [1.0, 1.0], chi2=50.0)[3], 1.0)
 
     def test_a_degenerate_direction_is_reported_not_inverted(self):
-        import fit_thresholds as ft
+        from astrojax_analysis import fit as ft
         # Only p0 + p1 enters: the direction (1, −1)/√2 has singular value 0 and is returned;
         # the pseudo-inverse then gives var(p0) = var(p1) = 1/(2 Σ a_k²/σ_k²) / 2 along (1, 1)/√2.
         a = np.array([1.0, 2.0, 3.0])
@@ -984,7 +984,7 @@ class fit(unittest.TestCase):
         return 1.0 + r
 
     def test_nelder_mead_finds_the_cell_of_the_optimum(self):
-        import fit_thresholds as ft
+        from astrojax_analysis import fit as ft
         x_star, q = np.array([0.3, 0.6]), 0.01
         sigma = np.full(3, q / 2)  # the bracket half-width
         f = lambda x: ft.chi2_of((self.quantised(x, x_star, q) - 1.0) / sigma)
@@ -1004,7 +1004,7 @@ class fit(unittest.TestCase):
         self.assertEqual(ft.nelder_mead(f, [0.5, 0.2], [0.15, 0.15], [0, 0], [1, 1], max_evals=0)[2], 0)
 
     def test_jacobian_steps_past_the_resolution(self):
-        import fit_thresholds as ft
+        from astrojax_analysis import fit as ft
         # The quantised model through the script's own jacobian(): with steps h = 0.1 |p| the
         # central difference of a rounded line errs by at most q / (2h) per entry (each end
         # off by ≤ q/2), so the covariance matches (AᵀWA)⁻¹ to that relative order.
@@ -1054,7 +1054,7 @@ class fit(unittest.TestCase):
         self.assertAlmostEqual(d, 0.75, places=12)
 
     def test_omega_2_only_where_a_lag_ends(self):
-        import fit_thresholds as ft
+        from astrojax_analysis import fit as ft
         # An ω2 bracket whose lower window lies in the locked run (no lag before the flower) is
         # not the paper's lag → flower: not reached, with the reason; in a lagging run it counts.
         pi = math.pi
@@ -1084,7 +1084,7 @@ class fit(unittest.TestCase):
         self.assertAlmostEqual(m["omega_2"][0], 15.0 * pi)
 
     def test_a_bracket_over_unsettled_windows_weighs_as_one_step(self):
-        import fit_thresholds as ft
+        from astrojax_analysis import fit as ft
         # ω_fall between a lagging window at 4.0π and the first fallen one at 3.0π, with four
         # not-settled windows at 3.8–3.2π in between (0.2π apart): σ is half the window
         # spacing, 0.1π, not the bracket's half-width 0.5π, so the same miss costs 25× more χ².
@@ -1115,7 +1115,7 @@ class fit(unittest.TestCase):
 
     def test_a_sweep_with_failed_tasks_is_kept_and_flagged(self):
         import tempfile
-        import fit_thresholds as ft
+        from astrojax_analysis import fit as ft
         # A stand-in for astrojax: `sweep` exits 3 (some tasks failed) with its reason on
         # stderr, `thresholds` writes one ω1 row and an empty sequence. The sweep's rows are
         # kept and the note carries the reason; any other exit code stops with code 2.
@@ -1135,7 +1135,7 @@ done
             rows, seq, note = ft.run_sweep(fake, os.path.join(tmp, "up.toml"), os.path.join(tmp, "o.h5"), {}, "clutch", 0)
             self.assertEqual((rows[0]["threshold"], seq), ("omega_1", []))
             self.assertIn("up sweep: some tasks failed (failed: task 6: event bound hit)", note)
-            code = ("import os, sys; sys.path.insert(0, %r); import fit_thresholds as ft; "
+            code = ("import os, sys; sys.path.insert(0, %r); from astrojax_analysis import fit as ft; "
                     "ft.run_sweep(%r, 'up.toml', 'o.h5', {}, 'clutch', 0)" % (ANALYSIS, fake))
             p = subprocess.run([PYTHON, "-c", code], capture_output=True, text=True,
                                env=dict(os.environ, FAKE_SWEEP_EXIT="1"))
@@ -1144,7 +1144,7 @@ done
 
     def test_protocol_copies(self):
         import tempfile
-        import fit_thresholds as ft
+        from astrojax_analysis import fit as ft
         with tempfile.TemporaryDirectory() as tmp:
             files, _ = ft.rise_file(os.path.join(SOURCE, "sweeps/paper_ramps.toml"), tmp)
             files.update(ft.ramp_files(os.path.join(SOURCE, "sweeps/table1.toml"), 18 * math.pi, tmp)[0])
@@ -1161,7 +1161,7 @@ done
         # --protocol holds: the staircase without its grid (each evaluation sets its one chain),
         # its steps unchanged, and no ramp copies beside it.
         import tempfile
-        import fit_thresholds as ft
+        from astrojax_analysis import fit as ft
         stair = os.path.join(SOURCE, "sweeps/table1_staircase.toml")
         with tempfile.TemporaryDirectory() as tmp:
             files, how = ft.staircase_file(stair, tmp)
@@ -1220,7 +1220,7 @@ class out_of_sample(unittest.TestCase):
     def test_fall_file_and_settings(self):
         import tempfile
         import tomllib
-        import fit_thresholds as ft
+        from astrojax_analysis import fit as ft
         import out_of_sample as oos
         with tempfile.TemporaryDirectory() as tmp:
             with open(oos.fall_file(tmp), "rb") as f:

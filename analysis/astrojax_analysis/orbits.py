@@ -1,0 +1,67 @@
+"""Files of `astrojax orbits -o FILE`: the continuation's branches (/branches/points and
+/branches/events, columns of equal length) and the predicted thresholds (/thresholds/<name>
+with attributes predicted [rad/s] and mechanism), read and checked as reader.py reads sweeps."""
+import h5py
+import numpy as np
+
+from .errors import SweepFileError
+from .reader import dataset, format_version, open_h5, read, string_list, text_attr
+
+POINT_COLUMNS = ("branch_id", "case", "lambda", "rho1", "s", "stable", "admissible")
+EVENT_COLUMNS = ("branch_id", "lambda", "rho1", "s")
+
+
+def _table(f, path, name, need):
+    g = f.get(name)
+    if not isinstance(g, h5py.Group):
+        raise SweepFileError(path, "/" + name, "missing; run astrojax orbits with --continue and -o")
+    first = dataset(f, path, f"{name}/{need[0]}", "f", (None,)) if need[0] in g else None
+    n = first.shape[0] if first is not None else None
+    out = {}
+    for col, d in g.items():
+        if isinstance(d, h5py.Dataset):
+            n = d.shape[0] if n is None and d.ndim == 1 else n
+            out[col] = read(dataset(f, path, f"{name}/{col}", "f" if d.dtype.kind == "f" else "i", (n,)), path)
+    for col in need:
+        if col not in out:
+            raise SweepFileError(path, f"/{name}/{col}", "missing")
+    return out
+
+
+def read_branches(path):
+    """(parameter, points {column: array}, events {column: array}, event kinds [str])."""
+    with open_h5(path) as f:
+        version = format_version(f, path)
+        points = _table(f, path, "branches/points", POINT_COLUMNS)
+        events = _table(f, path, "branches/events", EVENT_COLUMNS)
+        parameter = text_attr(f["branches"], path, "parameter")
+        n = len(events["lambda"])
+        kinds = string_list(f["branches/events"], path, "kinds", version, ",", n) if n else []
+    cases = points["case"]
+    if len(cases) and (np.any(cases < 0) or np.any(cases > 4) or np.any(cases != np.round(cases))):
+        raise SweepFileError(path, "/branches/points/case", "a case outside 0..4 (stuck, bottom_stop, frictionless, "
+                             "cone_up, cone_down)")
+    for name, values in list(points.items()) + list(events.items()):
+        if name in ("lambda", "rho1", "s") and not np.all(np.isfinite(values)):
+            raise SweepFileError(path, f"/branches/*/{name}", "non-finite value")
+    return parameter, points, events, kinds
+
+
+def read_predicted(path):
+    """{threshold: predicted [rad/s]} of /thresholds; NaN where the branches give none, or where
+    they merely run to the end of the continuation range (nothing happened there)."""
+    out = {}
+    with open_h5(path) as f:
+        format_version(f, path)
+        g = f.get("thresholds")
+        if not isinstance(g, h5py.Group):
+            raise SweepFileError(path, "/thresholds", "missing; run astrojax orbits with --thresholds and -o")
+        for name, t in g.items():
+            if "end of the range" in text_attr(t, path, "mechanism"):
+                out[name] = np.nan
+                continue
+            try:
+                out[name] = float(t.attrs["predicted"])
+            except (KeyError, TypeError, ValueError):
+                raise SweepFileError(path, t.name, "attribute predicted missing or not a number") from None
+    return out
