@@ -11,6 +11,8 @@ def _escape(ch):
         return " "
     if ch.isprintable() or ch == " ":
         return ch
+    if ch in "\n\r":
+        return "\\n" if ch == "\n" else "\\r"
     code = ord(ch)
     return f"\\x{code:02x}" if code < 0x100 else f"\\u{code:04x}" if code < 0x10000 else f"\\U{code:08x}"
 

@@ -3,7 +3,6 @@ threshold fit, and a scan refined by bounded Brent for one-dimensional fits."""
 import math
 
 import numpy as np
-from scipy.optimize import Bounds, minimize, minimize_scalar
 
 
 def nelder_mead(f, x0, steps, lo, hi, max_evals, xtol=1e-3, ftol=1e-6):
@@ -13,6 +12,7 @@ def nelder_mead(f, x0, steps, lo, hi, max_evals, xtol=1e-3, ftol=1e-6):
     scaled by the steps, so it stops when the simplex is smaller than xtol steps and its values
     agree to ftol, or after max_evals evaluations of f (a hard limit). Returns (best x, best f,
     number of evaluations)."""
+    from scipy.optimize import Bounds, minimize  # imported when used: scipy is slow to import
     x0, steps, lo, hi = (np.asarray(v, float) for v in (x0, steps, lo, hi))
     n = len(x0)
     if max_evals <= 0:  # no search
@@ -41,6 +41,7 @@ def nelder_mead(f, x0, steps, lo, hi, max_evals, xtol=1e-3, ftol=1e-6):
 def scan_and_refine(cost, lo, hi, n):
     """The minimum of cost over [lo, hi]: the best of n grid points, refined by bounded Brent
     (scipy.optimize.minimize_scalar) between its neighbours."""
+    from scipy.optimize import minimize_scalar
     grid = np.linspace(lo, hi, n)
     i = int(np.argmin([cost(x) for x in grid]))
     if not grid[1] > grid[0]:
