@@ -242,8 +242,9 @@ class SweepFile:
         with open_h5(self.path) as f:
             self.version = format_version(f, self.path)
             if "windows" not in f or "samples" not in f:
-                what = "a run file (/trajectory)" if "trajectory" in f else "neither a sweep nor a run file"
-                raise SweepFileError(self.path, "/windows", f"missing: {what}; make a sweep file with `astrojax sweep`")
+                what = "it is a run file, /trajectory" if "trajectory" in f else "nor a run file"
+                raise SweepFileError(self.path, "/windows", f"missing: not a sweep file ({what}); make one with "
+                                     f"`astrojax sweep`")
             _kind_attr(f, self.path, "sweep")
             self.classes = read_classes(f, self.path, self.version)
             self._read_windows(f)
@@ -448,8 +449,8 @@ def read_run(path, columns=None):
         version = format_version(f, path)
         tr = f.get("trajectory")
         if not isinstance(tr, h5py.Group):
-            what = "a sweep file" if "windows" in f else "not a run file"
-            raise SweepFileError(path, "/trajectory", f"missing ({what}); make a run file with `astrojax run`")
+            what = "it is a sweep file, /windows" if "windows" in f else "nor a sweep file"
+            raise SweepFileError(path, "/trajectory", f"missing: not a run file ({what}); make one with `astrojax run`")
         _kind_attr(f, path, "run")
         t = dataset(f, path, "trajectory/t", "f", (None,))
         n = t.shape[0]
