@@ -29,7 +29,9 @@ ASTROJAX, SOURCE, DATA = (os.path.abspath(p) for p in sys.argv[1:4])
 os.environ["ASTROJAX"] = ASTROJAX
 ANALYSIS = os.path.join(SOURCE, "analysis")
 PYTHON = sys.executable
-sys.path.insert(0, ANALYSIS)
+sys.path.insert(0, ANALYSIS)  # the package, as the scripts beside it find it
+
+import astrojax_analysis as ajx  # noqa: E402
 
 
 def data(name):
@@ -691,6 +693,68 @@ class cli(unittest.TestCase):
         out = data("run.png")
         script("plot_run.py", data("run.h5"), "-o", out, "--size", "8,6", "--dpi", "40")
         ImageChecks().assert_png(out, 320, 240)
+
+    def test_compare_runs(self):
+        # The fixture's work-precision CSV under two labels: each label prints the same
+        # steps/evaluations at rtol 1e-4 and 1e-6 as the CSV holds, and the cheapest CPU time
+        # within 1 m (every ok run reaches it) of each method.
+        with open(data("work_precision.csv"), newline="") as f:
+            rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
+        _, out = script("compare_runs.py", f"a={data('work_precision.csv')}", f"b={data('work_precision.csv')}",
+                        "--rtols", "1e-4,1e-6", "--errors", "1")
+        dop = [r for r in rows if r["method"] == "dop853" and r["param_kind"] == "rtol"]
+        want = " / ".join(f"{r['steps']}/{r['rhs_evals']}" for r in sorted(dop, key=lambda r: -float(r["param"])))
+        lines = [line for line in out.splitlines() if line.strip().startswith(("a ", "b "))]
+        self.assertEqual(len(lines), 2 * len({(r["scene"], r["method"]) for r in rows}), out)
+        section = out[out.index(", dop853"):]
+        self.assertIn(want, section.splitlines()[1], out)
+        cpu = min(float(r["cpu_median_s"]) for r in dop if r["status"] == "ok")
+        self.assertIn(f"{cpu * 1e3:.2f}", section.splitlines()[1], out)
+        for bad, word in (("a", "LABEL=CSV"), (f"a={data('thresholds.csv')}", "not a CSV"),
+                          (f"a={data('missing.csv')}", "missing.csv")):
+            rc, text = script("compare_runs.py", bad, check=False)
+            self.assertEqual((rc, word in text, len(text.strip().splitlines())), (2, True, 1), text)
+
+    def test_plot_matched(self):
+        # A constructed astrojax_matched CSV: one scene, one horizon, one method in both
+        # families. With the guarantee the cheapest run within 1e-6 m costs 3 ms, without it
+        # 2 ms: the cost printed is +50 %. The figure: 5.2 × 3.9 in at 110 dpi.
+        path = data("matched.csv")
+        head = "scene,horizon_s,method,family,rtol,status,same_final_mode,err_position_m,cpu_min_s,reference_floor_m\n"
+        with open(path, "w") as f:
+            f.write(head)
+            for family, cpu in (("guarantee", 3e-3), ("no guarantee", 2e-3)):
+                f.write(f"locked,10,astrojax dop853,{family},1e-8,ok,1,1e-7,{cpu},1e-12\n")
+                f.write(f"locked,10,astrojax dop853,{family},1e-4,ok,1,1e-3,{cpu / 3},1e-12\n")
+        out = data("matched.png")
+        _, text = script("plot_matched.py", path, "-o", out, "--costs", "1e-6")
+        self.assertRegex(text, r"locked\s+10 s\s+astrojax dop853\s+1e-06 m:\s+\+50 %")
+        ImageChecks().assert_png(out, round(5.2 * 110), round(3.9 * 110))
+        rc, text = script("plot_matched.py", data("thresholds.csv"), "-o", out, check=False)
+        self.assertEqual((rc, "not a CSV of `astrojax_matched`" in text), (2, True), text)
+
+    def test_scene_state(self):
+        # The final state of chain 0 of the tiny hold sweep, turned back by φ = ω_m t about z:
+        # a scene's [initial] table (TOML) whose positions keep the stored radii and heights.
+        import tomllib
+        sweep = ajx.SweepFile(data("hold.h5"))
+        _, out = script("scene_state.py", data("hold.h5"), "0")
+        table = tomllib.loads(out)["initial"]
+        self.assertEqual(table["preset"], "explicit")
+        self.assertIn(table["mode"], ("sliding", "bottom_stop", "stuck", "slack"))
+        rows = np.nonzero((sweep.task_chain == 0) & (sweep.task_status == 1))[0]
+        state = sweep.final_state(rows[np.argmax(sweep.task_t_end[rows])])
+        for k, name in enumerate(("r1", "r2", "v1", "v2")):
+            stored, printed = state[5 + 3 * k: 8 + 3 * k], np.array(table[name])
+            self.assertAlmostEqual(np.hypot(*printed[:2]), np.hypot(*stored[:2]), delta=1e-12)
+            self.assertEqual(printed[2], stored[2])
+        phi = math.fmod(float(sweep.hold_omega[0]) * state[0], 2 * math.pi)
+        turned = math.atan2(table["r1"][1], table["r1"][0]) - math.atan2(state[6], state[5])
+        self.assertAlmostEqual(math.remainder(turned + phi, 2 * math.pi), 0.0, delta=1e-9)
+        for args, word in (([data("phase.h5"), "0"], "not a hold-mode sweep"), ([data("hold.h5"), "99"], "chain 99"),
+                           ([data("run.h5"), "0"], "not a sweep file")):
+            rc, text = script("scene_state.py", *args, check=False)
+            self.assertEqual((rc, word in text, len(text.strip().splitlines())), (2, True, 1), text)
 
 
 class flower_onset(unittest.TestCase):

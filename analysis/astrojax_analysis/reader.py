@@ -47,6 +47,10 @@ def open_h5(path):
         raise SweepFileError(path, None, f"cannot read as HDF5 ({_reason(e)})") from None
     try:
         yield f
+    except (OSError, KeyError, RuntimeError) as e:
+        # What h5py raises on a damaged object header, B-tree or heap while a group is walked
+        # or an attribute read: the file is damaged where the checks above do not look.
+        raise SweepFileError(path, None, f"damaged HDF5 structure ({type(e).__name__}: {_reason(e)})") from None
     finally:
         try:
             f.close()
