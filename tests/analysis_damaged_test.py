@@ -4,8 +4,8 @@ damaged copies of files astrojax wrote (the fixture analysis_data: phase.h5, hol
 Each copy must give a correct result or one line `error: <file>: ...` with exit 2: never a
 traceback.
 
-The copies: those of tests/damaged/make_corpus.py when it is there (the C++ reader's corpus,
-written with --python-copies into a folder), plus this test's own: every dataset of the layout
+The copies: those of tests/damaged/make_corpus.py (the C++ readers' corpus, made here from
+phase.h5) when it is there, plus this test's own: every dataset of the layout
 dropped, datasets with the wrong shape, rank or type class, values the writer never stores, a
 string or newer format_version, and bytes flipped at fixed offsets spread over the file.
 
@@ -136,8 +136,7 @@ def corpus_copies(folder):
     if not os.path.exists(maker):
         return []
     out_dir = os.path.join(folder, "corpus")
-    p = subprocess.run([sys.executable, maker, "--source", data("phase.h5"), "--output", out_dir], capture_output=True,
-                       text=True)
+    p = subprocess.run([sys.executable, maker, data("phase.h5"), out_dir], capture_output=True, text=True)
     if p.returncode != 0:
         raise AssertionError(f"{maker} exited with {p.returncode}: {p.stderr}")
     return [(os.path.join(out_dir, n), f"corpus {n}") for n in sorted(os.listdir(out_dir)) if n.endswith(".h5")]
