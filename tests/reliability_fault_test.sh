@@ -47,7 +47,7 @@ for dk in chains/model:0 chains/grid_values:0 windows/omega_ball:1 windows/class
   "$bin" verify flipped.h5 > verify.out 2>&1
   rc=$?
   check "a byte flipped in a chunk of /$d of a finished file: verify exit 2 (got $rc) naming it" \
-    "[ $rc -eq 2 ] && grep -q 'DAMAGED: /$d cannot be read' verify.out"
+    "[ $rc -eq 2 ] && grep -q 'DAMAGED: /$d: cannot be read' verify.out"
 done
 
 # Finished work is never discarded silently.
@@ -77,7 +77,7 @@ with h5py.File(sys.argv[1], "r+") as f:
 PY
 "$bin" verify damaged.h5.part > verify.out 2>&1
 check "astrojax verify of the damaged .part: exit 2, names /chains/grid_values and /samples/t" \
-  "[ $? -eq 2 ] && grep -q 'DAMAGED: /chains/grid_values differs' verify.out && grep -q 'DAMAGED: /samples/t cannot be read' verify.out"
+  "[ $? -eq 2 ] && grep -q 'DAMAGED: /chains/grid_values at ' verify.out && grep -q 'DAMAGED: /samples/t: cannot be read' verify.out"
 "$bin" sweep "${sweep[@]}" -o damaged.h5 --resume > damaged.out 2>&1
 check "damaged .part: resume exit 0, rebuilt from the journal" "[ $? -eq 0 ] && grep -q 'rebuilt from' damaged.out"
 check "damaged .part: the resumed file equals the uninterrupted one" "same damaged.h5 straight.h5"

@@ -297,6 +297,17 @@ TEST(SweepConfig, BadGroupsAndVariantsNameFileAndKey) {
             std::string::npos);
   EXPECT_NE(grouped_error(replaced(kGrouped, "[group.grid]", "[group.output]")).find("key 'group[1].output': unknown key"),
             std::string::npos);
+  // Labels and purposes: any UTF-8 but control characters other than TAB.
+  EXPECT_NE(grouped_error(replaced(kGrouped, "label = \"rigid tie\"", "label = \"rigid\\ntie\""))
+                .find("key 'variant.rigid.label': control character U+000A not allowed"),
+            std::string::npos);
+  EXPECT_NE(grouped_error(replaced(kGrouped, "label = \"rigid tie\"", "label = \"\\u001b[31mred\""))
+                .find("key 'variant.rigid.label': control character U+001B not allowed"),
+            std::string::npos);
+  EXPECT_NE(grouped_error(replaced(kGrouped, "purpose = \"from rest\"", "purpose = \"from\\u0085rest\""))
+                .find("key 'group[0].purpose': control character U+0085 not allowed"),
+            std::string::npos);
+  EXPECT_EQ(grouped_error(replaced(kGrouped, "label = \"rigid tie\"", "label = \"rigid\\ttie — µ ✓\"")), "");
   // A group's own bad value names the file, the group, the variant and the key.
   const std::string e = grouped_error(replaced(kGrouped, "num = 2\n", "num = 0\n"));
   EXPECT_NE(e.find("g.toml (group[1] 'orbit', variant 'clutch'): key 'protocol.segment[0].num'"), std::string::npos) << e;

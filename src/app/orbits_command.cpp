@@ -17,7 +17,7 @@
 
 #include "app/commands.hpp"
 #include "results/provenance.hpp"
-#include "results/sweep_file.hpp"
+#include "results/sweep_reader.hpp"
 #include "config/config.hpp"
 #include "io/hdf5_file.hpp"
 #include "orbits/continuation.hpp"
@@ -190,11 +190,10 @@ struct SweepBrackets {
   std::map<std::string, std::vector<std::optional<sweep::Bracket>>> by_symbol;
 };
 SweepBrackets sweep_brackets(const std::string& path, const physics::Model& m) {
-  const io::File f = io::File::open_read(path);
-  results::checked_format_version(f, path);
-  const auto cls = f.read_int32s("windows/class"), dir = f.read_int32s("windows/direction");
-  const auto wb = f.read_doubles("windows/omega_m_begin"), we = f.read_doubles("windows/omega_m_end");
-  const results::StoredModels models = results::read_chain_models(f);
+  const results::SweepReader in(path);
+  const auto &cls = in.classes(), &dir = in.direction();
+  const auto &wb = in.omega_m_begin(), &we = in.omega_m_end();
+  const results::StoredModels& models = in.models();
   SweepBrackets out;
   out.lacking = models.lacking;
   for (std::size_t c = 0; c < cls.rows(); ++c) {
@@ -492,6 +491,9 @@ int predict(const config::OrbitsConfig& cfg, const OrbitsArgs& args, std::option
   SweepBrackets sb;
   try {
     sb = sweep_brackets(args.compare, m);
+  } catch (const results::SweepFileError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return kExitBadInput;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s: cannot read a sweep file: %s\n", args.compare.c_str(), e.what());
     return kExitBadInput;

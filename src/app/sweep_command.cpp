@@ -140,23 +140,6 @@ struct SweepOutput {
   void make_file() {
     file.emplace(io::File::create(part_path), plan.setups.size(), plan.max_windows, plan.max_samples, plan.n_tasks);
     file->create(cfg, plan);
-    if (cfg.hold) {  // which ω_m, seed and perturbation each chain holds
-      std::vector<double> w;
-      std::vector<std::int32_t> seed, pert;
-      for (const sweep::ChainStart& s : plan.starts) {
-        w.push_back(s.omega);
-        seed.push_back(std::int32_t(std::find(cfg.hold->seeds.begin(), cfg.hold->seeds.end(), s.seed) -
-                                    cfg.hold->seeds.begin()));
-        pert.push_back(s.perturbation);
-      }
-      io::Group cg = file->file().open_group("chains");
-      cg.write_dataset("hold_omega", std::span<const double>(w)).set_attribute("units", "rad/s");
-      cg.write_dataset("seed", std::span<const std::int32_t>(seed))
-          .set_attribute("names", fmt::format("{}", fmt::join(cfg.hold->seeds, ",")));
-      cg.write_dataset("perturbation", std::span<const std::int32_t>(pert))
-          .set_attribute("description", "0: the seed itself; k >= 1: the seed with velocity kick k");
-    }
-    file->file().flush();
   }
 
   // --resume: the journal checked and reopened, the .part made again from the sweep file.

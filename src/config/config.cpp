@@ -14,6 +14,7 @@
 #include <toml++/toml.h>
 
 #include "config/did_you_mean.hpp"
+#include "config/text.hpp"
 #include "config/key_catalogue.hpp"
 #include "physics/parameter_table.hpp"
 #include "numerics/stepper.hpp"
@@ -650,7 +651,7 @@ void check_name(const std::string& name, const std::string& key, std::string_vie
                   std::all_of(name.begin(), name.end(), [](char ch) { return std::isalnum((unsigned char)ch) || ch == '_' || ch == '-'; });
   if (!ok)
     throw ConfigError(fmt::format("{}: key '{}': '{}' is not a name; allowed: 1 to 40 letters, digits, '_' or '-'",
-                                  file, key, name));
+                                  file, key, printable(name)));
 }
 
 struct VariantSpec {
@@ -678,6 +679,9 @@ std::vector<VariantSpec> read_variants(const toml::table& root, std::string_view
     Reader r(*t, key, file);
     spec.label = r.text("label", "");
     if (spec.label.empty()) r.fail("label", "missing: say what the variant is, e.g. \"the paper's physics (rigid tie)\"");
+    if (const auto cp = control_character(spec.label))
+      r.fail("label", fmt::format("control character {} not allowed (a label is one line of text; TAB is allowed)",
+                                  code_point_name(*cp)));
     for (const auto& [tk, tv] : *t) {
       if (!kVariantTables.count(std::string(tk.str()))) continue;
       if (!tv.is_table()) r.fail(tk.str(), "expected a table");
@@ -716,6 +720,9 @@ std::vector<GroupSpec> read_groups(const toml::table& root, const std::vector<Va
       if (o.name == g.name) r.fail("name", fmt::format("'{}' names two groups; allowed: a name used once", g.name));
     g.purpose = r.text("purpose", "");
     if (g.purpose.empty()) r.fail("purpose", "missing: say why these chains are there");
+    if (const auto cp = control_character(g.purpose))
+      r.fail("purpose", fmt::format("control character {} not allowed (a purpose is one line of text; TAB is allowed)",
+                                    code_point_name(*cp)));
     g.variants = all;
     if (r.has("variants")) {
       r.known("variants");

@@ -103,6 +103,8 @@ std::vector<std::string> continuation_parameter_keys();
 std::vector<double> parameter_row(const Parameters& p);
 // "string_length [m],bead_mass [kg],...": the column names of that row, with units.
 std::string parameter_columns();
+// The same, one name per column: "drive_radius [m]", ...
+std::vector<std::string> parameter_column_names();
 
 // ---- layers -----------------------------------------------------------------------------
 

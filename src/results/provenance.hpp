@@ -5,6 +5,7 @@
 #pragma once
 #include <fmt/format.h>
 
+#include <span>
 #include <string>
 
 #include <cstdint>
@@ -21,7 +22,9 @@ namespace ajx::results {
 //   1  (no attribute) before the resolved configuration;
 //   2  /resolved holds every model parameter, layer, integrator setting and the start as
 //      attributes keyed "model.drive_radius", ...; root attribute `format` says "run" or "sweep".
-inline constexpr std::int64_t kFileFormatVersion = 2;
+//   3  lists of strings (overrides, names, labels, purposes, columns, axes, failures) stored as
+//      1-D string attributes, one element per item, no longer joined; sweeps hold /classes.
+inline constexpr std::int64_t kFileFormatVersion = 3;
 
 inline void write_format(io::File& f, std::string_view kind) {
   f.set_attribute("format", kind);
@@ -34,13 +37,16 @@ inline void write_resolved(io::Group& g, const config::CommonConfig& cfg) {
 }
 
 // The format version of a file this program reads, 1 when it has none; a newer one than this
-// program writes is refused, naming both.
+// program writes, or one that is not a positive integer, is refused (newer: naming both).
 inline std::int64_t checked_format_version(const io::File& f, const std::string& path) {
   if (!f.has_attribute("format_version")) return 1;
+  if (f.attribute_type_class("format_version") != io::TypeClass::Integer || f.attribute_dims("format_version").size() > 1)
+    throw std::runtime_error(fmt::format("{}: format_version is not an integer", path));
   const std::int64_t v = f.read_int64_attribute("format_version");
   if (v > kFileFormatVersion)
     throw std::runtime_error(fmt::format("{}: file format version {} is newer than this program reads ({}); "
                                          "use the astrojax that wrote it", path, v, kFileFormatVersion));
+  if (v < 1) throw std::runtime_error(fmt::format("{}: file format version {} is not one (1 to {})", path, v, kFileFormatVersion));
   return v;
 }
 
@@ -56,7 +62,7 @@ inline void write_provenance(io::File& f, const std::string& command_line, const
   f.set_attribute("command_line", command_line);
   auto config = f.write_string_dataset("config", cfg.source_text);
   config.set_attribute("source", cfg.source_name);
-  config.set_attribute("overrides", fmt::format("{}", fmt::join(cfg.overrides, "\n")));
+  config.set_attribute("overrides", std::span<const std::string>(cfg.overrides));
   io::Group resolved = f.create_group("resolved");
   write_resolved(resolved, cfg);
 }
