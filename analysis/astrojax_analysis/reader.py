@@ -310,9 +310,10 @@ class SweepFile:
             dataset(f, p, "samples/" + name, "f", (C, W, self.cap, 3))
         self.count = read(count, p).astype(int)
         check_range(self.count, p, "samples/count", 0, self.cap, "sample count")
-        bad = np.argwhere((self.count > 0) & (self.segment < 0))
+        bad = np.argwhere((self.count > 0) & (self.cls < 0))
         if len(bad):
-            raise SweepFileError(p, "/samples/count", f"samples at index {bad[0].tolist()}, a window the protocol lacks")
+            raise SweepFileError(p, "/samples/count", f"samples at index {bad[0].tolist()}, a window never computed "
+                                 f"(class -1)")
         rate = attr(f["samples"], p, "sample_rate", np.nan)
         try:
             self.sample_rate = float(rate)
@@ -338,6 +339,7 @@ class SweepFile:
             raise SweepFileError(p, "/chains", "missing")
         model = dataset(f, p, "chains/model", "f", (C, None))
         self.model = read(model, p)
+        check_finite(self.model, p, "chains/model")
         cols = string_list(model, p, "columns", self.version, ",", model.shape[1])
         self.model_columns = [c.split(" [")[0].strip() for c in cols]
         self.model_columns_with_units = [c.strip() for c in cols]
@@ -364,6 +366,11 @@ class SweepFile:
         self.variant_labels = (string_list(f["chains/variant"], p, "labels", self.version, "\n",
                                            len(self.variant_names)) if self.variant is not None else [])
         self.start_seed, self.start_seed_names = self._indices(f, "chains/start_seed", "names", "\n")
+        part = dataset(f, p, "chains/part", "i", (C,), optional=True)
+        if part is not None:
+            parts = f.get("resolved")
+            n_parts = len(parts) if isinstance(parts, h5py.Group) else 0
+            check_range(read(part, p), p, "chains/part", 0, n_parts - 1, "index into /resolved")
         start = dataset(f, p, "chains/start_omega", "f", (C,), optional=True)
         self.start_omega = read(start, p) if start is not None else None
 
