@@ -5,7 +5,7 @@ Each copy must give a correct result or one line `error: <file>: ...` with exit 
 traceback.
 
 The copies: those of tests/damaged/make_corpus.py (the C++ readers' corpus, made here from
-phase.h5) when it is there, plus this test's own: every dataset of the layout
+its tests/damaged/tiny_grouped.toml) when it is there, plus this test's own: every dataset of the layout
 dropped, datasets with the wrong shape, rank or type class, values the writer never stores, a
 string or newer format_version, and bytes flipped at fixed offsets spread over the file.
 
@@ -135,8 +135,12 @@ def corpus_copies(folder):
     maker = os.path.join(SOURCE, "tests", "damaged", "make_corpus.py")
     if not os.path.exists(maker):
         return []
-    out_dir = os.path.join(folder, "corpus")
-    p = subprocess.run([sys.executable, maker, data("phase.h5"), out_dir], capture_output=True, text=True)
+    out_dir, source = os.path.join(folder, "corpus"), os.path.join(folder, "grouped.h5")
+    # The corpus's own source: the small grouped sweep its cases are written for.
+    subprocess.run([ASTROJAX, "sweep", os.path.join(SOURCE, "tests", "damaged", "tiny_grouped.toml"), "-o", source,
+                    "-q"], check=True, capture_output=True,
+                   env=dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1"))
+    p = subprocess.run([sys.executable, maker, source, out_dir], capture_output=True, text=True)
     if p.returncode != 0:
         raise AssertionError(f"{maker} exited with {p.returncode}: {p.stderr}")
     return [(os.path.join(out_dir, n), f"corpus {n}") for n in sorted(os.listdir(out_dir)) if n.endswith(".h5")]

@@ -36,7 +36,10 @@ def read_branches(path):
         events = _table(f, path, "branches/events", EVENT_COLUMNS)
         parameter = text_attr(f["branches"], path, "parameter")
         n = len(events["lambda"])
-        kinds = string_list(f["branches/events"], path, "kinds", version, ",", n) if n else []
+        ev = f["branches/events"]
+        # astrojax orbits writes `kinds` joined by commas whatever the format: read either form.
+        joined = not isinstance(ev.attrs.get("kinds"), np.ndarray)
+        kinds = string_list(ev, path, "kinds", 2 if joined else version, ",", n) if n else []
     cases = points["case"]
     if len(cases) and (np.any(cases < 0) or np.any(cases > 4) or np.any(cases != np.round(cases))):
         raise SweepFileError(path, "/branches/points/case", "a case outside 0..4 (stuck, bottom_stop, frictionless, "
