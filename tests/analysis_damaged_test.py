@@ -178,6 +178,7 @@ def read_everything(path):
 class Corpus(unittest.TestCase):
     SOURCES = ()
     SCRIPTS = ()
+    MAX_DRAWN = 8  # accepted copies drawn by a script (each drawing costs about a second)
 
     @classmethod
     def setUpClass(cls):
@@ -226,6 +227,8 @@ class Corpus(unittest.TestCase):
             # A copy the reader refuses costs a script little: every script runs on it. One it
             # accepts is drawn, the costly part: by one script each, in turn.
             scripts = self.SCRIPTS if outcome != [0] else [self.SCRIPTS[accepted % len(self.SCRIPTS)]]
+            if outcome == [0] and self.MAX_DRAWN is not None and accepted > self.MAX_DRAWN:
+                scripts = []  # the default suite draws a few; the *_all tests (label long) draw them all
             for script, args in scripts:
                 main = importlib.import_module(script).main
                 problems.append(self.check(f"{script} ({what})", path,
@@ -248,6 +251,14 @@ class damaged_run(Corpus):
     SOURCES = (("run.h5", None, FLIPS),)
     SCRIPTS = (("plot_run", ["-o", "OUT", "--size", "4,3", "--dpi", "20"]),
                ("run_ledger", ["--window", "1", "--tail", "1"]))
+
+
+class damaged_sweep_all(damaged_sweep):
+    MAX_DRAWN = None
+
+
+class damaged_run_all(damaged_run):
+    MAX_DRAWN = None
 
 
 if __name__ == "__main__":
