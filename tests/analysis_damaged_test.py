@@ -166,9 +166,9 @@ def read_everything(path):
     kind = ajx.file_kind(path)
     if kind == "sweep":
         s = ajx.Sweep(path)
+        s.check_samples()
+        s.samples(0, int(np.argmax(s.count[0])))
         for c in range(s.n_chains):
-            for k in range(s.n_windows):
-                s.samples(c, k)
             s.chain_label(c)
         s.groups()
     else:

@@ -244,6 +244,9 @@ class reader_formats(unittest.TestCase):
         self.assertEqual(cm.exception.dataset, "/samples/r2")
         self.assertIn("chain 0, window 1", cm.exception.message)
         s.samples(0, 0)  # the other windows stay readable
+        with self.assertRaises(ajx.SweepFileError) as cm:
+            s.check_samples()  # the whole file's samples at once
+        self.assertEqual(cm.exception.dataset, "/samples/r2")
 
     def test_strings_of_format_3_are_arrays(self):
         def joined(f):

@@ -418,6 +418,16 @@ class SweepFile:
         out["mode"] = out["mode"].astype(int)
         return out
 
+    def check_samples(self):
+        """Reads every stored sample once (what `samples` checks, for the whole file): a
+        checksum failure or a non-finite sample inside /samples/count is a SweepFileError."""
+        with open_h5(self.path) as f:
+            inside = np.arange(self.cap) < self.count[..., None]  # chains × windows × cap
+            for name in SAMPLE_COLUMNS + SAMPLE_VECTORS:
+                v = read(f["samples"][name], self.path)
+                where = np.broadcast_to(inside[..., None] if v.ndim == 4 else inside, v.shape)
+                check_finite(v, self.path, f"samples/{name}", where, what="non-finite sample")
+
     @property
     def is_hold(self):
         return self.hold_omega is not None
