@@ -18,7 +18,8 @@ PACKAGES=(build-essential cmake pkg-config libeigen3-dev libopenmpi-dev openmpi-
           python3-numpy python3-h5py python3-matplotlib python3-scipy
           python3-venv python3-setuptools python3-wheel  # pip install -e analysis (docs/guide/analysis)
           zlib1g-dev libdeflate-dev clang libclang-rt-14-dev
-          procps)  # pgrep, for the fault tests
+          procps   # pgrep, for the fault tests
+          git)     # the commit --version and every file's provenance name (src/results/source_commit.cmake)
 # Only for the work-precision comparison with peer solvers (./setup.sh peers); the product
 # never needs them.
 PEER_PACKAGES=(libboost-dev libsundials-dev)

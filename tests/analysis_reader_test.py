@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """The analysis package's reader (analysis/astrojax_analysis/reader.py) against files built here
-with h5py exactly as docs/reference/file-format.md lays them out: format 3 (string arrays,
-/classes) and format 2 (joined strings), each then damaged one way at a time.
+with h5py exactly as docs/reference/file-format.md lays them out: format 4 (string_power and
+clutch_power, 27 columns of /tasks/final_state), format 3 (string arrays, /classes, 25 columns)
+and format 2 (joined strings, 20 columns), each then damaged one way at a time.
 
 `analysis_reader_test.py SOURCE_DIR` runs without astrojax: every check here is on files this
 test writes. (The damaged copies of files astrojax wrote are tests/analysis_damaged_test.py.)
@@ -28,6 +29,10 @@ C, W, CAP, T = 2, 3, 4, 2
 CLASSES = [("fallen", 0, "#999999"), ("locked-circular", 1, "#0072B2"), ("lagging-circular", 1, "#009E73"),
            ("flower", 0, "#CC79A7"), ("not-settled", 0, "#E69F00"), ("failed", 0, "#000000")]
 STR = h5py.string_dtype("utf-8")
+NEWEST = 4
+FINAL_STATE_COLUMNS = {1: 20, 2: 20, 3: 25, 4: 27}  # t, mode, σ, s*, impact_loss, y (15); tie (5); ledger (2)
+POWERS = {"motor_power": 2, "drag_power": 2, "friction_impact_power": 2, "energy_rate": 2, "string_power": 4,
+          "clutch_power": 4}  # each from the format that first always writes it
 
 
 def strings(obj, name, items, version, sep):
@@ -38,7 +43,7 @@ def strings(obj, name, items, version, sep):
         obj.attrs[name] = sep.join(items)
 
 
-def make_sweep(path, version=3, labels=("paper's physics (rigid tie)", "tie clutch"), purposes=("from rest",),
+def make_sweep(path, version=NEWEST, labels=("paper's physics (rigid tie)", "tie clutch"), purposes=("from rest",),
                colours=None):
     """A small grouped sweep (C chains × W windows, CAP samples, T tasks) as astrojax writes it."""
     with h5py.File(path, "w") as f:
@@ -66,6 +71,9 @@ def make_sweep(path, version=3, labels=("paper's physics (rigid tie)", "tie clut
                               ("L1_mean", np.full((C, W), 0.5), "m"), ("radius_bead_mean", np.full((C, W), 0.1), "m")):
             d = w.create_dataset(name, data=v)
             d.attrs["units"] = unit
+        for name, since in POWERS.items():
+            if version >= since:
+                w.create_dataset(name, data=np.full((C, W), 0.125)).attrs["units"] = "W"
         w.create_dataset("direction", data=np.ones((C, W), np.int32))
         w.create_dataset("segment", data=np.array([[0, 0, 0], [0, 0, -1]], np.int32))
         w.create_dataset("mode_fraction", data=np.zeros((C, W, 5)))
@@ -106,7 +114,7 @@ def make_sweep(path, version=3, labels=("paper's physics (rigid tie)", "tie clut
         t.create_dataset("t_end", data=np.full(T, 15.0))
         t.create_dataset("status", data=np.ones(T, np.int32))
         t.create_dataset("steps", data=np.full(T, 100, np.int64))
-        t.create_dataset("final_state", data=np.zeros((T, 39)))
+        t.create_dataset("final_state", data=np.zeros((T, FINAL_STATE_COLUMNS[version])))
         strings(t, "failures", [], version, "\n")
         f.create_group("provenance").attrs["program"] = "astrojax test"
 
@@ -132,14 +140,20 @@ class reader_formats(unittest.TestCase):
     def path(self, name):
         return os.path.join(self.tmp.name, name)
 
-    def test_formats_2_and_3_read_alike(self):
-        for v in (2, 3):
+    def test_formats_2_3_and_4_read_alike(self):
+        for v in (2, 3, 4):
             make_sweep(self.path(f"v{v}.h5"), v)
-        a, b = ajx.Sweep(self.path("v2.h5")), ajx.Sweep(self.path("v3.h5"))
-        self.assertEqual((a.version, b.version), (2, 3))
+        a, b, d = (ajx.Sweep(self.path(f"v{v}.h5")) for v in (2, 3, 4))
+        self.assertEqual((a.version, b.version, d.version), (2, 3, 4))
         for name in ("class_names", "class_colours", "variant_labels", "variant_names", "group_names", "group_purposes",
                      "start_seed_names", "model_columns", "axes", "overrides", "failures", "circular_classes"):
             self.assertEqual(getattr(a, name), getattr(b, name), name)
+            self.assertEqual(getattr(d, name), getattr(b, name), name)
+        self.assertEqual([len(s.final_state(0)) for s in (a, b, d)], [20, 25, 27])
+        # string_power and clutch_power: format 4's; an older file's read as NaN (not computed)
+        np.testing.assert_array_equal(d.stats["clutch_power"], np.full((C, W), 0.125))
+        self.assertTrue(np.all(np.isnan(b.stats["string_power"])) and np.all(np.isnan(a.stats["clutch_power"])))
+        np.testing.assert_array_equal(a.stats["motor_power"], d.stats["motor_power"])
         self.assertEqual(b.overrides, ["model.drag=0.5"])
         self.assertEqual(b.circular_classes, ("locked-circular", "lagging-circular"))
         self.assertEqual(b.class_colours, ajx.CLASS_COLOURS)  # FORMAT 3 colours: today's, figures unchanged
@@ -169,9 +183,9 @@ class reader_formats(unittest.TestCase):
         self.assertLessEqual(len(ajx.for_figure("y" * 10000)), ajx.labels.FIGURE_LIMIT)
 
     def test_version_checks(self):
-        for value, words in ((np.int64(4), ["4", "newer", "(3)"]), ("3", ["'3'", "not an integer"]),
-                             (2.5, ["not an integer"]), (np.int64(0), ["outside [1, 3]"])):
-            make_sweep(self.path("v.h5"), 3)
+        for value, words in ((np.int64(5), ["5", "newer", "(4)"]), ("3", ["'3'", "not an integer"]),
+                             (2.5, ["not an integer"]), (np.int64(0), ["outside [1, 4]"])):
+            make_sweep(self.path("v.h5"))
             with h5py.File(self.path("v.h5"), "r+") as f:
                 f.attrs["format_version"] = value
             refused(self, self.path("v.h5"), "/", words)
@@ -182,7 +196,7 @@ class reader_formats(unittest.TestCase):
             f.write("not HDF5\n")
         refused(self, self.path("text.h5"), None, ["cannot read as HDF5"])
 
-    def damaged(self, edit, version=3, **kw):
+    def damaged(self, edit, version=NEWEST, **kw):
         make_sweep(self.path("d.h5"), version, **kw)
         with h5py.File(self.path("d.h5"), "r+") as f:
             edit(f)
@@ -192,10 +206,27 @@ class reader_formats(unittest.TestCase):
         for name in ("windows/class", "windows/t_begin", "windows/omega_m_end", "windows/phi_begin", "windows/direction",
                      "windows/segment", "windows/omega_ball", "samples/count", "samples/t", "samples/r2", "samples/mode",
                      "chains/model", "tasks/chain", "tasks/status", "tasks/final_state", "classes/colour",
-                     "chains/variant"):
+                     "chains/variant", "windows/motor_power", "windows/string_power", "windows/clutch_power"):
             def drop(f):
                 del f[name]
             refused(self, self.damaged(drop), "/" + name, ["missing"])
+        # A power is required from the format that first always writes it on.
+        drop_energy = lambda f: f["windows"].__delitem__("energy_rate")  # noqa: E731
+        refused(self, self.damaged(drop_energy, version=2), "/windows/energy_rate", ["missing"])
+
+    def test_final_state_columns_of_each_format(self):
+        # 27 columns from format 4 on (the motor's ledger), 25 in format 3, 20 before: a format
+        # reads its own count and the newest, and refuses a count it never wrote.
+        def cols(n):
+            def edit(f):
+                del f["tasks/final_state"]
+                f["tasks"].create_dataset("final_state", data=np.zeros((T, n)))
+            return edit
+        for version, n in ((4, 25), (4, 20), (3, 20), (4, 26), (2, 39)):
+            refused(self, self.damaged(cols(n), version=version), "/tasks/final_state",
+                    [f"has {n} columns, expected 27"])
+        for version, n in ((3, 27), (2, 25), (2, 27)):
+            self.assertEqual(len(ajx.Sweep(self.damaged(cols(n), version=version)).final_state(1)), n)
 
     def test_shape_and_type(self):
         def short(f):
@@ -300,6 +331,17 @@ class reader_formats(unittest.TestCase):
         run = ajx.read_run(path)
         self.assertEqual(len(run["t"]), n)
         self.assertEqual(run["summary"]["status"], "ok")
+        # The clutch's columns came with format 4: a format-3 file lacks them, a format-4 one
+        # must hold them.
+        self.assertNotIn("clutch_loss", ajx.read_run(path, ("clutch_loss", "tie_energy")))
+        with h5py.File(path, "r+") as f:
+            f.attrs["format_version"] = np.int64(4)
+        with self.assertRaises(ajx.SweepFileError) as cm:
+            ajx.read_run(path, ("clutch_loss",))
+        self.assertEqual((cm.exception.dataset, cm.exception.message), ("/trajectory/clutch_loss", "missing"))
+        with h5py.File(path, "r+") as f:
+            f["trajectory"].create_dataset("clutch_loss", data=np.zeros(n))
+        np.testing.assert_array_equal(ajx.read_run(path, ("clutch_loss",))["clutch_loss"], np.zeros(n))
         with h5py.File(path, "r+") as f:
             f["trajectory/r2"][2, 1] = np.inf
         with self.assertRaises(ajx.SweepFileError) as cm:

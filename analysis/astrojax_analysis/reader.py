@@ -1,4 +1,4 @@
-"""The one reader of sweep files (`astrojax sweep`) and run files (`astrojax run`), formats 1 to 3
+"""The one reader of sweep files (`astrojax sweep`) and run files (`astrojax run`), formats 1 to 4
 (docs/reference/file-format.md). It checks on open what the C++ reader checks: the format
 version (an integer, 1 when absent, not newer than FORMAT_VERSION), every dataset of the
 layout present with its rank, shape and type class, checksum failures, and values the writer
@@ -18,8 +18,11 @@ from . import classes as _classes
 from .errors import SweepFileError
 
 # The newest format this reader reads. 2 added /resolved and /windows/phi_begin; 3 stores
-# names, labels, purposes, overrides and failures as string arrays and adds /classes.
-FORMAT_VERSION = 3
+# names, labels, purposes, overrides and failures as string arrays and adds /classes; 4 made
+# motor_work and motor_power the motor's at its rod with a clutch (the string's side moved to
+# string_work and string_power; clutch_loss, clutch_power, tie_energy and /trajectory/chi new)
+# and added the motor's ledger, two columns, to /tasks/final_state.
+FORMAT_VERSION = 4
 
 SAMPLE_COLUMNS = ("t", "omega_m", "L1", "T1", "T2", "mode")
 SAMPLE_VECTORS = ("r1", "r2")
@@ -28,6 +31,17 @@ WINDOW_TIMES = ("t_begin", "t_end", "omega_m_begin", "omega_m_end")  # finite on
 TASK_STATUSES = 4  # 0 never ran, 1 ok, 2 failed, 3 not run
 RUN_REQUIRED = ("t", "omega_m", "phi", "L1", "mode", "r1", "r2")
 RUN_VECTORS = ("r1", "r2", "v1", "v2")
+# The per-window energy account of /windows [W] and the first format that always holds each
+# (format 1 may lack the account; string_power and clutch_power came with format 4). An older
+# file without one reads as NaN, as in the C++ reader (results/sweep_result.hpp, kPowers).
+WINDOW_POWERS = {"motor_power": 2, "drag_power": 2, "friction_impact_power": 2, "energy_rate": 2,
+                 "string_power": 4, "clutch_power": 4}
+# /tasks/final_state columns: t, mode, sigma, s_star, impact_loss, the state y (15), the tie
+# clutch's 5 (format 3) and the motor's ledger, 2 (format 4); an older file may hold fewer.
+FINAL_STATE_COLUMNS = 27
+FINAL_STATE_OLDER = {25: 4, 20: 3}  # columns: the first format that no longer writes so few
+# /trajectory columns a run file holds from a format on; absent from an older one.
+RUN_SINCE = {"chi": 4, "tie_energy": 4, "string_work": 4, "clutch_loss": 4}
 _COLOUR = re.compile(r"#[0-9a-fA-F]{6}\Z")
 
 
@@ -294,6 +308,11 @@ class SweepFile:
                 continue
             self.stats[name] = read(dataset(f, p, "windows/" + name, "f", (C, W)), p)
             self.units[name] = text_attr(d, p, "units")
+        for name, since in WINDOW_POWERS.items():
+            if self.version >= since:
+                dataset(f, p, "windows/" + name, "f", (C, W))
+            elif name not in self.stats:
+                self.stats[name], self.units[name] = np.full((C, W), np.nan), "W"
         for name in ("omega_ball", "confidence"):
             dataset(f, p, "windows/" + name, "f", (C, W))
         mf = dataset(f, p, "windows/mode_fraction", "f", (C, W, 5), optional=True)
@@ -388,7 +407,11 @@ class SweepFile:
         self.task_status = read(dataset(f, p, "tasks/status", "i", (T,)), p).astype(int)
         check_range(self.task_status, p, "tasks/status", 0, TASK_STATUSES - 1, "status")
         dataset(f, p, "tasks/steps", "i", (T,))
-        self._final_state_cols = dataset(f, p, "tasks/final_state", "f", (T, None)).shape[1]
+        cols = dataset(f, p, "tasks/final_state", "f", (T, None)).shape[1]
+        if cols != FINAL_STATE_COLUMNS and self.version >= FINAL_STATE_OLDER.get(cols, 1):
+            raise SweepFileError(p, "/tasks/final_state", f"has {cols} columns, expected {FINAL_STATE_COLUMNS}"
+                                 f" (format {self.version})")
+        self._final_state_cols = cols
         tasks = f["tasks"]
         self.failures = string_list(tasks, p, "failures", self.version, "\n") if "failures" in tasks.attrs or \
             self.version >= 3 else []
@@ -463,7 +486,8 @@ class SweepFile:
 
 def read_run(path, columns=None):
     """A run file's trajectory, validated: dict of t, omega_m, phi, L1, mode (n), r1, r2 (n × 3),
-    the further /trajectory `columns` asked for, the /summary attributes as 'summary', the
+    the further /trajectory `columns` asked for (one of RUN_SINCE is left out of the dict where
+    a file older than its format lacks it), the /summary attributes as 'summary', the
     configuration as 'config' and its overrides as 'overrides'."""
     path = os.fspath(path)
     with open_h5(path) as f:
@@ -477,6 +501,8 @@ def read_run(path, columns=None):
         n = t.shape[0]
         out = {}
         for name in dict.fromkeys(RUN_REQUIRED + tuple(columns or ())):
+            if version < RUN_SINCE.get(name, 1) and name not in tr:
+                continue
             shape = (n, 3) if name in RUN_VECTORS else (n,)
             # mode is an integer column, stored as integers or as floats
             kind = "i" if name == "mode" and name in tr and np.issubdtype(tr[name].dtype, np.integer) else "f"

@@ -257,7 +257,8 @@ int main(int argc, char** argv) {
   th_cmd->add_option("--sample", th_sample, "Sampling step that brackets the landing [s]")->capture_default_str();
 
   require_finite(app);
-  app.set_version_flag("--version", fmt::format("astrojax {} (git commit {})", ajx::results::program_version(), ajx::results::program_commit()));
+  app.set_version_flag("--version", fmt::format("astrojax {} (git commit {}; {})", ajx::results::program_version(),
+                                                  ajx::results::program_commit(), ajx::results::program_commit_origin()));
   // A mistyped command or option: name the nearest one, as git and cargo do.
   std::vector<std::string> names;
   for (const CLI::App* sub : app.get_subcommands({})) names.push_back(sub->get_name());

@@ -19,6 +19,7 @@
 #include "results/provenance.hpp"
 #include "results/sweep_reader.hpp"
 #include "config/config.hpp"
+#include "config/text.hpp"
 #include "io/hdf5_file.hpp"
 #include "orbits/continuation.hpp"
 #include "physics/parameter_table.hpp"
@@ -492,10 +493,10 @@ int predict(const config::OrbitsConfig& cfg, const OrbitsArgs& args, std::option
   try {
     sb = sweep_brackets(args.compare, m);
   } catch (const results::SweepFileError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
+    std::fprintf(stderr, "error: %s\n", config::printable(e.what()).c_str());
     return kExitBadInput;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s: cannot read a sweep file: %s\n", args.compare.c_str(), e.what());
+    std::fprintf(stderr, "error: %s: cannot read a sweep file: %s\n", args.compare.c_str(), config::printable(e.what()).c_str());
     return kExitBadInput;
   }
   std::printf("\nagainst the sweep %s (%zu chains with this model):\n", args.compare.c_str(), sb.chains.size());

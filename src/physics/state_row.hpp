@@ -2,8 +2,9 @@
 // sweep file's /tasks/final_state rows and their column names all come from this table. A
 // layer that adds state (as the tie clutch added χ, χ̇) adds its rows here and nowhere else.
 // The discrete parts (mode, σ, the tie's slip) are stored as exact small integers; χ and χ̇
-// are NaN for a model without the tie-clutch layer, and a row with a finite χ decodes to a
-// state of idx::dim_tie components.
+// are NaN for a model without the tie-clutch layer, W_m and W_c without a clutch; a row with a
+// finite χ decodes to a state of idx::dim_tie components, one with a finite W_m only to
+// idx::dim_ledger.
 #pragma once
 #include <array>
 #include <cmath>
@@ -58,10 +59,13 @@ inline constexpr StateColumn kStateColumns[] = {
     {"tie_offset", "rad", [](const State& s) { return s.contact.tie.offset; },
      [](State& s, double v) { s.contact.tie.offset = v; }},
     AJX_Y("chi", "rad", idx::chi), AJX_Y("chi_dot", "rad/s", idx::chi_dot),
+    // the motor's ledger where it drives through a clutch: W_m, W_c (NaN without one)
+    AJX_Y("rod_work", "J", idx::rod_work), AJX_Y("clutch_loss", "J", idx::clutch_loss),
 };
 #undef AJX_Y
 inline constexpr std::size_t kStateCols = std::size(kStateColumns);
-inline constexpr std::size_t kStateChiColumn = kStateCols - 2;  // finite only with the tie clutch
+inline constexpr std::size_t kStateChiColumn = kStateCols - 4;      // finite only with the tie clutch
+inline constexpr std::size_t kStateRodWorkColumn = kStateCols - 2;  // finite with the tie clutch or the pair couple
 
 inline std::vector<double> state_row(const State& s) {
   std::vector<double> row(kStateCols);
@@ -72,7 +76,9 @@ inline std::vector<double> state_row(const State& s) {
 // The inverse of state_row, bit for bit.
 inline State state_from_row(std::span<const double> row) {
   State s;
-  s.y.resize(std::isfinite(row[kStateChiColumn]) ? idx::dim_tie : idx::dim);
+  s.y.resize(std::isfinite(row[kStateChiColumn])       ? idx::dim_tie
+             : std::isfinite(row[kStateRodWorkColumn]) ? idx::dim_ledger
+                                                       : idx::dim);
   for (std::size_t k = 0; k < kStateCols; ++k) kStateColumns[k].set(s, row[k]);
   return s;
 }

@@ -1,5 +1,5 @@
 // What every file the program writes records about how it was made: the program, its version
-// and git commit (set by CMake at configure time), the command line, the configuration verbatim
+// and git commit (read by CMake when it builds, src/results/source_commit.cmake), the command line, the configuration verbatim
 // with its source and overrides, and the configuration in force as values (/resolved), under a
 // format name and version that readers check.
 #pragma once
@@ -24,7 +24,11 @@ namespace ajx::results {
 //      attributes keyed "model.drive_radius", ...; root attribute `format` says "run" or "sweep".
 //   3  lists of strings (overrides, names, labels, purposes, columns, axes, failures) stored as
 //      1-D string attributes, one element per item, no longer joined; sweeps hold /classes.
-inline constexpr std::int64_t kFileFormatVersion = 3;
+//   4  the motor's work is the motor's with a clutch (tie clutch, pair couple): a run's
+//      /trajectory/motor_work and a sweep's /windows/motor_power are at the rod (W_m), the
+//      string's side moved to string_work, string_power; clutch_loss, clutch_power,
+//      /trajectory/chi and tie_energy new; /trajectory/phi is the motor's phase.
+inline constexpr std::int64_t kFileFormatVersion = 4;
 
 inline void write_format(io::File& f, std::string_view kind) {
   f.set_attribute("format", kind);
@@ -53,7 +57,8 @@ inline std::int64_t checked_format_version(const io::File& f, const std::string&
 // The program's version and the git commit it was built from (set by CMake at configure time,
 // in provenance.cpp only, so that a new commit recompiles one file).
 std::string program_version();
-std::string program_commit();
+std::string program_commit();         // 12 hex digits, or "unknown"
+std::string program_commit_origin();  // where it was read: git, or the source archive
 
 inline void write_provenance(io::File& f, const std::string& command_line, const config::CommonConfig& cfg) {
   f.set_attribute("program", "astrojax-explorer");

@@ -79,7 +79,7 @@ class SweepFile {
     io::Group wg = f_.open_group("windows");
     const io::Dims dims{C_, W_}, chunk{1, W_};
     auto cls = wg.create_filled("class", dims, io::DType::Int32, -1.0, chunk);
-    cls.set_attribute("description", "orbit class, an index into /classes; -1 = not computed (the task never ran)");
+    cls.set_attribute("description", "orbit class; -1 = not computed (the task never ran)");
     for (const auto& st : kStats) {
       auto d = wg.create_filled(st.name, dims, io::DType::Float64, kNotComputed, chunk);
       d.set_attribute("units", st.units);

@@ -234,7 +234,7 @@ void SweepReader::read_windows() {
   for (const WindowStat& s : kStats) stats_[s.name] = doubles(std::string("windows/") + s.name, cw);
   for (const WindowPower& s : kPowers) {
     const std::string name = std::string("windows/") + s.name;
-    if (version_ == 1 && !f_.exists(name)) {  // before the energy account
+    if (version_ < s.since && !f_.exists(name)) {  // before the energy account, or before this column
       stats_[s.name] = Array<double>{cw, std::vector<double>(C_ * W_, kNotComputed)};
       continue;
     }
@@ -372,10 +372,12 @@ void SweepReader::read_tasks() {
       fail("tasks/steps", fmt::format("cannot be read (a checksum fails or the file is damaged): {}", e.what()));
     }
   }
-  // Files from before the tie clutch hold 20 columns: t, mode, sigma, s_star, impact_loss, y.
+  // Files from before the tie clutch hold 20 columns: t, mode, sigma, s_star, impact_loss, y;
+  // files before format 4 lack the motor's ledger, the last two. Missing columns read as NaN.
   const io::Dataset fd = dataset("tasks/final_state", 2, io::TypeClass::Float);
   const std::size_t cols = fd.dims()[1];
-  if (cols != physics::kStateCols && !(version_ < 3 && cols == 5 + physics::idx::dim))
+  if (cols != physics::kStateCols && !(version_ < 3 && cols == 5 + physics::idx::dim) &&
+      !(version_ < 4 && cols == physics::kStateCols - 2))
     fail("tasks/final_state", fmt::format("has {} columns, expected {}", cols, physics::kStateCols));
   final_states_ = doubles("tasks/final_state", {T_, cols});
   if (f_.open_group("tasks").has_attribute("failures")) failures_ = strings("tasks", "failures", '\n');

@@ -60,9 +60,12 @@ struct WindowPower {
   const char* units;
   const char* description;
   double (*of)(const sweep::WindowPowers&);
+  std::int64_t since = 2;  // the first file format that always holds it (format 1 may lack the account)
 };
 inline constexpr WindowPower kPowers[] = {
-    {"motor_power", "W", "mean power the motor feeds the balls over the window",
+    {"motor_power", "W",
+     "mean power the motor does at its rod over the window, <τ_rod ω_m> (format 4; formats 1-3 held string_power "
+     "here); = string_power + clutch_power + the tie's d(½ I_a χ̇²)/dt",
      [](const sweep::WindowPowers& p) { return p.motor; }},
     {"drag_power", "W", "mean power drag takes", [](const sweep::WindowPowers& p) { return p.drag; }},
     {"friction_impact_power", "W", "mean power friction and impacts take",
@@ -70,6 +73,12 @@ inline constexpr WindowPower kPowers[] = {
     {"energy_rate", "W",
      "dE/dt over the window: about 0 for an orbit the motor sustains, negative for a decaying transient",
      [](const sweep::WindowPowers& p) { return p.energy_rate; }},
+    {"string_power", "W",
+     "mean power the top passes into the string (= motor_power for a rigid tie) = drag_power + "
+     "friction_impact_power + energy_rate",
+     [](const sweep::WindowPowers& p) { return p.string; }, 4},
+    {"clutch_power", "W", "mean power the tie clutch dissipates, <τ_c (ω_m − χ̇)> (0 for a rigid tie)",
+     [](const sweep::WindowPowers& p) { return p.clutch; }, 4},
 };
 inline constexpr std::size_t kNumPowers = std::size(kPowers);
 

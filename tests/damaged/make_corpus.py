@@ -327,6 +327,27 @@ def cases():
     return out
 
 
+def as_format_2(source, path):
+    """`source` (format 3) rewritten as format 2 wrote it: the lists joined by newlines (commas
+    for axes, columns and hold seeds), /windows/class@names instead of /classes. Every reader
+    must read it as it reads the source."""
+    shutil.copyfile(source, path)
+    commas = {("chains", "axes"), ("chains/model", "columns"), ("chains/seed", "names")}
+    with h5py.File(path, "r+") as f:
+        def join(name, obj):
+            for k, v in list(obj.attrs.items()):
+                if isinstance(v, np.ndarray) and v.dtype == object:
+                    sep = "," if (name, k) in commas else "\n"
+                    obj.attrs[k] = sep.join(x.decode() if isinstance(x, bytes) else str(x) for x in v)
+        join("", f)
+        f.visititems(join)
+        names = [x.decode() if isinstance(x, bytes) else str(x) for x in f["classes/name"][()]]
+        f["windows/class"].attrs["names"] = ",".join(f"{i} {n}" for i, n in enumerate(names))
+        del f["classes"]
+        f.attrs["format_version"] = np.int64(2)
+    return path
+
+
 def make(source, outdir):
     """Every applicable case written into outdir; returns [(name, path, dataset, description)]
     and writes outdir/manifest.tsv."""
