@@ -277,7 +277,7 @@ def report(path, out, values, table, hist, hist_paths):
     return "\n".join(lines)
 
 
-def main():
+def main(argv=None):
     ap = ajx.parser(__doc__)
     ap.add_argument("input", help="the paired sweep (sweeps/sensitivity.toml)")
     ap.add_argument("-o", "--output", required=True, help="markdown report to write")
@@ -285,7 +285,7 @@ def main():
     ap.add_argument("--histories", action="append", default=[], metavar="H5",
                     help="hold sweeps of the lag (sweeps/lag_histories.toml), repeatable")
     ap.add_argument("--astrojax", metavar="PATH", help="the astrojax executable")
-    args = ap.parse_args()
+    args = ap.parse_args(argv)
     exe = ajx.require_astrojax(args.astrojax)
     out, values, _ = measure_variants(args.input, exe)
     table = sensitivity_rows(out, values)
@@ -303,4 +303,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    ajx.run(main)
