@@ -18,7 +18,8 @@ cd "$(dirname "$0")"
 PACKAGES=(build-essential cmake pkg-config libeigen3-dev libopenmpi-dev openmpi-bin
           libhdf5-dev hdf5-tools libcli11-dev libtomlplusplus-dev libfmt-dev
           libgtest-dev libgmock-dev libbenchmark-dev
-          python3-numpy python3-h5py python3-matplotlib
+          python3-numpy python3-h5py python3-matplotlib python3-scipy
+          python3-venv python3-setuptools python3-wheel  # pip install -e analysis (docs/guide/analysis)
           zlib1g-dev libdeflate-dev clang libclang-rt-14-dev
           procps   # pgrep, for the fault tests
           git)     # the commit --version and every file's provenance name (src/results/source_commit.cmake)
