@@ -22,12 +22,11 @@ Run with Debian's interpreter:
     /usr/bin/python3 analysis/plot_map.py out/map_R.h5 -o out/map_R.png
 """
 import csv
-import sys
 
 import numpy as np
 
 from astrojax_analysis import (BRACKET_SHADE, PAPER_LINE, Curves, add_figure_args, fail, legend, new_figure,
-                               panel_grid, panels, parser, pyplot, save)
+                               panel_grid, panels, parser, pyplot, run, save)
 
 PI = np.pi
 # The paper's measured thresholds [π rad/s] and the curves that predict each.
@@ -160,4 +159,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    run(main)

@@ -445,7 +445,7 @@ class studies(ImageChecks):
         self.assertIn("symbol, p, before, after", out)
         rc, out = script("plot_map.py", data("phase.h5"), "-o", data("map_bad.png"), check=False)
         self.assertEqual(rc, 2, out)
-        self.assertIn("no /curves", out)
+        self.assertIn("/curves: missing", out)  # SweepFileError: file, dataset, problem
         # The reader: every curve point is on its curve's kind, and the codim-2 names match rows.
         from astrojax_analysis import Curves
         c = Curves(data("map.h5"))

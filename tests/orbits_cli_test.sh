@@ -93,11 +93,16 @@ for nm in "10 10" "14 14" "12 16"; do
 import h5py, shutil, sys
 shutil.copy(sys.argv[1], sys.argv[2])
 with h5py.File(sys.argv[2], 'r+') as f:
-    names = f['chains/model'].attrs['columns']
-    names = (names.decode() if isinstance(names, bytes) else names).split(',')
+    names = f['chains/model'].attrs['columns']  # a string array from format 3 on, joined by commas before
+    joined = isinstance(names, (bytes, str))
+    names = (names.decode() if isinstance(names, bytes) else names).split(',') if joined else [str(n) for n in names]
     m = f['chains/model'][:, :int(sys.argv[3])]
     del f['chains/model']
-    f.create_dataset('chains/model', data=m).attrs['columns'] = ','.join(names[:int(sys.argv[4])])" \
+    d = f.create_dataset('chains/model', data=m)
+    if joined:
+        d.attrs['columns'] = ','.join(names[:int(sys.argv[4])])
+    else:
+        d.attrs.create('columns', names[:int(sys.argv[4])], dtype=h5py.string_dtype())" \
     "$work/rise.h5" "$work/rise_$1.h5" $1 $2
 done
 cmp_run compare_10 "$work/rise_10.h5"; rc=$?
