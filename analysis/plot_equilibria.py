@@ -36,21 +36,10 @@ EVENT_MARKERS = {
 }
 
 
-def runs(mask):
-    """Index ranges [i, j] (inclusive) of consecutive equal values of mask."""
-    out, i = [], 0
-    while i < len(mask):
-        j = i
-        while j + 1 < len(mask) and mask[j + 1] == mask[i]:
-            j += 1
-        out.append((i, j, mask[i]))
-        i = j + 1
-    return out
-
 
 def draw_branch(axes, x, ys, stable, admissible, colour, pi_units):
     key = stable.astype(int) * 2 + admissible.astype(int)
-    for i, j, k in runs(key):
+    for i, j, k in ajx.runs(key):
         sl = slice(i, min(j + 2, len(x)))  # overlap one point so that the line is continuous
         st, adm = k // 2, k % 2
         for ax, y in zip(axes, ys):

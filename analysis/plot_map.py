@@ -26,7 +26,7 @@ import csv
 import numpy as np
 
 from astrojax_analysis import (BRACKET_SHADE, PAPER_LINE, Curves, add_figure_args, fail, legend, new_figure,
-                               panel_grid, panels, parser, pyplot, run, save)
+                               panel_grid, panels, parser, pyplot, run, runs, save)
 
 PI = np.pi
 # The paper's measured thresholds [π rad/s] and the curves that predict each.
@@ -53,17 +53,6 @@ def threshold_mask(c, kind):
     held = c["admissible"] > 0
     return held if kind == "hopf" else held & (c["unstable"] == 0)
 
-
-def runs(mask):
-    """(start, end) index pairs, inclusive, of the runs of equal values of mask, with the value."""
-    out, i = [], 0
-    while i < len(mask):
-        j = i
-        while j + 1 < len(mask) and mask[j + 1] == mask[i]:
-            j += 1
-        out.append((i, j, bool(mask[i])))
-        i = j + 1
-    return out
 
 
 def draw_curves(ax, curves, kinds):

@@ -21,7 +21,7 @@ from .orbits import Curves
 from .optimize import nelder_mead, scan_and_refine
 from .plotting import (BRACKET_SHADE, MODE_COLOURS, MODE_NAMES, PAPER_LINE, PI, THRESHOLD_SYMBOLS, add_figure_args,
                        check_output, draw_thresholds, figure_size, legend, legend_columns, legend_height, new_figure,
-                       panel_grid, panels, paper_values, place_upright_labels, pyplot, save, sweep_for_plot,
+                       panel_grid, panels, paper_values, place_upright_labels, pyplot, runs, save, sweep_for_plot,
                        threshold_legend_handles)
 from .reader import FORMAT_VERSION, SweepFile, as_text, file_kind, format_version, open_h5, read_run, resolved
 from .sweep import DIRECTION_MARKERS, DIRECTION_WORDS, GROUP_MARKERS, SEED_MARKERS, Sweep, require_phase, select_chains

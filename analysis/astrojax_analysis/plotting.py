@@ -178,3 +178,16 @@ def legend(leg_ax, handles):
     """The legend in its strip, as many columns as the figure's width holds."""
     ncol = legend_columns(leg_ax.figure.figure.get_size_inches()[0])  # .figure.figure: the root figure
     leg_ax.legend(handles=handles, loc="center", ncol=min(len(handles), ncol), fontsize=7.5, frameon=False)
+
+
+def runs(mask):
+    """(i, j, value) for each run of consecutive equal values of mask, [i, j] inclusive: the
+    pieces of a curve to draw in one style."""
+    out, i = [], 0
+    while i < len(mask):
+        j = i
+        while j + 1 < len(mask) and mask[j + 1] == mask[i]:
+            j += 1
+        out.append((i, j, mask[i]))
+        i = j + 1
+    return out
