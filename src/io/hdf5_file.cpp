@@ -208,6 +208,16 @@ T read_scalar(const Source& src) {
   return value;
 }
 
+// The memory type of variable-length strings read from `type`, in its character set.
+Handle variable_string_type(const Handle& type, Where w) {
+  Handle mem = own(H5Tcopy(H5T_C_S1), Kind::Datatype, "H5Tcopy", w);
+  check(H5Tset_size(mem.get(), H5T_VARIABLE), "H5Tset_size", w);
+  H5T_cset_t cset = H5Tget_cset(type.get());
+  if (cset < 0) fail("H5Tget_cset", w);
+  check(H5Tset_cset(mem.get(), cset), "H5Tset_cset", w);
+  return mem;
+}
+
 std::string read_string_from(const Source& src) {
   Handle type = src.type();
   H5T_class_t cls = H5Tget_class(type.get());
@@ -218,11 +228,7 @@ std::string read_string_from(const Source& src) {
   if (n != 1) fail_plain(fmt::format("holds {} strings, expected a single one", n), src.w);
 
   if (check_tri(H5Tis_variable_str(type.get()), "H5Tis_variable_str", src.w)) {
-    Handle mem = own(H5Tcopy(H5T_C_S1), Kind::Datatype, "H5Tcopy", src.w);
-    check(H5Tset_size(mem.get(), H5T_VARIABLE), "H5Tset_size", src.w);
-    H5T_cset_t cset = H5Tget_cset(type.get());
-    if (cset < 0) fail("H5Tget_cset", src.w);
-    check(H5Tset_cset(mem.get(), cset), "H5Tset_cset", src.w);
+    Handle mem = variable_string_type(type, src.w);
     char* ptr = nullptr;
     src.read(mem.get(), &ptr);
     std::string out = ptr != nullptr ? std::string(ptr) : std::string();
@@ -254,11 +260,7 @@ std::vector<std::string> read_strings_from(const Source& src) {
   std::vector<std::string> out;
   if (n == 0) return out;
   if (check_tri(H5Tis_variable_str(type.get()), "H5Tis_variable_str", src.w)) {
-    Handle mem = own(H5Tcopy(H5T_C_S1), Kind::Datatype, "H5Tcopy", src.w);
-    check(H5Tset_size(mem.get(), H5T_VARIABLE), "H5Tset_size", src.w);
-    H5T_cset_t cset = H5Tget_cset(type.get());
-    if (cset < 0) fail("H5Tget_cset", src.w);
-    check(H5Tset_cset(mem.get(), cset), "H5Tset_cset", src.w);
+    Handle mem = variable_string_type(type, src.w);
     std::vector<char*> ptrs(n, nullptr);
     src.read(mem.get(), ptrs.data());
     for (char* p : ptrs) out.emplace_back(p != nullptr ? p : "");
