@@ -6,6 +6,7 @@
 #   ./setup.sh test        install, build, run the default test suite (ctest -L unit)
 #   ./setup.sh docs        install, build the program, build the documentation site offline (build/site)
 #   ./setup.sh test-long   install, build, run the long physics validations (ctest -L long)
+#   ./setup.sh test-browser  install, build, run the browser and video tests (ctest -L browser)
 #   ./setup.sh install | build
 #   ./setup.sh peers       also install Boost and SUNDIALS, build astrojax_peers and astrojax_matched (benchmarks only)
 #   ./setup.sh test-cluster  also installs slurm-wlm and munge: the cluster scripts on a Slurm started here (ctest -L cluster)
@@ -17,13 +18,16 @@ PACKAGES=(build-essential cmake pkg-config libeigen3-dev libopenmpi-dev openmpi-
           libgtest-dev libgmock-dev libbenchmark-dev
           python3-numpy python3-h5py python3-matplotlib
           zlib1g-dev libdeflate-dev clang libclang-rt-14-dev
-          procps)  # pgrep, for the fault tests
+          procps   # pgrep, for the fault tests
+          ffmpeg python3-plotly)  # analysis/animate.py encodes with ffmpeg; analysis/report.py inlines plotly.js
 # Only for the work-precision comparison with peer solvers (./setup.sh peers); the product
 # never needs them.
 PEER_PACKAGES=(libboost-dev libsundials-dev)
 # The documentation site (./setup.sh docs) and its tests in the default suite (./setup.sh test):
 # MkDocs, its Material theme, the Markdown extensions and MathJax for the equations, all offline.
 DOCS_PACKAGES=(mkdocs mkdocs-material python3-pymdownx libjs-mathjax)
+# Only for ./setup.sh test-browser: the interactive report opened in a headless Chromium.
+BROWSER_PACKAGES=(chromium chromium-driver python3-selenium)
 # Only for ./setup.sh test-cluster: a Slurm and its authentication, started by the test itself.
 CLUSTER_PACKAGES=(slurm-wlm munge)
 BUILD_DIR=${BUILD_DIR:-build}
@@ -79,12 +83,16 @@ demo() {
   "$PYTHON" analysis/plot_hysteresis.py out/paper.h5 --thresholds out/paper_thresholds.csv -o out/paper_hysteresis.png
   "$PYTHON" analysis/plot_orbits.py out/paper.h5 --group up --variant clutch --direction up \
     --classes locked-circular,lagging-circular,flower --top -o out/paper_orbits.png
+  "$PYTHON" analysis/report.py out/paper.h5 --thresholds out/paper_thresholds.csv --astrojax "$BUILD_DIR"/astrojax \
+    --force -o out/paper.html
   echo
   echo "the main job took $(( SECONDS - start )) s after the build; it wrote:"
   echo "  out/paper.h5                the sweep: every window's class, ω_ball and samples (HDF5)"
   echo "  out/paper_thresholds.md     ω_rise, ω_fall, ω1, ω2 per model variant, brackets and verdicts"
   echo "  out/paper_hysteresis.png    ω_ball against ω_m, one panel per model variant"
   echo "  out/paper_orbits.png        a locked, a lagging and a flower orbit from the top"
+  echo "  out/paper.html              the interactive report: hover a point for its class and reason, click it"
+  echo "                              for its orbit; opens offline: file://$PWD/out/paper.html"
 }
 
 case "${1:-}" in
@@ -98,6 +106,8 @@ case "${1:-}" in
          cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DASTROJAX_PEERS=ON >/dev/null
          cmake --build "$BUILD_DIR" -j"$(nproc)" --target astrojax astrojax_peers astrojax_matched ;;
   test-long) install; build; (cd "$BUILD_DIR" && ctest -L long --output-on-failure) ;;
+  test-browser) PACKAGES+=("${BROWSER_PACKAGES[@]}"); install; build
+                (cd "$BUILD_DIR" && ctest -L browser --output-on-failure) ;;
   test-cluster) PACKAGES+=("${CLUSTER_PACKAGES[@]}"); install; build; (cd "$BUILD_DIR" && ctest -L cluster --output-on-failure) ;;
-  *) sed -n '2,11p' "$0" | sed 's/^# \{0,1\}//'; exit 2 ;;
+  *) sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//'; exit 2 ;;
 esac

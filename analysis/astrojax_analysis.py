@@ -243,6 +243,24 @@ class Sweep:
         out["mode"] = out["mode"].astype(int)
         return out
 
+    def all_samples(self, names=("t", "r1", "r2")):
+        """The stored samples of every computed window at once: {(c, k): {name: array}},
+        trimmed to /samples/count (one read per dataset instead of one per window)."""
+        with h5py.File(self.path, "r") as f:
+            s = f["samples"]
+            count = s["count"][:]
+            data = {name: s[name][:] for name in names}
+        return {(c, k): {name: data[name][c, k, :int(count[c, k])] for name in names}
+                for c in range(self.n_chains) for k in range(self.n_windows) if self.valid[c, k] and count[c, k] > 0}
+
+    def stored_config(self):
+        """The sweep file as stored (/config): (text, source name, [overrides])."""
+        with h5py.File(self.path, "r") as f:
+            d = f["config"]
+            text = as_text(d[()])
+            overrides = [o for o in text_attr(d, "overrides").split("\n") if o]
+            return text, text_attr(d, "source"), overrides
+
     def legend_handles(self, chains):
         """Legend entries for the classes and markers used by these chains."""
         from matplotlib.lines import Line2D
@@ -485,6 +503,35 @@ def read_run(path):
         out = {name: tr[name][:] for name in ("t", "omega_m", "phi", "L1", "mode", "r1", "r2")}
         out["summary"] = {k: f["summary"].attrs[k] for k in f["summary"].attrs}
     out["mode"] = out["mode"].astype(int)
+    return out
+
+
+def read_motion(path):
+    """What an animation needs of a run file (`astrojax run`, or `astrojax replay`, which adds
+    /replay and three columns): read_run's trajectory plus the energy ledger (energy,
+    motor_work, drag_loss, friction_loss, impact_loss [J]); motor_phi (the rod's phase; a run
+    file's phi where it has none), clutch_power [W] and tie_slip (zeros without them); the
+    configuration in force as 'resolved'; and the replay's attributes as 'replay' ({} for a run
+    file), its stored and replayed window as 'replay_stored' and 'replay_replayed'."""
+    out = read_run(path)
+    with h5py.File(path, "r") as f:
+        tr = f["trajectory"]
+        for name in ("energy", "motor_work", "drag_loss", "friction_loss", "impact_loss"):
+            if name not in tr:
+                fail(f"{path}: /trajectory/{name} missing (written by astrojax run since the energy ledger)")
+            out[name] = tr[name][:]
+        n = len(out["t"])
+        out["motor_phi"] = tr["motor_phi"][:] if "motor_phi" in tr else out["phi"].copy()
+        out["clutch_power"] = tr["clutch_power"][:] if "clutch_power" in tr else np.zeros(n)
+        out["tie_slip"] = tr["tie_slip"][:].astype(int) if "tie_slip" in tr else np.zeros(n, dtype=int)
+        need(f, path, "resolved", "the configuration in force")
+        out["resolved"] = resolved(f["resolved"])
+        rp = f["replay"] if "replay" in f else None
+        out["replay"] = resolved(rp) if rp is not None else {}
+        out["replay_stored"] = resolved(rp["stored"]) if rp is not None else {}
+        out["replay_replayed"] = resolved(rp["replayed"]) if rp is not None else {}
+    if n < 2:
+        fail(f"{path}: {n} samples in /trajectory, too few to show motion")
     return out
 
 
