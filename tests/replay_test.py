@@ -57,7 +57,7 @@ def pick(rows, cls, chain=None):
 def check_replay(exe, h5, row, work):
     c, k, cls = int(row["chain"]), int(row["window"]), row["class"]
     out = os.path.join(work, f"replay_{c}_{k}.h5")
-    p = run(exe, "replay", h5, "--chain", c, "--window", k, "-o", out, "--sample-rate", 200)
+    p = run(exe, "replay", h5, "--chain", c, "--window", k, "-o", out, "--sample-rate", 200, "--force")
     print(p.stdout.strip())
     check(f"{cls} window {k} of chain {c}: exit 0 ({p.returncode}: {p.stderr.strip()})", p.returncode == 0)
     if p.returncode != 0:
