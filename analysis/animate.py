@@ -24,8 +24,10 @@ usage: build/astrojax replay out/paper.h5 --chain 3 --window 40 -o out/lagging.h
 """
 import os
 import shutil
+import subprocess
 import sys
 import time
+import warnings
 
 import numpy as np
 
@@ -35,8 +37,10 @@ PI = ajx.PI
 CM = 100.0
 # The ledger's bars, top to bottom: (key, label). Δ kinetic and Δ potential from the first frame.
 BARS = (("motor", "motor's work on the string"), ("kinetic", "Δ kinetic"), ("potential", "Δ potential"),
-        ("drag", "drag loss"), ("friction", "friction loss"), ("impact", "impact loss"), ("clutch", "clutch loss"))
+        ("drag", "drag loss"), ("friction", "friction loss"), ("impact", "impact loss"),
+        ("clutch", "clutch loss (before the string)"))
 BEAD_TRAIL, BALL_TRAIL, BALL = "#8C6D31", "0.35", "0.1"
+TRAIL_PIECES = 8        # a trail fades in this many steps of opacity
 OMEGA_BALL_SPAN = 1.0   # ω_ball readout: the azimuth rate over the last second [s]
 MIN_RADIUS = 0.01       # ... of balls at least 1 cm off the axis [m]
 
@@ -84,7 +88,8 @@ def live_omega_ball(t, r1, r2):
         ok = far & far[back] & (t - t[back] > 0.5 * OMEGA_BALL_SPAN)
         rate = np.where(ok, (theta - theta[back]) / np.maximum(t - t[back], 1e-12), np.nan)
         rates.append(rate)
-    with np.errstate(invalid="ignore"):
+    with np.errstate(invalid="ignore"), warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)  # a sample where neither ball is off the axis
         return np.nanmean(np.stack(rates), axis=0) if np.isfinite(np.stack(rates)).any() else np.full(len(t), np.nan)
 
 
@@ -135,13 +140,12 @@ class Scene:
 
     def __init__(self, args, run, title):
         plt = ajx.pyplot()
-        from matplotlib.collections import LineCollection
         from matplotlib.lines import Line2D
         self.run = run
         self.R = float(run["resolved"]["model.drive_radius"])
         self.fig = plt.figure(figsize=(args.width, args.width * 9 / 16), dpi=args.dpi)
-        gs = self.fig.add_gridspec(2, 3, width_ratios=[1, 1, 0.78], height_ratios=[0.42, 0.58],
-                                   left=0.05, right=0.98, bottom=0.08, top=0.88, wspace=0.28, hspace=0.35)
+        gs = self.fig.add_gridspec(2, 3, width_ratios=[1, 1, 0.95], height_ratios=[0.42, 0.58],
+                                   left=0.06, right=0.98, bottom=0.08, top=0.86, wspace=0.22, hspace=0.3)
         self.front = self.fig.add_subplot(gs[:, 0])
         self.bottom = self.fig.add_subplot(gs[:, 1])
         self.text_ax = self.fig.add_subplot(gs[0, 2])
@@ -170,26 +174,34 @@ class Scene:
         self.parts = {}
         for ax, j in ((self.front, 2), (self.bottom, 1)):
             key = id(ax)
-            self.trail[(key, "r1")] = ax.add_collection(LineCollection([], lw=1.0, color=BEAD_TRAIL))
-            self.trail[(key, "r2")] = ax.add_collection(LineCollection([], lw=1.0, color=BALL_TRAIL))
-            rod, = ax.plot([], [], "-", color="k", lw=2.2, solid_capstyle="round")
-            string, = ax.plot([], [], "-", color="0.25", lw=0.9)
-            ball, = ax.plot([], [], "o", color=BALL, ms=8)
-            bead, = ax.plot([], [], "o", ms=7, mec="k", mew=0.6)
+            for name, colour in (("r1", BEAD_TRAIL), ("r2", BALL_TRAIL)):  # oldest piece faintest
+                self.trail[(key, name)] = [ax.plot([], [], "-", color=colour, lw=1.0, animated=True,
+                                                   alpha=(i + 1) / TRAIL_PIECES)[0] for i in range(TRAIL_PIECES)]
+            rod, = ax.plot([], [], "-", color="k", lw=2.2, solid_capstyle="round", animated=True)
+            string, = ax.plot([], [], "-", color="0.25", lw=0.9, animated=True)
+            ball, = ax.plot([], [], "o", color=BALL, ms=8, animated=True)
+            bead, = ax.plot([], [], "o", ms=7, mec="k", mew=0.6, animated=True)
             self.parts[key] = (rod, string, ball, bead, j)
         self.text_ax.axis("off")
         self.readout = self.text_ax.text(0.0, 1.0, "", va="top", ha="left", fontsize=9, family="DejaVu Sans",
-                                         transform=self.text_ax.transAxes)
+                                         transform=self.text_ax.transAxes, animated=True)
         handles = [Line2D([], [], ls="", marker="o", ms=6, mec="k", mew=0.5, color=ajx.MODE_COLOURS[m],
                           label=f"bead {ajx.MODE_NAMES[m]}") for m in sorted(ajx.MODE_NAMES)]
         handles += [Line2D([], [], ls="", marker="o", ms=6, color=BALL, label="bottom ball"),
                     Line2D([], [], color=BEAD_TRAIL, label="bead's trail"),
                     Line2D([], [], color=BALL_TRAIL, label="ball's trail"),
                     Line2D([], [], color="k", lw=2.2, label="motor's rod"),
-                    Line2D([], [], color="k", ls="--", lw=0.6, label="drive circle (radius R)")]
+                    Line2D([], [], color="k", ls="--", lw=0.6, label="drive circle")]
         self.text_ax.legend(handles=handles, loc="lower left", fontsize=6.5, ncol=2, frameon=False,
                             bbox_to_anchor=(0.0, -0.12))
         self.setup_bars(run)
+
+    def artists(self):
+        """What changes from frame to frame (drawn over the static background)."""
+        out = [piece for pieces in self.trail.values() for piece in pieces]
+        for rod, string, ball, bead, _ in self.parts.values():
+            out += [rod, string, ball, bead]
+        return out + [self.readout] + list(self.bar_artists)
 
     def setup_bars(self, run):
         self.bars = ledger(run)
@@ -201,13 +213,19 @@ class Scene:
         pad = 0.08 * (hi - lo or 1.0)
         ax.set_xlim(lo - pad, hi + pad)
         y = np.arange(len(keys))[::-1]
-        colours = ["#333333", "#56B4E9", "#56B4E9", "#D55E00", "#D55E00", "#D55E00", "#D55E00"]
-        self.bar_artists = ax.barh(y, np.zeros(len(keys)), color=[colours[[k for k, _ in BARS].index(k)] for k in keys])
-        ax.set_yticks(y, [dict(BARS)[k] for k in keys], fontsize=7)
+        colours = ["#333333", "#56B4E9", "#56B4E9", "#D55E00", "#D55E00", "#D55E00", "#999999"]
+        self.bar_artists = ax.barh(y, np.zeros(len(keys)), height=0.45,
+                                   color=[colours[[k for k, _ in BARS].index(k)] for k in keys])
+        for bar in self.bar_artists:
+            bar.set_animated(True)
+        for yk, k in zip(y, keys):  # each bar's name above it, inside the axis
+            ax.text(0.01, yk + 0.28, dict(BARS)[k], transform=ax.get_yaxis_transform(), fontsize=7, va="bottom")
+        ax.set_ylim(-0.6, len(keys) - 0.1)
+        ax.set_yticks([])
         ax.axvline(0, color="k", lw=0.6)
         ax.set_xlabel("energy since the first frame [mJ]", fontsize=7.5)
         ax.tick_params(axis="x", labelsize=7)
-        ax.set_title("where the motor's work goes", fontsize=8)
+        ax.set_title("energy ledger: work on the string = Δ kinetic + Δ potential + losses", fontsize=7)
 
     def update(self, f, s, times, trails, omega_ball, cls):
         run, R = self.run, self.R
@@ -228,14 +246,9 @@ class Scene:
             bead.set_markeredgecolor("k")
             for name in ("r1", "r2"):
                 p = trails[name][first:last] * CM
-                pts = np.stack([p[:, 0], p[:, j]], axis=1)
-                segs = np.stack([pts[:-1], pts[1:]], axis=1) if len(pts) > 1 else np.zeros((0, 2, 2))
-                lc = self.trail[(id(ax), name)]
-                lc.set_segments(segs)
-                alpha = np.linspace(0.05, 1.0, len(segs)) if len(segs) else []
-                lc.set_alpha(None)
-                base = np.array(ajx_rgba(BEAD_TRAIL if name == "r1" else BALL_TRAIL))
-                lc.set_color([(*base[:3], a) for a in alpha])
+                cuts = np.linspace(0, len(p) - 1, TRAIL_PIECES + 1).astype(int)
+                for piece, a, b in zip(self.trail[(id(ax), name)], cuts[:-1], cuts[1:]):
+                    piece.set_data(p[a:b + 1, 0], p[a:b + 1, j])
         w = omega_ball[i]
         lines = [f"t = {t:8.2f} s",
                  f"ω$_m$ = {s['omega_m'][f] / PI:6.3f}π rad/s",
@@ -248,19 +261,49 @@ class Scene:
             bar.set_width(self.bars[k][i] * 1e3)
 
 
-def ajx_rgba(colour):
-    from matplotlib.colors import to_rgba
-    return to_rgba(colour)
+def encode(scene, args, path, frames, update, started):
+    """Each frame drawn over the static background (blitting: only the moving artists are drawn
+    again) and piped as raw RGBA to ffmpeg, matplotlib's FFMpegWriter's encoder settings: H.264
+    in yuv420p for .mp4, ffmpeg's GIF encoder for .gif."""
+    from matplotlib.animation import FFMpegWriter
+    fig = scene.fig
+    canvas = fig.canvas
+    canvas.draw()
+    background = canvas.copy_from_bbox(fig.bbox)
+    w, h = canvas.get_width_height()
+    codec = ["-c:v", "libx264", "-pix_fmt", "yuv420p", "-preset", "veryfast"] if path.lower().endswith(".mp4") \
+        else ["-c:v", "gif"]
+    cmd = [FFMpegWriter.bin_path(), "-y", "-loglevel", "error", "-f", "rawvideo", "-pix_fmt", "rgba",
+           "-s", f"{w}x{h}", "-r", f"{args.fps:g}", "-i", "pipe:", *codec, "-r", f"{args.fps:g}", path]
+    proc = subprocess.Popen(cmd, stdin=subprocess.PIPE, stderr=subprocess.PIPE)
+    try:
+        for f in range(frames):
+            update(f)
+            canvas.restore_region(background)
+            for a in scene.artists():
+                fig.draw_artist(a)
+            proc.stdin.write(canvas.buffer_rgba())
+            progress(f + 1, frames, started)
+        proc.stdin.close()
+    finally:
+        if proc.wait() != 0:
+            ajx.fail(f"ffmpeg failed writing {path}: {proc.stderr.read().decode(errors='replace').strip()}")
 
 
 def title_of(run, args):
     rs, rp = run["resolved"], run["replay"]
     R, d = float(rs["model.drive_radius"]), float(rs["model.contact_distance"])
     params = f"R = {R * 1e3:.3g} mm, d = {d * 1e2:.3g} cm"
+    if rs.get("layers.tie") == "clutch":
+        params += (f", tie clutch τ_s = {float(rs['model.tie_static_torque']) * 1e3:.3g}, "
+                   f"τ_k = {float(rs['model.tie_kinetic_torque']) * 1e3:.3g} mN m, "
+                   f"c_a = {float(rs['model.tie_damping']) * 1e6:.3g} µN m s")
+    else:
+        params += ", rigid tie"
     if rp:
-        who = f"{rp['group']}, {rp['variant_label'] or rp['variant']}" if rp.get("group") else "chain"
-        where = f"{os.path.basename(str(rp['source']))} chain {rp['chain']}, window {rp['window']}"
-        head = f"{where} ({who}); {params}"
+        who = f" ({rp['group']}, {rp['variant']})" if rp.get("group") else ""
+        where = f"{os.path.basename(str(rp['source']))} chain {rp['chain']}{who}, window {rp['window']}"
+        head = f"{where}: {params}"
     else:
         head = f"{os.path.basename(args.input)}; {params}"
     speed = "real time" if args.speed == 1 else f"{args.speed:g}× real time"
@@ -268,11 +311,13 @@ def title_of(run, args):
 
 
 def progress(done, total, started):
+    """Every 5 % of the frames: on a terminal one line rewritten, else a line each."""
     if done % max(1, total // 20) and done != total:
         return
     rate = done / max(time.monotonic() - started, 1e-9)
-    print(f"\rframe {done}/{total} ({rate:.0f} frames/s)", end="\n" if done == total else "", file=sys.stderr,
-          flush=True)
+    tty = sys.stderr.isatty()
+    print(f"{chr(13) if tty else ''}frame {done}/{total} ({rate:.0f} frames/s)",
+          end="\n" if done == total or not tty else "", file=sys.stderr, flush=True)
 
 
 def main(argv=None):
@@ -299,19 +344,11 @@ def main(argv=None):
     cls = str(run["replay_stored"].get("class_name", "")) if run["replay"] else ""
     scene = Scene(args, run, title_of(run, args))
     scene.trail_seconds = args.trail
-    from matplotlib.animation import FFMpegWriter
-    codec = {"codec": "libx264", "extra_args": ["-pix_fmt", "yuv420p", "-preset", "veryfast"]} \
-        if args.output.lower().endswith(".mp4") else {"codec": "gif"}
-    writer = FFMpegWriter(fps=args.fps, metadata={"title": title_of(run, args).replace("\n", "; ")}, **codec)
-    os.makedirs(os.path.dirname(os.path.abspath(args.output)), exist_ok=True)
     partial = args.output + ".part" + os.path.splitext(args.output)[1]
+    os.makedirs(os.path.dirname(os.path.abspath(args.output)), exist_ok=True)
     started = time.monotonic()
     try:
-        with writer.saving(scene.fig, partial, dpi=args.dpi):
-            for f in range(frames):
-                scene.update(f, s, times, trails, omega_ball, cls)
-                writer.grab_frame()
-                progress(f + 1, frames, started)
+        encode(scene, args, partial, frames, lambda f: scene.update(f, s, times, trails, omega_ball, cls), started)
     except BaseException:
         if os.path.exists(partial):
             os.remove(partial)
