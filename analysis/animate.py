@@ -40,6 +40,7 @@ BARS = (("motor", "motor's work on the string"), ("kinetic", "Δ kinetic"), ("po
         ("drag", "drag loss"), ("friction", "friction loss"), ("impact", "impact loss"),
         ("clutch", "clutch loss (before the string)"))
 BEAD_TRAIL, BALL_TRAIL, BALL = "#8C6D31", "0.35", "0.1"
+FIG_WIDTH = 10.24       # the layout's width [in]; --width sets the pixels, fonts scale with it
 TRAIL_PIECES = 8        # a trail fades in this many steps of opacity
 OMEGA_BALL_SPAN = 1.0   # ω_ball readout: the azimuth rate over the last second [s]
 MIN_RADIUS = 0.01       # ... of balls at least 1 cm off the axis [m]
@@ -57,6 +58,8 @@ def check_args(args, run):
         v = getattr(args, name)
         if not (np.isfinite(v) and v > 0):
             ajx.fail(f"--{name} {v}: must be a positive number")
+    if not (160 <= args.width <= 3840 and args.width % 16 == 0):
+        ajx.fail(f"--width {args.width}: a multiple of 16 in [160, 3840] pixels")
     if not 1 <= args.fps <= 120:
         ajx.fail(f"--fps {args.fps}: outside [1, 120]")
     t = run["t"]
@@ -143,7 +146,7 @@ class Scene:
         from matplotlib.lines import Line2D
         self.run = run
         self.R = float(run["resolved"]["model.drive_radius"])
-        self.fig = plt.figure(figsize=(args.width, args.width * 9 / 16), dpi=args.dpi)
+        self.fig = plt.figure(figsize=(FIG_WIDTH, FIG_WIDTH * 9 / 16), dpi=args.width / FIG_WIDTH)
         gs = self.fig.add_gridspec(2, 3, width_ratios=[1, 1, 0.95], height_ratios=[0.42, 0.58],
                                    left=0.06, right=0.98, bottom=0.08, top=0.86, wspace=0.22, hspace=0.3)
         self.front = self.fig.add_subplot(gs[:, 0])
@@ -225,7 +228,7 @@ class Scene:
         ax.axvline(0, color="k", lw=0.6)
         ax.set_xlabel("energy since the first frame [mJ]", fontsize=7.5)
         ax.tick_params(axis="x", labelsize=7)
-        ax.set_title("energy ledger: work on the string = Δ kinetic + Δ potential + losses", fontsize=7)
+        ax.set_title("work on the string = Δ kinetic + Δ potential + losses", fontsize=7)
 
     def update(self, f, s, times, trails, omega_ball, cls):
         run, R = self.run, self.R
@@ -272,7 +275,7 @@ def encode(scene, args, path, frames, update, started):
     background = canvas.copy_from_bbox(fig.bbox)
     w, h = canvas.get_width_height()
     codec = ["-c:v", "libx264", "-pix_fmt", "yuv420p", "-preset", "veryfast"] if path.lower().endswith(".mp4") \
-        else ["-c:v", "gif"]
+        else ["-vf", "split[a][b];[a]palettegen[p];[b][p]paletteuse", "-c:v", "gif"]  # a palette of the video's colours
     cmd = [FFMpegWriter.bin_path(), "-y", "-loglevel", "error", "-f", "rawvideo", "-pix_fmt", "rgba",
            "-s", f"{w}x{h}", "-r", f"{args.fps:g}", "-i", "pipe:", *codec, "-r", f"{args.fps:g}", path]
     proc = subprocess.Popen(cmd, stdin=subprocess.PIPE, stderr=subprocess.PIPE)
@@ -331,8 +334,8 @@ def main(argv=None):
     ap.add_argument("--start", type=float, help="run time of the first frame [s] (default: the first sample)")
     ap.add_argument("--to", type=float, help="run time of the last frame [s] (default: the last sample)")
     ap.add_argument("--trail", type=float, default=1.0, help="seconds of path that fade behind each ball (default 1)")
-    ap.add_argument("--width", type=float, default=10.24, help="video width in inches at --dpi (default 10.24)")
-    ap.add_argument("--dpi", type=float, default=100, help="pixels per inch (default 100: 1024 × 576)")
+    ap.add_argument("--width", type=int, default=1024,
+                    help="video width in pixels, a multiple of 16 (default 1024: 1024 × 576); the height is 9/16 of it")
     ap.add_argument("--force", action="store_true", help="replace an existing output")
     args = ap.parse_args(argv)
     run = ajx.read_motion(args.input)

@@ -49,7 +49,7 @@ def main(argv=None):
     ap.add_argument("--variant", help="the model variant (a grouped sweep)")
     ap.add_argument("--direction", choices=("up", "down", "held", "any"), default="any")
     ap.add_argument("--seconds", type=float, default=4.0, help="run seconds of each clip (default 4)")
-    ap.add_argument("--width", type=float, default=6.4, help="video width in inches at 100 dpi (default 6.4)")
+    ap.add_argument("--width", type=int, default=640, help="video width in pixels (default 640)")
     ap.add_argument("--frame", choices=("lab", "turning"), default="lab")
     ap.add_argument("--astrojax", metavar="PATH", help="the astrojax executable (default build/astrojax)")
     ap.add_argument("--force", action="store_true", help="replace an existing output")

@@ -114,7 +114,7 @@ def page(sweep, panels, table, args):
     import plotly.offline
     text, source, overrides = sweep.stored_config()
     prov = sweep.provenance
-    data = {"panels": panels, "colours": ajx.CLASS_COLOURS, "strip": UNDEFINED_STRIP,
+    data = {"panels": panels, "colours": ajx.CLASS_COLOURS, "strip": UNDEFINED_STRIP, "orbit_seconds": args.orbit_seconds,
             "groups": sweep.group_names if sweep.is_grouped else []}
     table_html = "".join(
         "<tr>" + "".join(f"<td>{html.escape(str(row[k]))}</td>" for k in
@@ -130,6 +130,8 @@ def page(sweep, panels, table, args):
 <div class="orbit" id="orbit-{i}"><p class="caption" id="caption-{i}">Click a point of the diagram to see that
 window's orbit from the stored samples.</p><div class="view" id="top-{i}"></div><div class="view" id="front-{i}"></div>
 </div></div></section>""" for i, p in enumerate(panels))
+    payload = json.dumps(data, separators=(",", ":")).replace("</", "<\\/")  # no "</script>" inside
+    hold_words = "; the verdict comes from holding both sides" if verdicts else " (brackets only: no holds were run)"
     made = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     return f"""<!doctype html>
 <html lang="en"><head><meta charset="utf-8">
@@ -149,8 +151,7 @@ too near the axis for an azimuth) sit in the strip below the axis. The dotted di
 {panels_html}
 <section><h2>Thresholds</h2>
 <p>From <code>astrojax thresholds</code>: each bracket is the mean ω<sub>m</sub> [π rad/s] of the last window before
-the class changed and of the first after{"; the verdict comes from holding both sides" if verdicts else
-" (brackets only: no holds were run)"}.</p>
+the class changed and of the first after{hold_words}.</p>
 <table class="thresholds"><thead><tr><th>threshold</th><th>chain</th><th>bracket [π rad/s]</th><th>paper [π]</th>
 <th>bracket vs paper</th><th>verdict</th><th>why</th></tr></thead><tbody>{table_html}</tbody></table></section>
 <section><h2>Provenance</h2>
@@ -159,7 +160,7 @@ the class changed and of the first after{"; the verdict comes from holding both 
 <tr><th>report</th><td>analysis/report.py on {html.escape(name)}, {made}</td></tr></table>
 <details><summary>the sweep file as stored in {html.escape(name)} (/config)</summary><pre>{html.escape(text)}</pre></details>
 </section>
-<script id="data" type="application/json">{json.dumps(data, separators=(",", ":")).replace("</", "<\\/")}</script>
+<script id="data" type="application/json">{payload}</script>
 <script>{JS}</script>
 </body></html>
 """
@@ -218,9 +219,9 @@ function drawOrbit(i, p) {
   const lay = (title, ylab) => ({title: {text: title, font: {size: 12}}, margin: {l: 50, r: 10, t: 30, b: 40},
     xaxis: {title: 'x [cm]'}, yaxis: {title: ylab, scaleanchor: 'x'}, showlegend: title.startsWith('top'),
     legend: {font: {size: 10}}});
-  Plotly.react('top-' + i, top, lay(`top view (x–y), last ${(p.orbit.n > 1 ? '' : '')}samples of the window`, 'y [cm]'),
-               {displaylogo: false});
-  Plotly.react('front-' + i, front, lay('front view (x–z)', 'z [cm]'), {displaylogo: false});
+  const secs = DATA.orbit_seconds;
+  Plotly.react('top-' + i, top, lay(`top view (x–y), the window's last ${secs} s`, 'y [cm]'), {displayModeBar: false});
+  Plotly.react('front-' + i, front, lay('front view (x–z)', 'z [cm]'), {displayModeBar: false});
 }
 DATA.panels.forEach((panel, i) => {
   const traces = [];

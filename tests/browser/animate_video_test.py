@@ -3,7 +3,7 @@
 replay`, animated to .mp4 and .gif, read back with ffprobe:
 - the frame count is floor((to − start) / speed × fps) + 1 and the duration that count over
   the frame rate (to one frame), at real time and at --speed 0.5 (twice as many frames);
-- the frame size is --width × --dpi by 9/16 of it;
+- the frame size is --width by 9/16 of it;
 - bad input exits 2 with one line naming the problem and writes nothing: an unknown
   extension, --to beyond the run, an existing output without --force.
 
@@ -53,7 +53,7 @@ def main():
         out = os.path.join(work, f"anim_{speed:g}_{fps}{ext}")
         extra = ["--frame", "turning"] if ext == ".gif" else []
         p = run(*animate, "-o", out, "--start", t0, "--to", t0 + 2.0, "--speed", speed, "--fps", fps, "--force",
-                "--width", 6.4, *extra)
+                "--width", 640, *extra)
         check(f"{ext} at {speed:g}x, {fps} fps: exit 0 ({p.stderr.strip()[-200:]})", p.returncode == 0)
         check(f"{ext}: progress shown on stderr", "frame " in p.stderr)
         frames, duration, w, h, rate = probe(out)
