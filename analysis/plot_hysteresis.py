@@ -123,12 +123,13 @@ def group_words(sweep, chains, i):
                                                                                   sweep.start_seed_name(cs[0]))
     ks = sweep.windows(cs[0])
     w = sweep.omega_mean[cs[0], ks] / PI
+    first, last = sweep.omega_begin[cs[0], ks[0]] / PI, sweep.omega_end[cs[0], ks[-1]] / PI
     peak = int(np.argmax(w))
     if 0 < peak < len(w) - 1:
-        path = f"up to {w[peak]:.3g}π, back to {w[-1]:.3g}π"
+        path = f"up to {w[peak]:.3g}π, back to {last:.3g}π"
     else:
-        path = f"{'up' if w[-1] > w[0] else 'down'} to {w[-1]:.3g}π"
-    return f"'{sweep.group_names[i]}': {start} at {w[0]:.3g}π, {path}"
+        path = f"{'up' if last > first else 'down'} to {last:.3g}π"
+    return f"'{sweep.group_names[i]}': {start} at {first:.3g}π, {path}"
 
 
 def legend_handles(sweep, chains, rows, paper):
@@ -182,14 +183,15 @@ def main(argv=None):
     nr, nc = ajx.panel_grid(len(groups))
     handles = legend_handles(sweep, chains, rows, not args.no_paper)
     width = 6.5 * nc
-    fig = ajx.new_figure(args, (width, 5.5 * nr + ajx.legend_height(width, len(handles)) + 0.5))
-    axes, leg = ajx.panels(fig, nr, nc, len(handles), sharey=True)
+    fig = ajx.new_figure(args, (width, 5.5 * nr + ajx.legend_height(width, 3 * len(handles)) + 0.5))
+    ncol = max(1, int(width / 4.3))  # the long legend entries need 4.3 in each
+    axes, leg = ajx.panels(fig, nr, nc, len(handles) * ajx.legend_columns(width) // ncol + 1, sharey=True)
     for ax, (label, cs) in zip(axes.flat, groups):
         draw_panel(ax, sweep, cs, rows, not args.no_paper)
         ax.set_title(title(sweep, label, cs), fontsize=9)
     for ax in axes.flat[len(groups):]:
         ax.set_visible(False)
-    ajx.legend(leg, handles)
+    leg.legend(handles=handles, loc="center", ncol=ncol, fontsize=7.5, frameon=False)
     fig.suptitle(r"Hysteresis of the balls' angular velocity $\omega_{ball}$ as the motor's $\omega_m$ is ramped or stepped",
                  fontsize=10)
     ajx.save(fig, args)
