@@ -141,7 +141,7 @@ def trail_positions(run, frame, times):
 class Scene:
     """The figure and its artists, updated in place each frame."""
 
-    def __init__(self, args, run, title):
+    def __init__(self, args, run, title, span):
         plt = ajx.pyplot()
         from matplotlib.lines import Line2D
         self.run = run
@@ -197,7 +197,7 @@ class Scene:
                     Line2D([], [], color="k", ls="--", lw=0.6, label="drive circle")]
         self.text_ax.legend(handles=handles, loc="lower left", fontsize=6.5, ncol=2, frameon=False,
                             bbox_to_anchor=(0.0, -0.12))
-        self.setup_bars(run)
+        self.setup_bars(run, *span)
 
     def artists(self):
         """What changes from frame to frame (drawn over the static background)."""
@@ -206,13 +206,16 @@ class Scene:
             out += [rod, string, ball, bead]
         return out + [self.readout] + list(self.bar_artists)
 
-    def setup_bars(self, run):
-        self.bars = ledger(run)
+    def setup_bars(self, run, first, last):
+        """The ledger's bars from the first frame's sample (index `first`) on, scaled to their
+        range up to the last frame's (`last`)."""
+        self.bars = {k: v - v[first] for k, v in ledger(run).items()}
         keys = [k for k, _ in BARS if k != "clutch" or np.any(run["tie_slip"]) or np.any(self.bars["clutch"] != 0)]
         self.bar_keys = keys
         ax = self.bars_ax
-        lo = min(0.0, min(self.bars[k].min() for k in keys)) * 1e3
-        hi = max(0.0, max(self.bars[k].max() for k in keys)) * 1e3
+        span = slice(first, last + 1)
+        lo = min(0.0, min(self.bars[k][span].min() for k in keys)) * 1e3
+        hi = max(0.0, max(self.bars[k][span].max() for k in keys)) * 1e3
         pad = 0.08 * (hi - lo or 1.0)
         ax.set_xlim(lo - pad, hi + pad)
         y = np.arange(len(keys))[::-1]
@@ -345,7 +348,7 @@ def main(argv=None):
     trails = trail_positions(run, args.frame, times)
     omega_ball = live_omega_ball(run["t"], run["r1"], run["r2"])
     cls = str(run["replay_stored"].get("class_name", "")) if run["replay"] else ""
-    scene = Scene(args, run, title_of(run, args))
+    scene = Scene(args, run, title_of(run, args), (int(s["idx"][0]), int(s["idx"][-1])))
     scene.trail_seconds = args.trail
     partial = args.output + ".part" + os.path.splitext(args.output)[1]
     os.makedirs(os.path.dirname(os.path.abspath(args.output)), exist_ok=True)

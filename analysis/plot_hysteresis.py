@@ -183,9 +183,11 @@ def main(argv=None):
     nr, nc = ajx.panel_grid(len(groups))
     handles = legend_handles(sweep, chains, rows, not args.no_paper)
     width = 6.5 * nc
-    fig = ajx.new_figure(args, (width, 5.5 * nr + ajx.legend_height(width, 3 * len(handles)) + 0.5))
-    ncol = max(1, int(width / 4.3))  # the long legend entries need 4.3 in each
-    axes, leg = ajx.panels(fig, nr, nc, len(handles) * ajx.legend_columns(width) // ncol + 1, sharey=True)
+    fig = ajx.new_figure(args, (width, 5.5 * nr + ajx.legend_height(width, len(handles) * ajx.legend_columns(width)
+                                                                      // max(1, int(width / 4.3))) + 0.5))
+    fig_width = fig.get_size_inches()[0]
+    ncol = max(1, int(fig_width / 4.3))  # the long legend entries need 4.3 in each
+    axes, leg = ajx.panels(fig, nr, nc, -(-len(handles) // ncol) * ajx.legend_columns(fig_width), sharey=True)
     for ax, (label, cs) in zip(axes.flat, groups):
         draw_panel(ax, sweep, cs, rows, not args.no_paper)
         ax.set_title(title(sweep, label, cs), fontsize=9)
