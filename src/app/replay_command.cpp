@@ -55,6 +55,34 @@ struct StoredWindow {
   results::ReplayInfo info;
 };
 
+// The window's place in its chain and file, for /replay and the printed summary.
+void describe_window(StoredWindow& s, const std::string& path, const std::string& src_commit, std::size_t c,
+                     std::size_t k) {
+  const sweep::ChainSetup& setup = s.plan.setups[c];
+  const auto& spans = s.plan.spans[c];
+  const sweep::Window& w = setup.protocol.windows[k];
+  results::ReplayInfo& in = s.info;
+  in.source = path;
+  in.source_commit = src_commit;
+  in.chain = std::int64_t(c);
+  in.window = std::int64_t(k);
+  in.task = std::int64_t(s.task);
+  if (!s.cfg.parts.empty()) {
+    const config::SweepConfig& part = s.cfg.parts[s.plan.part[c]];
+    in.group = part.group;
+    in.variant = part.variant;
+    in.variant_label = part.variant_label;
+  }
+  in.task_begin = spans[s.task].t_begin;
+  in.t_begin = w.t_begin;
+  in.t_end = w.t_end;
+  in.omega_begin = w.omega_begin;
+  in.omega_end = w.omega_end;
+  in.direction = w.direction;
+  in.sweep_sample_rate = setup.sample_rate;
+  in.stored = s.stored;
+}
+
 // Reads the stored window (chain, window) of `path`; throws ReplayError naming the file and
 // what is wrong with it or with the chosen window.
 StoredWindow read_stored_window(const std::string& path, long chain, long window) {
@@ -121,27 +149,7 @@ StoredWindow read_stored_window(const std::string& path, long chain, long window
   results::SweepFile file(std::move(f), s.plan.chains(), cls.cols(), 0, s.plan.n_tasks);
   s.start = s.task == 0 ? s.plan.start_state(c) : file.state(first + s.task - 1);
 
-  const sweep::Window& w = setup.protocol.windows[k];
-  results::ReplayInfo& in = s.info;
-  in.source = path;
-  in.source_commit = src_commit;
-  in.chain = chain;
-  in.window = window;
-  in.task = std::int64_t(s.task);
-  if (!s.cfg.parts.empty()) {
-    const config::SweepConfig& part = s.cfg.parts[s.plan.part[c]];
-    in.group = part.group;
-    in.variant = part.variant;
-    in.variant_label = part.variant_label;
-  }
-  in.task_begin = spans[s.task].t_begin;
-  in.t_begin = w.t_begin;
-  in.t_end = w.t_end;
-  in.omega_begin = w.omega_begin;
-  in.omega_end = w.omega_end;
-  in.direction = w.direction;
-  in.sweep_sample_rate = setup.sample_rate;
-  in.stored = s.stored;
+  describe_window(s, path, src_commit, c, k);
   return s;
 }
 
