@@ -192,7 +192,7 @@ def top_views(args, orbits):
                Line2D([], [], color=BALL, marker="o", ms=4, label="bottom ball (● last position)"),
                Line2D([], [], color="k", ls="--", lw=0.6, label="drive circle (radius R)"),
                Line2D([], [], color="k", marker="x", ls="", ms=4, label="motor axis")]
-    words = {1: "▲ ω_m rising", -1: "▼ ω_m falling", 0: "● ω_m held"}
+    words = {1: r"▲ $\omega_m$ rising", -1: r"▼ $\omega_m$ falling", 0: r"● $\omega_m$ held"}
     handles += [Line2D([], [], ls="", label=words[d]) for d in getattr(args, "arrows", [])]
     fig = ajx.new_figure(args, (3.6 * n, 4.6))
     axes, leg = ajx.panels(fig, 1, n, len(handles))

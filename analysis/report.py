@@ -199,14 +199,14 @@ function fmt(x) { return x === null ? 'undefined' : x.toFixed(3) + PI_TXT; }
 function esc(t) { return String(t).replace(/[&<>"']/g, c => ({'&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;', "'": '&#39;'})[c]); }
 function hover(p) {
   return `chain ${p.chain}${p.group ? ' (' + esc(p.group) + ', ' + esc(p.variant) + ')' : ''}, window ${p.window}<br>` +
-         `ω_m ${p.omega_begin.toFixed(3)} → ${p.omega_end.toFixed(3)}${PI_TXT} rad/s ${p.dir}<br>` +
-         `ω_ball ${fmt(p.y)} rad/s<br>class <b>${esc(p.cls)}</b><br>` +
+         `ω<sub>m</sub> ${p.omega_begin.toFixed(3)} → ${p.omega_end.toFixed(3)}${PI_TXT} rad/s ${p.dir}<br>` +
+         `ω<sub>ball</sub> ${fmt(p.y)} rad/s<br>class <b>${esc(p.cls)}</b><br>` +
          `<i>${esc(p.reason).replace(/(.{1,70})(\s|$)/g, '$1<br>')}</i>`;
 }
 function drawOrbit(i, p) {
   const cap = document.getElementById('caption-' + i);
-  cap.textContent = `chain ${p.chain}${p.group ? ' (' + p.group + ', ' + p.variant + ')' : ''}, window ${p.window}: ` +
-    `ω_m ${p.x.toFixed(2)}π rad/s ${p.dir}, ${p.cls}, ω_ball ${fmt(p.y)} rad/s`;
+  cap.innerHTML = `chain ${p.chain}${p.group ? ' (' + esc(p.group) + ', ' + esc(p.variant) + ')' : ''}, window ${p.window}: ` +
+    `ω<sub>m</sub> ${p.x.toFixed(2)}π rad/s ${p.dir}, ${esc(p.cls)}, ω<sub>ball</sub> ${fmt(p.y)} rad/s`;
   cap.dataset.chain = p.chain; cap.dataset.window = p.window;
   if (!p.orbit) { cap.textContent += ' (no stored samples)'; return; }
   const r1 = unpack(p.orbit.r1, p.orbit.n), r2 = unpack(p.orbit.r2, p.orbit.n);
@@ -232,7 +232,7 @@ DATA.panels.forEach((panel, i) => {
   let top = 0;
   panel.points.forEach(p => { top = Math.max(top, p.x, p.y === null ? 0 : p.y); });
   top *= 1.05;
-  traces.push({x: [0, top], y: [0, top], mode: 'lines', name: 'ω_ball = ω_m (locked)', hoverinfo: 'skip',
+  traces.push({x: [0, top], y: [0, top], mode: 'lines', name: 'ω<sub>ball</sub> = ω<sub>m</sub> (locked)', hoverinfo: 'skip',
                line: {color: 'black', dash: 'dot', width: 1}});
   panel.paths.forEach(path => {
     const x = [], y = [];
@@ -247,9 +247,10 @@ DATA.panels.forEach((panel, i) => {
       marker: {color: DATA.colours[cls], size: 8, line: {color: 'black', width: 0.5},
                symbol: pts.map(p => (p.y === null ? 'x-thin-open' : SYMBOLS[p.group_index % SYMBOLS.length]))}});
   });
-  const layout = {title: {text: panel.title, font: {size: 13}}, hovermode: 'closest', margin: {l: 60, r: 10, t: 40, b: 50},
-    xaxis: {title: 'motor ω_m [π rad/s]', range: [0, top]},
-    yaxis: {title: "balls' ω_ball [π rad/s]", range: [DATA.strip - 0.6, top],
+  // The panel's title is the section's heading above it (a plotly title would sit under the mode bar).
+  const layout = {hovermode: 'closest', margin: {l: 60, r: 10, t: 40, b: 50},
+    xaxis: {title: 'motor ω<sub>m</sub> [π rad/s]', range: [0, top]},
+    yaxis: {title: "balls' ω<sub>ball</sub> [π rad/s]", range: [DATA.strip - 0.6, top],
             tickvals: [DATA.strip].concat([...Array(Math.floor(top / 2.5) + 1).keys()].map(k => 2.5 * k)),
             ticktext: ['undefined'].concat([...Array(Math.floor(top / 2.5) + 1).keys()].map(k => String(2.5 * k)))},
     shapes: [{type: 'rect', xref: 'paper', x0: 0, x1: 1, y0: DATA.strip - 0.6, y1: DATA.strip + 0.4,
@@ -257,7 +258,7 @@ DATA.panels.forEach((panel, i) => {
     legend: {orientation: 'h', y: -0.15}};
   if (DATA.groups.length)
     layout.annotations = [{xref: 'paper', yref: 'paper', x: 0, y: 1.0, xanchor: 'left', yanchor: 'bottom',
-      showarrow: false, font: {size: 10}, text: 'marker: ' + DATA.groups.map((g, j) => `${esc(g)} ${['●', '■', '◆', '✚', '✖', '★'][j % 6]}`).join(', ') + '; × ω_ball undefined'}];
+      showarrow: false, font: {size: 10}, text: 'marker: ' + DATA.groups.map((g, j) => `${esc(g)} ${['●', '■', '◆', '✚', '✖', '★'][j % 6]}`).join(', ') + '; × ω<sub>ball</sub> undefined'}];
   const el = document.getElementById('hyst-' + i);
   Plotly.newPlot(el, traces, layout, {displaylogo: false, responsive: true});
   el.on('plotly_click', ev => {
