@@ -259,10 +259,12 @@ class SweepFile:
         self.path = os.fspath(path)
         with open_h5(self.path) as f:
             self.version = format_version(f, self.path)
-            if "windows" not in f or "samples" not in f:
+            if "windows" not in f:
                 what = "it is a run file, /trajectory" if "trajectory" in f else "nor a run file"
                 raise SweepFileError(self.path, "/windows", f"missing: not a sweep file ({what}); make one with "
                                      f"`astrojax sweep`")
+            if "samples" not in f:  # as the C++ reader says it
+                raise SweepFileError(self.path, "/samples", "missing: the file stores no samples of its windows")
             _kind_attr(f, self.path, "sweep")
             self.classes = read_classes(f, self.path, self.version)
             self._read_windows(f)

@@ -80,7 +80,7 @@ def check_bad_input(src, exe, h5, work):
         f.write("keep me")
     out = os.path.join(work, "bad.html")
     for name, args, needles in (
-            ("file without samples", [bare, "-o", out], [bare, "samples"]),
+            ("file without samples", [bare, "-o", out], [bare, "/samples", "no samples"]),
             ("missing file", [os.path.join(work, "nope.h5"), "-o", out], ["nope.h5", "no such file"]),
             ("existing output", [h5, "-o", exists], [exists, "exists", "--force"])):
         p = subprocess.run(report + args + ["--astrojax", exe], capture_output=True, text=True)
