@@ -7,7 +7,6 @@
 // --before seconds ahead of it), which the run file keeps for animations and pictures.
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <fmt/format.h>
 #include <numbers>
 #include <string>
@@ -78,7 +77,6 @@ void describe_window(StoredWindow& s, const std::string& path, const std::string
 // whole file first: a damaged file, or one without samples, throws SweepFileError naming it);
 // throws ReplayError naming the file and what is wrong with the chosen window.
 StoredWindow read_stored_window(const std::string& path, long chain, long window) {
-  if (!std::filesystem::is_regular_file(path)) throw ReplayError(fmt::format("{}: no such file", path));
   const results::SweepReader in(path);
   StoredWindow s;
   s.cfg = in.config();

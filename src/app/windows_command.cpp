@@ -4,7 +4,6 @@
 // class back (the sweep classified the same rounded samples); a window where it does not
 // (a file written by another version of the classifier) says so in `reclassified_class`.
 #include <cstdio>
-#include <filesystem>
 #include <fmt/format.h>
 #include <fstream>
 #include <string>
@@ -33,7 +32,6 @@ std::string class_name(std::int32_t cls) {
 // The CSV of every computed window of the file at `path`, read through the one reader (a
 // damaged file, or one without samples, throws SweepFileError naming it).
 std::string windows_csv(const std::string& path) {
-  if (!std::filesystem::is_regular_file(path)) throw std::runtime_error(fmt::format("{}: no such file", path));
   const results::SweepReader in(path);
   const sweep::ClassifierSettings settings = sweep::parse_classifier_settings(in.classifier_settings());
   const auto name_of = [](const results::NameList& list, std::size_t c) {

@@ -141,6 +141,9 @@ std::vector<std::string> SweepReader::strings(std::string_view object, std::stri
 }
 
 SweepReader::SweepReader(const std::filesystem::path& path) : path_(path.string()) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) fail("", "no such file");
+  if (std::filesystem::is_directory(path, ec)) fail("", "is a directory, not a file");
   try {
     f_ = io::File::open_read(path);
   } catch (const io::Hdf5Error& e) {
