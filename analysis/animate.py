@@ -269,7 +269,9 @@ class Scene:
         w = omega_ball[i]
         lines = [f"t = {t:8.2f} s",
                  f"ω$_m$ = {s['omega_m'][f] / PI:6.3f}π rad/s",
-                 "ω$_{ball}$ = " + (f"{w / PI:6.3f}π rad/s" if np.isfinite(w) else "undefined (near the axis)"),
+                 "ω$_{ball}$ = " + (f"{w / PI:6.3f}π rad/s" if np.isfinite(w) else
+                                    "(measuring)" if t - run["t"][0] <= 0.5 * OMEGA_BALL_SPAN else
+                                    "undefined (near the axis)"),
                  f"bead: {ajx.MODE_NAMES[int(run['mode'][i])]}"]
         if cls:
             lines.append(f"orbit class: {cls}")
