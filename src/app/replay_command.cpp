@@ -192,10 +192,11 @@ int replay_command(const ReplayArgs& args) {
 
   const results::ReplayInfo& in = s.info;
   const char* arrow = in.direction > 0 ? "▲" : in.direction < 0 ? "▼" : "●";
+  const std::string who =
+      in.group.empty() ? "" : fmt::format(" ({}, {})", config::printable(in.group), config::printable(in.variant));
   std::printf("replayed %s chain %ld%s, window %ld: ω_m %.4f–%.4fπ rad/s %s, t %g–%g s, from the start of its task %ld "
               "(t = %g s)\n",
-              args.input.c_str(), args.chain,
-              in.group.empty() ? "" : fmt::format(" ({}, {})", in.group, in.variant).c_str(), args.window,
+              args.input.c_str(), args.chain, who.c_str(), args.window,
               in.omega_begin / pi, in.omega_end / pi, arrow, in.t_begin, in.t_end, long(in.task), in.task_begin);
   const auto name = [](std::int32_t cls) { return std::string(sweep::to_string(static_cast<sweep::OrbitClass>(cls))); };
   std::printf("  stored:   %-17s ω_ball %s  confidence %.3f\n", name(in.stored.cls).c_str(),
