@@ -14,6 +14,10 @@ must
 - close the energy ledger over the dense samples: the motor's work at its rod = ΔE + drag +
   friction + impact losses + the clutch's loss + the tie's Δ kinetic energy, to 1e-6 of the
   motor's work; the lagging window's clutch slips (its loss grows).
+Older formats the reader accepts replay too: the short chain's file rewritten as format 3 (no
+motor's ledger in /tasks/final_state, no string_power or clutch_power) and as format 2 (joined
+strings, no /classes) reproduces the same three windows, and its run file reads in
+astrojax_analysis.read_motion (the ledger finite: it counts from the task's start).
 Bad input exits 2 with the file and the problem named and no output: a window or chain out of
 range, a file without samples, an existing output without --force, a missing file.
 
@@ -100,6 +104,48 @@ def check_replay(exe, h5, row, work):
             check(f"{cls}: the tie slips (the clutch's loss grows by {loss[-1] - loss[0]:.3g} J)", loss[-1] > loss[0])
 
 
+def as_format_3(source, path):
+    """`source` (format 4) as format 3 wrote it: /tasks/final_state without the motor's ledger
+    (its last two columns), /windows without string_power and clutch_power."""
+    shutil.copyfile(source, path)
+    with h5py.File(path, "r+") as f:
+        old = f["tasks/final_state"]
+        data, attrs = old[:, :-2], dict(old.attrs)
+        del f["tasks/final_state"]
+        new = f["tasks"].create_dataset("final_state", data=data)
+        for k, v in attrs.items():
+            new.attrs[k] = v[:-2] if k == "columns" and len(v) == data.shape[1] + 2 else v
+        for name in ("string_power", "clutch_power"):
+            del f["windows/" + name]
+        f.attrs["format_version"] = np.int64(3)
+    return path
+
+
+def check_older_formats(exe, src, h5, rows, work):
+    sys.path.insert(0, os.path.join(src, "tests", "damaged"))
+    sys.path.insert(0, os.path.join(src, "analysis"))
+    import astrojax_analysis as ajx
+    import make_corpus
+    f3 = as_format_3(h5, os.path.join(work, "format3.h5"))
+    f2 = make_corpus.as_format_2(f3, os.path.join(work, "format2.h5"))
+    for version, path in ((3, f3), (2, f2)):
+        for cls in ("locked-circular", "lagging-circular", "flower"):
+            row = pick(rows, cls)
+            c, k = int(row["chain"]), int(row["window"])
+            out = os.path.join(work, f"replay_f{version}_{k}.h5")
+            p = run(exe, "replay", path, "--chain", c, "--window", k, "-o", out, "--force")
+            check(f"format {version}, {cls} window {k}: reproduced, exit 0 ({p.returncode}: {p.stderr.strip()})",
+                  p.returncode == 0 and "reproduced: same class" in p.stdout)
+            if p.returncode == 0:
+                try:
+                    motion = ajx.read_motion(out)
+                    ok = all(np.isfinite(motion[n]).all() for n in ("motor_work", "clutch_loss", "string_work"))
+                except ajx.SweepFileError as e:
+                    ok = False
+                    print(e)
+                check(f"format {version}, {cls}: the run file reads, its ledger finite", ok)
+
+
 def check_bad_input(exe, h5, work, rows):
     row = rows[0]
     c = int(row["chain"])
@@ -156,6 +202,7 @@ def main():
                                                                               for r in rows))
     check("astrojax windows: every window has a reason", all(r["reason"] for r in rows))
     if not main_job:
+        check_older_formats(exe, src, h5, rows, work)
         check_bad_input(exe, h5, work, rows)
     print(f"{len(failures)} failed")
     sys.exit(1 if failures else 0)
