@@ -16,8 +16,10 @@ usage: report_browser_test.py ASTROJAX SOURCE_DIR WORK_DIR
 import csv
 import os
 import re
+import shutil
 import subprocess
 import sys
+import tempfile
 import time
 
 failures = []
@@ -36,16 +38,10 @@ def run(*cmd):
     return p
 
 
-def browser():
-    from selenium import webdriver
-    from selenium.webdriver.chrome.service import Service
-    opts = webdriver.ChromeOptions()
-    opts.binary_location = "/usr/bin/chromium"
-    for a in ("--headless=new", "--no-sandbox", "--disable-gpu", "--window-size=1500,1300",
-              "--proxy-server=127.0.0.1:9", "--proxy-bypass-list=<-loopback>"):  # no network: a dead proxy
-        opts.add_argument(a)
-    opts.set_capability("goog:loggingPrefs", {"browser": "ALL"})
-    return webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=opts)
+def browser(user_dir):
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import chromium
+    return chromium.start(user_dir, size=(1500, 1300), offline=True)
 
 
 POINT_JS = """
@@ -69,7 +65,6 @@ return null;
 
 def check_bad_input(src, exe, h5, work):
     import h5py
-    import shutil
     report = ["/usr/bin/python3", os.path.join(src, "analysis", "report.py")]
     bare = os.path.join(work, "no_samples.h5")
     shutil.copy(h5, bare)
@@ -112,7 +107,8 @@ def main():
         r"<(script|link|img|iframe|video|source)\b[^>]*\b(src|href)\s*=\s*[\"']?(https?:|//)", page_own, re.I))
     from selenium.webdriver.common.action_chains import ActionChains
     from selenium.webdriver.common.by import By
-    driver = browser()
+    user_dir = tempfile.mkdtemp(prefix="ajx-chromium-")
+    driver = browser(user_dir)
     try:
         driver.get("file://" + os.path.abspath(page))
         time.sleep(2)
@@ -150,6 +146,7 @@ def main():
         check(f"no console errors ({severe})", not severe)
     finally:
         driver.quit()
+        shutil.rmtree(user_dir, ignore_errors=True)
     print(f"{len(failures)} failed")
     sys.exit(1 if failures else 0)
 
