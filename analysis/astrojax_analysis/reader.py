@@ -190,7 +190,7 @@ def file_kind(path):
     """'sweep' (written by astrojax sweep) or 'run' (astrojax run); SweepFileError otherwise."""
     with open_h5(path) as f:
         format_version(f, path)
-        if "windows" in f and "samples" in f:
+        if "windows" in f:  # one without /samples is refused by SweepFile, which says so
             return "sweep"
         if "trajectory" in f:
             return "run"
