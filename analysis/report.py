@@ -85,7 +85,9 @@ def panel_data(sweep, label, chains, reasons, samples, seconds):
                 "R": sweep.parameter(c, "drive_radius"),
             })
         paths.append({"chain": c, "x": xs, "y": ys, "dir": [int(sweep.direction[c, k]) for k in ks]})
-    title = label + (f" — {sweep.parameter_title(chains[0])}" if sweep.is_grouped else "")
+    # The model in every title; the label was made for matplotlib (labels.for_figure), whose
+    # escaped '$' reads as '\$' in a page.
+    title = label.replace(r"\$", "$") + f" — {sweep.parameter_title(chains[0])}"
     return {"title": title, "points": points, "paths": paths}
 
 
