@@ -32,7 +32,7 @@ sim::PairStart pair_start(const config::RunConfig& c, const physics::MotorSchedu
   const double h = c.run.integ.h_fixed;
   if (c.initial.preset == "table1")
     return sim::table1_pair(c.initial.orbit,
-                            std::isnan(c.initial.orbit_omega) ? schedule.top(c.model.p.drive_radius, 0.0).omega
+                            std::isnan(c.initial.orbit_omega) ? schedule.top(0.0).omega
                                                               : c.initial.orbit_omega,
                             h);
   sim::PairStart p;
@@ -86,7 +86,7 @@ int run_command(const RunArgs& args) {
                       {args.config_path}, {".part"});
     check_not_overwriting(cfg.source_name, "output.path", cfg.output.path, args.force);
     paper = sim::paper_variant(cfg.run.method);
-    schedule = physics::MotorSchedule(cfg.schedule);
+    schedule = physics::MotorSchedule(cfg.model.p.drive_radius, cfg.schedule);
     check_run_size(cfg, schedule.duration(), args.max_memory);
     try {
       if (paper) {

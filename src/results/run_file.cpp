@@ -135,7 +135,7 @@ void write_run(io::File& f, const std::string& command_line, const config::RunCo
     const double h = cfg.run.integ.h_fixed;
     sg.set_attribute("start_pair_speed_bead", (raw.r1_1 - raw.r1_0).norm() / h);
     sg.set_attribute("start_pair_speed_ball", (raw.r2_1 - raw.r2_0).norm() / h);
-    sg.set_attribute("start_pair_length_excess", (raw.r1_0 - schedule.top(cfg.model.p.drive_radius, 0.0).a).norm() +
+    sg.set_attribute("start_pair_length_excess", (raw.r1_0 - schedule.top(0.0).a).norm() +
                                                      (raw.r2_0 - raw.r1_0).norm() - cfg.model.p.string_length);
   }
   sg.set_attribute("wall_time", wall);

@@ -299,7 +299,7 @@ class SweepFile {
     std::vector<double> phase(C_ * W_, kNotComputed);
     std::vector<std::int32_t> dir(C_ * W_, 0), seg(C_ * W_, -1);
     for (std::size_t c = 0; c < C_; ++c) {
-      const physics::MotorSchedule motor(setups[c].protocol.schedule);
+      const physics::MotorSchedule motor = setups[c].motor();
       for (std::size_t k = 0; k < setups[c].protocol.windows.size(); ++k) {
         const auto& w = setups[c].protocol.windows[k];
         const std::size_t i = c * W_ + k;
