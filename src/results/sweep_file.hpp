@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <limits>
 #include <algorithm>
 #include <fmt/format.h>
@@ -64,6 +65,9 @@ class SweepFile {
 
   SweepFile(io::File file, std::size_t chains, std::size_t windows, std::size_t cap, std::size_t tasks)
       : f_(std::move(file)), C_(chains), W_(windows), cap_(cap), T_(tasks) {}
+  // A new, empty file at `path` (truncated if there) sized for the plan; create() fills it.
+  SweepFile(const std::filesystem::path& path, const sweep::SweepPlan& plan)
+      : SweepFile(io::File::create(path), plan.setups.size(), plan.max_windows, plan.max_samples, plan.n_tasks) {}
 
   // A new file: the configuration, the layout and the empty result datasets.
   void create(const config::SweepConfig& cfg, const sweep::SweepPlan& plan) {
@@ -166,7 +170,7 @@ class SweepFile {
   }
 
   // Failures of this run join those of earlier runs of the same sweep (one line each, sorted).
-  void finish(std::vector<std::string> failures, const std::function<void(io::Group&)>& provenance) {
+  void finish(std::vector<std::string> failures, const SweepRunRecord& run) {
     io::Group tg = f_.open_group("tasks");
     if (tg.has_attribute("failures"))
       for (std::string& old : tg.read_strings_attribute("failures")) failures.push_back(std::move(old));
@@ -174,7 +178,7 @@ class SweepFile {
     failures.erase(std::unique(failures.begin(), failures.end()), failures.end());
     tg.set_attribute("failures", std::span<const std::string>(failures));
     io::Group prov = f_.require_group("provenance");
-    provenance(prov);
+    write_run_record(prov, run);
     close();
   }
 
