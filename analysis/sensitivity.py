@@ -4,7 +4,8 @@
 Reads the paired sweep of sweeps/sensitivity.toml (the main job's tie clutch, variant `base`, and
 one variant per parameter and end of its plausible range, `NAME_lo` and `NAME_hi`) and, per
 variant, takes from it:
-  - ω_rise (group rise), ω1 and ω2's classifier bracket and ω_fall after the lag (group up),
+  - ω_rise (group rise), ω2's classifier bracket and ω_fall after the lag (group up), ω1 (group
+    lock),
     ω_fall from the fresh orbit (group fall): the brackets of `astrojax thresholds --no-hold`,
     each as its midpoint and its width;
   - the lag at 12π on the way up: its ω_ball and the bead's stuck position s (the window's
@@ -58,7 +59,9 @@ SYMBOLS = {"drive_radius": "R", "contact_distance": "d", "top_stop": "s_min", "m
 UNITS = {"drive_radius": "m", "contact_distance": "m", "top_stop": "m", "mu_static": "", "mu_kinetic": "",
          "drag": "kg/s", "string_length": "m", "bead_mass": "kg", "ball_mass": "kg", "tie_static_torque": "N m",
          "tie_kinetic_torque": "N m", "tie_damping": "N m s"}
-THRESHOLD_OF_GROUP = {("rise", "omega_rise"): "omega_rise", ("up", "omega_1"): "omega_1",
+# ω1 from the group `lock`, which approaches it in the main job's gentle steps (up's quick step
+# to 4.6π loses the lock on the way)
+THRESHOLD_OF_GROUP = {("rise", "omega_rise"): "omega_rise", ("lock", "omega_1"): "omega_1",
                       ("up", "omega_2"): "omega_2", ("up", "omega_fall"): "omega_fall_lag",
                       ("fall", "omega_fall"): "omega_fall_fresh"}
 

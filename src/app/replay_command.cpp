@@ -173,7 +173,7 @@ int replay_command(const ReplayArgs& args) {
   // The dense run: the same start, integrator and model, samples every 1/rate s from t_from.
   const std::size_t c = std::size_t(args.chain);
   const sweep::ChainSetup& setup = s.plan.setups[c];
-  const physics::MotorSchedule schedule(setup.protocol.schedule);
+  const physics::MotorSchedule schedule = setup.motor();
   sim::RunOptions run = setup.run;
   run.run_statistics = false;
   run.sample_spans = {{t_from, s.info.t_end + 0.5 / args.sample_rate}};
