@@ -730,7 +730,7 @@ int thresholds_command(const ThresholdsArgs& args) {
                          hold->in_drag_times ? fmt::format("{:g} drag times m/c_D", hold->value)
                                              : fmt::format("{:g} s", hold->value))
            : "";
-  std::fputs(report(args, sw, rows, onsets, false, hold_text).c_str(), stdout);
+  if (!rows.empty() || !in->brackets()) std::fputs(report(args, sw, rows, onsets, false, hold_text).c_str(), stdout);
   if (in->brackets()) std::fputs(bisection_report(*in, names).c_str(), stdout);
   if (!args.markdown.empty() && !write_text(args.markdown, report(args, sw, rows, onsets, true, hold_text)))
     return kExitBadInput;
