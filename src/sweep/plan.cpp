@@ -53,7 +53,8 @@ void add_probes(SweepPlan& plan, const PlanPart& part, std::size_t chain) {
   plan.spans.push_back(std::vector<TaskSpan>(std::size_t(n), TaskSpan{nan, nan, 0, 0}));
   plan.first_task.push_back(plan.n_tasks);
   plan.n_tasks += std::size_t(n);
-  plan.total_duration += n * (b.settle + b.measure) + (std::abs(b.from - b.start_omega) + 2.0 * std::abs(b.to - b.from)) / b.step_rate;
+  c.protocol.duration = n * (b.settle + b.measure) + (std::abs(b.from - b.start_omega) + 2.0 * std::abs(b.to - b.from)) / b.step_rate;
+  plan.total_duration += c.protocol.duration;
   plan.setups.push_back(std::move(c));
 }
 

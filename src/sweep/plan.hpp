@@ -34,6 +34,8 @@ struct SweepPlan {
   std::vector<ChainSetup> setups;         // per chain
   // Per chain: its bisection (a [bisect] part), whose tasks are probes with no /windows rows
   // (sweep/bisection.hpp); none for a protocol or hold chain.
+  // Its setup has no windows and protocol.duration is an estimate (the holds and the ramps
+  // between the levels).
   std::vector<std::optional<BisectSpec>> bisect;
   std::vector<std::vector<TaskSpan>> spans;  // per chain: its tasks in order
   std::vector<std::size_t> first_task;    // per chain: the global id of its task 0
