@@ -2,6 +2,7 @@
 // one CSV row) per grid point and threshold, beside the ladder's brackets of the other chains.
 #include "app/thresholds_brackets.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <numbers>
@@ -72,8 +73,10 @@ bool is_bisection_chain(const results::SweepReader& in, std::size_t c) {
 std::string bisection_report(const results::SweepReader& in, const ChainNames& names) {
   const results::BracketTable& t = *in.brackets();
   std::string out = "\nbisections (held levels; before = the threshold's known side, after = past it)\n";
-  out += fmt::format("  {:<10} {:<28} {:<22} {:>9} {:>9}  {:<36} {:<40} {:>6}\n", "threshold", "chain", "bracket [π rad/s]",
-                     "width [π]", "paper [π]", "classes", "status", "probes");
+  std::size_t w = 5;
+  for (std::size_t b = 0; b < t.size(); ++b) w = std::max(w, names.label(std::size_t(t.chain[b])).size());
+  out += fmt::format("  {:<10} {:<{}} {:<22} {:>9} {:>9}  {:<36} {:<40} {:>6}\n", "threshold", "chain", w,
+                     "bracket [π rad/s]", "width [π]", "paper [π]", "classes", "status", "probes");
   for (std::size_t b = 0; b < t.size(); ++b) {
     const auto c = std::size_t(t.chain[b]);
     const auto th = sweep::Threshold(t.threshold[b]);
@@ -81,8 +84,8 @@ std::string bisection_report(const results::SweepReader& in, const ChainNames& n
     const std::string bracket = e.bracketed ? fmt::format("{:.3f} → {:.3f}", e.before / pi, e.after / pi) : "none";
     const std::string width = e.bracketed ? fmt::format("{:.3f}", std::abs(e.after - e.before) / pi) : "";
     const std::string classes = fmt::format("{} → {}", class_name(t.known_class[b]), class_name(t.other_class[b]));
-    out += fmt::format("  {:<10} {:<28} {:<22} {:>9} {:>9.2f}  {:<36} {:<40} {:>3}/{:<2}\n", sweep::to_string(th),
-                       names.label(c), bracket, width, sweep::paper_value(th) / pi, classes, status_text(t, b),
+    out += fmt::format("  {:<10} {:<{}} {:<22} {:>9} {:>9.2f}  {:<36} {:<40} {:>3}/{:<2}\n", sweep::to_string(th),
+                       names.label(c), w, bracket, width, sweep::paper_value(th) / pi, classes, status_text(t, b),
                        probes_run(t, b), t.planned[b]);
   }
   return out;
@@ -115,6 +118,10 @@ std::string with_bisection_rows(const std::string& csv, const results::SweepRead
     if (e.bracketed) {
       const double mid = 0.5 * (e.before + e.after);
       row += fmt::format(",{:.9g},{:.9g},{:.9g},{:.9g},{:.6g}", e.before, e.after, mid, paper, (mid - paper) / paper);
+    } else if (t.status[b] == std::int32_t(sweep::BisectStatus::NoCrossing)) {  // before: the last level, still known
+      row += fmt::format(",{:.9g},,,{:.9g},", t.known_omega[b], paper);
+    } else if (t.status[b] == std::int32_t(sweep::BisectStatus::StartOffSide)) {  // after: the start, already past
+      row += fmt::format(",,{:.9g},,{:.9g},", t.other_omega[b], paper);
     } else {
       row += fmt::format(",,,,{:.9g},", paper);
     }

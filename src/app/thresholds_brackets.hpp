@@ -22,7 +22,9 @@ bool is_bisection_chain(const results::SweepReader& in, std::size_t c);
 std::string bisection_report(const results::SweepReader& in, const ChainNames& names);
 // The CSV of `astrojax thresholds --csv` with the bisections' rows: the ladder's columns, then
 // group, variant, one column per grid axis, method (ladder or bisection), width_rad_s,
-// before_class, after_class, bisect_status, probes_run.
+// before_class, after_class, bisect_status, probes_run. A bisection without a bracket gives
+// before alone (no crossing: the far end, still on the known side) or after alone (the start
+// level, already past the threshold).
 std::string with_bisection_rows(const std::string& csv, const results::SweepReader& in, const ChainNames& names);
 
 }  // namespace ajx::app
