@@ -123,7 +123,7 @@ Probe run_probe(const BisectSpec& spec, const physics::Model& model, const sim::
   const ChainSetup chain = probe_chain(spec, model, run, sample_rate, k == 0 ? std::vector<physics::DriveSegment>{} : c.history,
                                        k == 0 ? spec.start_omega : c.known_omega, p.omega);
   const physics::State start =
-      k == 0 ? seed_state(model, physics::MotorSchedule(chain.protocol.schedule), spec.start_seed, spec.start_omega, 0, 0.0)
+      k == 0 ? seed_state(model, chain.motor(), spec.start_seed, spec.start_omega, 0, 0.0)
              : c.known;
   const TaskSpan span{start.t, chain.protocol.duration, 0, 1};
   p.out = run_task(chain, span, start);
