@@ -132,6 +132,7 @@ struct SweepOutput {
   io::JournalContents replay;
   std::vector<results::TaskStatus> status;  // per task
   std::vector<std::string> failures;
+  double skipped = 0.0;  // simulated seconds of settling not integrated, the orbit known [s]
 
   SweepOutput(const SweepArgs& a, const config::SweepConfig& c, const sweep::SweepPlan& p)
       : args(a), cfg(c), plan(p), final_path(c.output_path), part_path(c.output_path + ".part"),
@@ -244,6 +245,7 @@ struct SweepOutput {
     status[id] = out.ok ? results::TaskStatus::Ok : results::TaskStatus::Failed;
     if (!out.ok) failures.push_back(fmt::format("task {} (chain {}, part {}): {}", id, chain, id - first_task[chain], out.failure));
     file->write_task(id, chain, result);  // written and flushed at once
+    skipped += out.skipped;
     return out.simulated;  // [s]
   }
 
@@ -360,6 +362,7 @@ parallel::FarmOptions farm_options(const SweepArgs& args, SweepOutput& output, S
   fo.task_timeout = args.task_timeout;
   fo.timeout_factor = kTaskTimeoutFactor;  // without --task-timeout: a task this many times the slowest is hung
   fo.min_task_timeout = args.min_task_timeout;
+  fo.threads = args.threads;
   return fo;
 }
 
@@ -384,6 +387,7 @@ void write_sweep_provenance(io::Group& prov, const SweepArgs& args, int ranks, c
   for (double b : fs.busy_seconds) work += b;
   prov.set_attribute("work_seconds", work);  // summed over ranks: integration alone
   prov.set_attribute("master_result_seconds", fs.result_seconds);  // classify, journal, write
+  prov.set_attribute("threads", args.threads);  // of rank 0 that integrate
   prov.set_attribute("version", results::program_version());
   prov.set_attribute("git_commit", results::program_commit());  // at configure time
 }
@@ -396,7 +400,10 @@ int report_sweep(const SweepArgs& args, SweepOutput& output, const parallel::Far
   const std::vector<results::TaskStatus>& status = output.status;
   const std::filesystem::path &final_path = output.final_path, &part_path = output.part_path;
   std::sort(failures.begin(), failures.end());
-  output.file->finish(failures, [&](io::Group& prov) { write_sweep_provenance(prov, args, ranks, started, wall, fs); });
+  output.file->finish(failures, [&](io::Group& prov) {
+    write_sweep_provenance(prov, args, ranks, started, wall, fs);
+    prov.set_attribute("settle_seconds_skipped", output.skipped);  // [s] of every run of the sweep (resumes included)
+  });
   const bool complete = std::none_of(status.begin(), status.end(), [](results::TaskStatus v) { return v == results::TaskStatus::NeverRan; });
   if (complete) {
     std::filesystem::rename(part_path, final_path);
@@ -406,11 +413,14 @@ int report_sweep(const SweepArgs& args, SweepOutput& output, const parallel::Far
     output.journal.reset();
   }
 
-  std::printf("%s  %zu chains, %zu tasks (%lld failed, %lld not run, %lld never started), %.0f of %.0f simulated s "
+  // The settling the early stop skipped (sim/settle_watch.hpp), when there was any.
+  const std::string skipped =
+      output.skipped > 0 ? fmt::format(" ({:.0f} s of settling skipped, the orbit known)", output.skipped) : "";
+  std::printf("%s  %zu chains, %zu tasks (%lld failed, %lld not run, %lld never started), %.0f of %.0f simulated s%s "
               "in %.1f s wall on %d ranks -> %s\n",
               !complete ? "INTERRUPTED" : failures.empty() ? "ok" : "FAILED", output.plan.setups.size(),
               output.plan.n_tasks, (long long)fs.failed, (long long)fs.not_run, (long long)fs.unstarted, sim.done,
-              sim.total, wall, ranks, complete ? final_path.c_str() : part_path.c_str());
+              sim.total, skipped.c_str(), wall, ranks, complete ? final_path.c_str() : part_path.c_str());
   for (const auto& fl : failures) std::printf("  failed: %s\n", fl.c_str());
   if (!complete)
     std::printf("the finished tasks are in %s; continue with the same command and --resume\n", part_path.c_str());

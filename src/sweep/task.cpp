@@ -15,7 +15,9 @@ TaskOutput run_task(const ChainSetup& chain, const TaskSpan& span, physics::Stat
   for (int i = 0; i < span.num_windows; ++i) {  // and only the windows' samples are stored
     const Window& win = chain.protocol.windows[std::size_t(span.first_window + i)];
     run.sample_spans.emplace_back(win.t_begin, win.t_end);
+    if (chain.settle_tolerance > 0.0 && win.t_begin > win.t_settle) run.settle_spans.emplace_back(win.t_settle, win.t_begin);
   }
+  run.settle_tolerance = chain.settle_tolerance;
   sim::Simulation simulation(chain.model, schedule, run);
   TaskOutput out;
   const auto& windows = chain.protocol.windows;
@@ -52,6 +54,7 @@ TaskOutput run_task(const ChainSetup& chain, const TaskSpan& span, physics::Stat
   out.sticks = r.sticks;
   out.slack_phases = r.slack_phases;
   out.simulated = r.t_end - span.t_begin;
+  out.skipped = r.skipped;
   return out;
 }
 
@@ -135,6 +138,7 @@ std::vector<std::byte> encode(const TaskOutput& o) {
   put_state(w, o.final_state);
   for (long v : {o.steps, o.rhs_evals, o.impacts, o.sticks, o.slack_phases}) w.put<std::int64_t>(v);
   w.put(o.simulated);
+  w.put(o.skipped);
   w.put<std::uint64_t>(o.windows.size());
   for (const WindowRecord& rec : o.windows) {
     w.put<std::int32_t>(rec.index);
@@ -154,6 +158,7 @@ TaskOutput decode_output(const std::vector<std::byte>& bytes) {
   o.final_state = get_state(r);
   for (long* v : {&o.steps, &o.rhs_evals, &o.impacts, &o.sticks, &o.slack_phases}) *v = long(r.get<std::int64_t>());
   o.simulated = r.get<double>();
+  o.skipped = r.get<double>();
   o.windows.resize(r.get<std::uint64_t>());
   for (WindowRecord& rec : o.windows) {
     rec.index = r.get<std::int32_t>();

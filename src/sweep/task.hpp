@@ -20,6 +20,9 @@ struct ChainSetup {
   CompiledProtocol protocol;
   sim::RunOptions run;
   double sample_rate = 200.0;  // samples per second inside windows [1/s]
+  // ε of the windows that stop once their orbit is known (sim/settle_watch.hpp), relative to
+  // l; 0: every settle runs its full length.
+  double settle_tolerance = 0.0;
 };
 
 // The samples of one window, row-major: r1 and r2 are N×3.
@@ -56,7 +59,8 @@ struct TaskOutput {
   physics::State final_state;    // the carry for the next task (the last good state on failure)
   std::vector<WindowRecord> windows;
   long steps = 0, rhs_evals = 0, impacts = 0, sticks = 0, slack_phases = 0;
-  double simulated = 0.0;        // seconds of physics integrated [s]
+  double simulated = 0.0;        // seconds of the chain's schedule covered [s]
+  double skipped = 0.0;          // ... of which settling not integrated, its orbit known [s]
 };
 
 TaskOutput run_task(const ChainSetup& chain, const TaskSpan& span, physics::State start);

@@ -1,0 +1,131 @@
+// Settling that stops once its orbit is known (sim/settle_watch.hpp, run through sweep tasks):
+// a locked orbit's settle ends early and its measured window starts within ε l of where the full
+// settle leaves it, with the same class; a settle that never converges gives the same bits as
+// without the early stop; a tolerance of zero or one above the classifier's is refused.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "config/config.hpp"
+#include "sweep/plan.hpp"
+#include "sweep/task.hpp"
+
+using namespace ajx;
+
+namespace {
+
+// The main job's first held level (sweeps/paper.toml, group "up"): Table 1's orbit at 4π
+// settles onto its locked orbit, a fixed point of the co-rotating frame.
+const char* kLocked = R"(
+[model]
+drive_radius = 0.015
+contact_distance = 0.035
+[layers]
+friction = "stick_slip"
+[integrator]
+method = "dop853"
+rtol = 1e-9
+atol = 1e-11
+[protocol]
+start_seed = "circular_high"
+start_omega = 12.566370614359172
+windows_per_task = 1
+sample_rate = 50.0
+[[protocol.segment]]
+kind = "steps"
+from = 12.566370614359172
+to = 12.566370614359172
+num = 1
+settle = 100.0
+measure = 10.0
+)";
+
+// Both balls hanging, kicked (0.3 m/s) at ω_m = 0: a swing that drag damps at γ ~ 0.05/s, far
+// from rest for the whole 30 s settle.
+const char* kSwing = R"(
+[model]
+drive_radius = 0.015
+contact_distance = 0.035
+[integrator]
+method = "dop853"
+rtol = 1e-9
+atol = 1e-11
+[hold]
+omega = [0.0]
+settle = 30.0
+measure = 5.0
+perturbations = 1
+perturbation = 0.3
+sample_rate = 50.0
+)";
+
+struct Ran {
+  sweep::TaskOutput out;
+  std::vector<sweep::OrbitClassification> classes;
+};
+
+Ran run_chain(const std::string& text, std::size_t chain, const std::vector<std::string>& overrides) {
+  const config::SweepConfig cfg = config::parse_sweep_config(text, "test.toml", overrides);
+  const sweep::SweepPlan plan = config::make_plan(cfg);
+  Ran r;
+  r.out = sweep::run_task(plan.setups[chain], plan.spans[chain][0], plan.start_state(chain));
+  r.classes = sweep::classify_windows(plan.setups[chain], r.out);
+  return r;
+}
+
+}  // namespace
+
+TEST(SettleWatch, ALockedOrbitEndsItsSettleEarlyAndIsMeasuredFromWithinTolerance) {
+  const double eps = 1e-3, l = 0.826;
+  const Ran early = run_chain(kLocked, 0, {});
+  const Ran full = run_chain(kLocked, 0, {"protocol.early_stop=false"});
+  ASSERT_TRUE(early.out.ok && full.out.ok);
+  EXPECT_EQ(full.out.skipped, 0.0);
+  EXPECT_GT(early.out.skipped, 10.0);         // at least two blocks of the 100 s settle left out
+  EXPECT_LT(early.out.steps, full.out.steps);  // and not integrated
+  EXPECT_EQ(early.out.simulated, full.out.simulated);  // the same stretch of the schedule
+  ASSERT_EQ(early.classes.size(), 1u);
+  EXPECT_EQ(early.classes[0].cls, sweep::OrbitClass::LockedCircular);
+  EXPECT_EQ(early.classes[0].cls, full.classes[0].cls);
+  // The window holds the same sample times, and starts within ε l of the full settle's state
+  // (both lie within the estimated distance D ≤ ε l of the fixed point).
+  const auto& a = early.out.windows[0];
+  const auto& b = full.out.windows[0];
+  ASSERT_EQ(a.t, b.t);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(a.r1[std::size_t(k)], b.r1[std::size_t(k)], eps * l) << k;
+    EXPECT_NEAR(a.r2[std::size_t(k)], b.r2[std::size_t(k)], eps * l) << k;
+  }
+  // ... and so on through the window: the orbit is the same.
+  for (std::size_t i = 0; i < a.r1.size(); ++i) EXPECT_NEAR(a.r1[i], b.r1[i], eps * l) << i;
+  // The work integrals carried over the skipped stretch at the orbit's rates: the window's
+  // motor power is the same to the tolerance's share of it.
+  const sweep::WindowPowers pa = sweep::window_powers(a), pb = sweep::window_powers(b);
+  EXPECT_NEAR(pa.motor, pb.motor, 1e-2 * std::abs(pb.motor));
+  EXPECT_NEAR(a.first.motor_work, b.first.motor_work, 1e-2 * std::abs(b.first.motor_work));
+}
+
+TEST(SettleWatch, ASettleThatNeverConvergesIsIntegratedAsWithoutIt) {
+  // Chain 1: the kicked copy of the hanging seed.
+  const Ran on = run_chain(kSwing, 1, {});
+  const Ran off = run_chain(kSwing, 1, {"hold.early_stop=false"});
+  ASSERT_TRUE(on.out.ok && off.out.ok);
+  EXPECT_EQ(on.out.skipped, 0.0);
+  EXPECT_EQ(sweep::encode(on.out), sweep::encode(off.out));  // bit for bit
+}
+
+TEST(SettleWatch, ToleranceOutOfRangeIsRefusedNamingFileKeyAndRange) {
+  for (const char* bad : {"protocol.early_stop_tolerance=0", "protocol.early_stop_tolerance=-1e-3",
+                          "protocol.early_stop_tolerance=0.02"}) {
+    try {
+      config::parse_sweep_config(kLocked, "locked.toml", {bad});
+      ADD_FAILURE() << "accepted " << bad;
+    } catch (const config::ConfigError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("locked.toml"), std::string::npos) << what;
+      EXPECT_NE(what.find("early_stop_tolerance"), std::string::npos) << what;
+      EXPECT_NE(what.find("(0, 0.01]"), std::string::npos) << what;
+    }
+  }
+}
