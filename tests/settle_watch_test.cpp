@@ -1,5 +1,5 @@
 // Settling that stops once its orbit is known (sim/settle_watch.hpp, run through sweep tasks):
-// a locked orbit's settle ends early and its measured window starts within ε l of where the full
+// a fixed point's settle ends early and its measured window starts within ε l of where the full
 // settle leaves it, with the same class; a settle that never converges gives the same bits as
 // without the early stop; a tolerance of zero or one above the classifier's is refused.
 #include <gtest/gtest.h>
@@ -15,9 +15,10 @@ using namespace ajx;
 
 namespace {
 
-// The main job's first held level (sweeps/paper.toml, group "up"): Table 1's orbit at 4π
-// settles onto its locked orbit, a fixed point of the co-rotating frame.
-const char* kLocked = R"(
+// Both balls hanging at 17π with the paper's rigid tie: the fallen pair (the bead on the bottom
+// ball) settles onto a fixed point of the co-rotating frame, turning with the motor; its swing
+// about it decays at about the drag rate, so that ε l is reached some 85 s into the settle.
+const char* kFixed = R"(
 [model]
 drive_radius = 0.015
 contact_distance = 0.035
@@ -27,18 +28,11 @@ friction = "stick_slip"
 method = "dop853"
 rtol = 1e-9
 atol = 1e-11
-[protocol]
-start_seed = "circular_high"
-start_omega = 12.566370614359172
-windows_per_task = 1
-sample_rate = 50.0
-[[protocol.segment]]
-kind = "steps"
-from = 12.566370614359172
-to = 12.566370614359172
-num = 1
-settle = 100.0
+[hold]
+omega = [53.40707511102649]
+settle = 150.0
 measure = 10.0
+sample_rate = 50.0
 )";
 
 // Both balls hanging, kicked (0.3 m/s) at ω_m = 0: a swing that drag damps at γ ~ 0.05/s, far
@@ -60,6 +54,18 @@ perturbation = 0.3
 sample_rate = 50.0
 )";
 
+// A staircase of one held level, for the keys of [protocol].
+const char* kSteps = R"(
+[protocol]
+[[protocol.segment]]
+kind = "steps"
+from = 12.566370614359172
+to = 12.566370614359172
+num = 1
+settle = 60.0
+measure = 10.0
+)";
+
 struct Ran {
   sweep::TaskOutput out;
   std::vector<sweep::OrbitClassification> classes;
@@ -76,17 +82,17 @@ Ran run_chain(const std::string& text, std::size_t chain, const std::vector<std:
 
 }  // namespace
 
-TEST(SettleWatch, ALockedOrbitEndsItsSettleEarlyAndIsMeasuredFromWithinTolerance) {
+TEST(SettleWatch, AFixedPointEndsItsSettleEarlyAndIsMeasuredFromWithinTolerance) {
   const double eps = 1e-3, l = 0.826;
-  const Ran early = run_chain(kLocked, 0, {});
-  const Ran full = run_chain(kLocked, 0, {"protocol.early_stop=false"});
+  const Ran early = run_chain(kFixed, 0, {});
+  const Ran full = run_chain(kFixed, 0, {"hold.early_stop=false"});
   ASSERT_TRUE(early.out.ok && full.out.ok);
   EXPECT_EQ(full.out.skipped, 0.0);
-  EXPECT_GT(early.out.skipped, 10.0);         // at least two blocks of the 100 s settle left out
+  EXPECT_GT(early.out.skipped, 10.0);         // at least two blocks of the 150 s settle left out
   EXPECT_LT(early.out.steps, full.out.steps);  // and not integrated
   EXPECT_EQ(early.out.simulated, full.out.simulated);  // the same stretch of the schedule
   ASSERT_EQ(early.classes.size(), 1u);
-  EXPECT_EQ(early.classes[0].cls, sweep::OrbitClass::LockedCircular);
+  EXPECT_EQ(early.classes[0].cls, sweep::OrbitClass::Fallen);
   EXPECT_EQ(early.classes[0].cls, full.classes[0].cls);
   // The window holds the same sample times, and starts within ε l of the full settle's state
   // (both lie within the estimated distance D ≤ ε l of the fixed point).
@@ -99,11 +105,6 @@ TEST(SettleWatch, ALockedOrbitEndsItsSettleEarlyAndIsMeasuredFromWithinTolerance
   }
   // ... and so on through the window: the orbit is the same.
   for (std::size_t i = 0; i < a.r1.size(); ++i) EXPECT_NEAR(a.r1[i], b.r1[i], eps * l) << i;
-  // The work integrals carried over the skipped stretch at the orbit's rates: the window's
-  // motor power is the same to the tolerance's share of it.
-  const sweep::WindowPowers pa = sweep::window_powers(a), pb = sweep::window_powers(b);
-  EXPECT_NEAR(pa.motor, pb.motor, 1e-2 * std::abs(pb.motor));
-  EXPECT_NEAR(a.first.motor_work, b.first.motor_work, 1e-2 * std::abs(b.first.motor_work));
 }
 
 TEST(SettleWatch, ASettleThatNeverConvergesIsIntegratedAsWithoutIt) {
@@ -119,11 +120,11 @@ TEST(SettleWatch, ToleranceOutOfRangeIsRefusedNamingFileKeyAndRange) {
   for (const char* bad : {"protocol.early_stop_tolerance=0", "protocol.early_stop_tolerance=-1e-3",
                           "protocol.early_stop_tolerance=0.02"}) {
     try {
-      config::parse_sweep_config(kLocked, "locked.toml", {bad});
+      config::parse_sweep_config(kSteps, "steps.toml", {bad});
       ADD_FAILURE() << "accepted " << bad;
     } catch (const config::ConfigError& e) {
       const std::string what = e.what();
-      EXPECT_NE(what.find("locked.toml"), std::string::npos) << what;
+      EXPECT_NE(what.find("steps.toml"), std::string::npos) << what;
       EXPECT_NE(what.find("early_stop_tolerance"), std::string::npos) << what;
       EXPECT_NE(what.find("(0, 0.01]"), std::string::npos) << what;
     }

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "physics/rotating_axes.hpp"
 
@@ -20,16 +19,25 @@ double SettleWatch::top_rate(double t, const numerics::Vec& y) const {
   return w;
 }
 
-// V = max_i |v_i − Ω ẑ × r_i|: invariant under rotations about z, so the same in any axes.
-double SettleWatch::relative_speed(double t, const numerics::Vec& y) const {
-  const double Omega = top_rate(t, y);
-  double v = 0.0;
-  for (int b : {idx::r1, idx::r2}) {
-    const int u = b + (idx::v1 - idx::r1);
-    const double wx = y(u) + Omega * y(b + 1), wy = y(u + 1) - Omega * y(b), wz = y(u + 2);
-    v = std::max(v, std::sqrt(wx * wx + wy * wy + wz * wz));
+// ψ in the integrator's axes: χ (the tie's azimuth, in the lab) or φ, less the axes' own angle.
+SettleWatch::Vec6 SettleWatch::in_top_frame(double t, const numerics::Vec& y) const {
+  double psi;
+  if (y.size() > idx::dim) {
+    psi = y(idx::chi);
+  } else {
+    double w, wd;
+    ctx_.schedule.phase(t, psi, w, wd);
   }
-  return v;
+  psi -= ctx_.axes.angle(t);
+  const double c = std::cos(psi), s = std::sin(psi);
+  Vec6 x;
+  for (int b = 0; b < 2; ++b) {
+    const int k = b == 0 ? idx::r1 : idx::r2;
+    x(3 * b) = c * y(k) + s * y(k + 1);
+    x(3 * b + 1) = -s * y(k) + c * y(k + 1);
+    x(3 * b + 2) = y(k + 2);
+  }
+  return x;
 }
 
 SettleWatch::Record SettleWatch::record(double t, const numerics::Vec& y) const {
@@ -38,12 +46,16 @@ SettleWatch::Record SettleWatch::record(double t, const numerics::Vec& y) const 
 
 void SettleWatch::restart(double t) {
   block_end_ = t + kBlock;
-  v_now_ = 0.0;
-  v_prev_ = -1.0;
-  q_prev_ = 2.0;
+  blocks_ = 0;
   pending_ = false;
   mode_ = ctx_.s.contact.mode;
   tie_slip_ = ctx_.s.contact.tie.slip;
+}
+
+void SettleWatch::open_block(double t, const numerics::Vec& y) {
+  lo_ = hi_ = in_top_frame(t, y);
+  block_start_ = record(t, y);
+  block_end_ = t + kBlock;
 }
 
 bool SettleWatch::observe(const numerics::StepView& step) {
@@ -59,32 +71,42 @@ bool SettleWatch::observe(const numerics::StepView& step) {
   // The first step in the span, or a switch of the bead's mode or of the tie: blocks anew.
   if (!std::isfinite(block_end_) || ctx_.s.contact.mode != mode_ || ctx_.s.contact.tie.slip != tie_slip_) {
     restart(t);
-    block_start_ = record(t, yend_);
-    v_now_ = relative_speed(t, yend_);
+    open_block(t, yend_);
     return true;
   }
-  v_now_ = std::max(v_now_, relative_speed(t, yend_));
+  const Vec6 x = in_top_frame(t, yend_);
+  lo_ = lo_.cwiseMin(x);
+  hi_ = hi_.cwiseMax(x);
   if (t < block_end_) return true;
-  // A block closed: V_j against V_{j−1}, λ_j = −ln(V_j/V_{j−1})/B_j.
-  const double len = t - block_start_.t;
-  const double q = v_prev_ > 0.0 ? v_now_ / v_prev_ : (v_now_ > 0.0 ? 2.0 : 0.0);
-  if (v_prev_ >= 0.0 && (v_now_ == 0.0 || (q < 1.0 && q_prev_ < 1.0))) {
-    const double lambda = -std::log(std::max(q, q_prev_)) / len;  // the slower decay of the two
-    const double distance = v_now_ == 0.0 ? 0.0 : v_now_ / lambda;   // D ≤ V/λ [m]
-    if (distance <= ctx_.opt.settle_tolerance * ctx_.model.p.string_length && spans[span_].second - t > kBlock) {
-      const Record now = record(t, yend_);
-      for (int k = 0; k < 3; ++k) rate_[k] = (now.work[k] - block_start_.work[k]) / len;
-      rate_[3] = (now.impact - block_start_.impact) / len;
-      pending_ = true;
-      return false;
-    }
+  if (recognised(t) && spans[span_].second - t > kBlock) {
+    pending_ = true;
+    return false;
   }
-  if (v_prev_ >= 0.0) q_prev_ = q;
-  v_prev_ = v_now_;
-  v_now_ = 0.0;
-  block_start_ = record(t, yend_);
-  block_end_ = t + kBlock;
+  open_block(t, yend_);
   return true;
+}
+
+// D = a_j + s_j q/(1 − q), q = s_j/s_{j−1} < 1, a_j ≤ a_{j−1}: at most ε l.
+bool SettleWatch::recognised(double t) {
+  const Vec6 centre = 0.5 * (lo_ + hi_);
+  const double spread = 0.5 * (hi_ - lo_).norm();
+  const double shift = blocks_ > 0 ? (centre - centre_).norm() : 0.0;
+  bool known = false;
+  if (blocks_ >= 2 && spread <= spread_prev_ && shift < shift_prev_) {
+    const double q = shift / shift_prev_;
+    known = spread + shift * q / (1.0 - q) <= ctx_.opt.settle_tolerance * ctx_.model.p.string_length;
+  }
+  ++blocks_;
+  centre_ = centre;
+  spread_prev_ = spread;
+  shift_prev_ = shift;
+  if (known) {
+    const Record now = record(t, yend_);
+    const double len = t - block_start_.t;
+    for (int k = 0; k < 3; ++k) rate_[k] = (now.work[k] - block_start_.work[k]) / len;
+    rate_[3] = (now.impact - block_start_.impact) / len;
+  }
+  return known;
 }
 
 void SettleWatch::jump() {

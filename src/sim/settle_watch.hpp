@@ -4,15 +4,19 @@
 // turns the top's azimuth ψ with it (ψ = φ for a tie held on the rod, ψ = χ for a slipping
 // one). An orbit that is a fixed point of the frame turning with the top, at Ω = ψ̇ (locked;
 // the fallen pair turning with the motor; the lagging orbit of a slipping tie, which turns with
-// χ), has no velocity in that frame: w_i = v_i − Ω ẑ × r_i = 0 for both balls. The watch
-// follows V = max |w_i| over blocks of B seconds; once V has fallen in two blocks running, the
-// slower of the two decay rates λ = −ln(V_j/V_{j−1})/B bounds the distance left to the fixed
-// point, D ≤ V/λ, and when D ≤ ε l the stretch ends: its end state is taken to be the present
-// one turned by Ω Δ (Δ the time left), with the work integrals advanced at their present rates.
-// The end state then lies within ε l of the one a full integration reaches (both lie within
-// D of the fixed point). Orbits that are not such fixed points (flowers, slow slides, escapes
-// from a saddle: V not falling twice) run the full stretch.
+// χ), keeps both balls' positions in that frame, x = Rz(−ψ) (r1, r2), constant. The watch
+// follows x over blocks of B seconds: each block's box of x (its centre m_j, its half-diagonal
+// a_j, what an oscillation about the centre spans) and the shift of the centre from the last
+// block, s_j = |m_j − m_{j−1}|. When the shifts contract, q = s_j/s_{j−1} < 1, and the
+// oscillation does not grow, a_j ≤ a_{j−1}, the distance left to the fixed point is at most
+// D = a_j + s_j q/(1 − q) (the oscillation, and the geometric sum of the shifts to come); once
+// D ≤ ε l the stretch ends: its end state is taken to be the present one turned by Ω Δ (Δ the
+// time left), with the work integrals advanced at their rates over the last block. The end
+// state then lies within D of the one a full integration reaches (which is nearer the fixed
+// point). Orbits that are not such fixed points (flowers, slow slides, escapes from a saddle)
+// never pass the test and run the full stretch, bit for bit as without the watch.
 #pragma once
+#include <Eigen/Core>
 #include <cstddef>
 #include <limits>
 
@@ -41,21 +45,27 @@ class SettleWatch {
   }
 
  private:
+  using Vec6 = Eigen::Matrix<double, 6, 1>;
   struct Record {
     double t = 0.0;
     double work[3] = {0, 0, 0};  // the work integrals (motor, drag, friction) [J]
     double impact = 0.0;         // cumulative impact loss [J]
   };
-  double relative_speed(double t, const numerics::Vec& y) const;  // V at (t, y) [m/s]
-  double top_rate(double t, const numerics::Vec& y) const;        // Ω [rad/s]
+  double top_rate(double t, const numerics::Vec& y) const;  // Ω [rad/s]
+  Vec6 in_top_frame(double t, const numerics::Vec& y) const;  // x = Rz(−ψ) (r1, r2) [m]
   void restart(double t);
+  void open_block(double t, const numerics::Vec& y);
   Record record(double t, const numerics::Vec& y) const;
+  // The block just closed at t: whether the orbit is known (sets the rates for the jump).
+  bool recognised(double t);
 
   RunContext& ctx_;
   std::size_t span_ = 0;  // the first settle span not yet behind the run
   bool pending_ = false;
   double block_end_ = 0.0;
-  double v_now_ = 0.0, v_prev_ = -1.0, q_prev_ = 2.0;  // V of this block, of the last, their ratio
+  int blocks_ = 0;                  // blocks closed in this run of the span
+  Vec6 lo_, hi_, centre_;           // this block's box of x, the last block's centre
+  double spread_prev_ = 0.0, shift_prev_ = 0.0;
   Record block_start_;
   double rate_[4] = {0, 0, 0, 0};  // d/dt of the work integrals and the impact loss over the last block
   physics::Mode mode_ = physics::Mode::Sliding;
