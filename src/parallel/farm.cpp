@@ -566,6 +566,24 @@ TaskResult result_of(const Message& m) {
   return r;
 }
 
+// The end of the master's loop: every worker rank told to stop, the summary with the lost ranks
+// and the bytes sent (rethrows the error that stopped the farm, if any).
+FarmSummary wind_up(const FarmComm& comm, int size, const Scheduler& sched, const Workers& ws, std::uint64_t sent) {
+  FarmSummary s = sched.summary(size);
+  Header stop;
+  stop.code = static_cast<std::int32_t>(s.status);
+  const Bytes msg = pack(stop);
+  for (int w = 1; w < size; ++w) {
+    comm.send(msg, w, kTagStop);
+    sent += msg.size();
+  }
+  sched.rethrow_if_failed();
+  for (int w = 1; w < size; ++w)
+    if (ws.lost[static_cast<std::size_t>(w)]) s.lost_ranks.push_back(w);
+  s.bytes_sent = sent;
+  return s;
+}
+
 // The master's loop: ready tasks to idle workers (ranks and its own threads), their results
 // delivered, the task bound watched, until nothing is left or a stop winds it down.
 FarmSummary run_master(const FarmComm& comm, int size, std::vector<Chain> chains, const WorkFunction& work,
@@ -651,20 +669,9 @@ FarmSummary run_master(const FarmComm& comm, int size, std::vector<Chain> chains
     sched.tick();
   }
 
-  FarmSummary s = sched.summary(size);
-  Header stop;
-  stop.code = static_cast<std::int32_t>(s.status);
-  const Bytes msg = pack(stop);
-  for (int w = 1; w < size; ++w) {
-    comm.send(msg, w, kTagStop);
-    sent += msg.size();
-  }
-  sched.rethrow_if_failed();
-  for (int w = 1; w < size; ++w)
-    if (ws.lost[static_cast<std::size_t>(w)]) s.lost_ranks.push_back(w);
+  FarmSummary s = wind_up(comm, size, sched, ws, sent);
   s.busy_seconds = std::move(busy);
   s.tasks_per_rank = std::move(ran);
-  s.bytes_sent = sent;
   s.bytes_received = received;
   return s;
 }
