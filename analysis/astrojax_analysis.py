@@ -71,8 +71,10 @@ def fail(message):
 
 # The newest layout of run and sweep files this library reads (root attribute format_version;
 # 1 when absent): 2 added /resolved (the configuration in force as values) and, in sweeps,
-# /windows/phi_begin (the motor phase at each window start).
-FORMAT_VERSION = 2
+# /windows/phi_begin (the motor phase at each window start); 4 made motor_work and
+# motor_power the motor's at the rod with a clutch (string_work, string_power, clutch_loss,
+# clutch_power, /trajectory/chi new). 3 is the string lists of the reader's rework.
+FORMAT_VERSION = 4
 
 
 def format_version(f, path):

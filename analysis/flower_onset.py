@@ -170,7 +170,9 @@ def report(path, rows, span):
     f = lambda v, d=3: f"{v:.{d}f}" if np.isfinite(v) else "—"
     lines = ["# Onset of the flower orbit (Hopf point of the lagging orbit)", "", f"- sweep: `{path}`",
              f"- fit: a² = μ (k + q μ), μ = max(ω_m − ω_H, 0), over the levels up to {span:g}π above the first flower window; "
-             "a = std/mean of the bottom ball's radius; σ of a level = half the difference of its up and down legs",
+             "a = std/mean of the bottom ball's radius; σ of a level = half the difference of its up and down legs; "
+             "σ(ω_H) where χ² has risen by max(1, χ²/dof), i.e. scaled by √(χ²/dof) when that exceeds 1; it leaves out "
+             "the spread over histories (where the bead sticks, analysis/sensitivity.py --histories)",
              f"- paper: ω2 = {PAPER_OMEGA_2:.2f}π rad/s", "",
              "| chain | c_a [N m s] | L1 [m] | ω_ball [π] | classifier: last lagging → first flower [π] "
              "| ω_H ± σ [π] | vs ω2 | χ²/dof | τ_H [N m] | flower on the way down to [π] | max \\|dE/dt\\|/P_drag (flowers) |",

@@ -645,6 +645,11 @@ class cli(unittest.TestCase):
         for r in rows:
             p_motor, p_drag, injection = float(r[8]), float(r[9]), float(r[12])
             self.assertLessEqual(abs(injection), 1e-6 * max(abs(p_motor), p_drag, 1e-9), r)
+            self.assertEqual(float(r[13]), 0.0, r)  # P_clutch of a rigid tie
+        _, out = script("run_ledger.py", data("run.h5"), "--window", "10", "--tail", "5", "--decay")
+        m = re.search(r"amplitude \(ρ2\) ([-+0-9.]+) /s, kinetic energy ([-+0-9.]+) /s; c_D/2m = ([0-9.]+) /s", out)
+        self.assertTrue(m, out)
+        self.assertTrue(all(np.isfinite(float(g)) for g in m.groups()), out)
         rc, out = script("run_ledger.py", data("missing.h5"), check=False)
         self.assertEqual((rc, "missing.h5" in out), (2, True), out)
         rc, out = script("run_ledger.py", data("phase.h5"), check=False)

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <vector>
 
@@ -45,7 +46,7 @@ TEST(FlowerOnset, TheErrorBarCoversTheTruthLikeAStandardError) {
   int covered = 0, n = 200, dof = 0;
   double chi2 = 0.0;
   for (int i = 0; i < n; ++i) {
-    const auto fit = fit_hopf(levels(15.3, 2e-3, 1e-4, 2e-4, rng), 15.5);
+    const auto fit = fit_hopf(levels(15.3, 2e-3, 1e-4, 2e-4, rng), 15.5, 0);
     ASSERT_TRUE(fit);
     chi2 += fit->reduced_chi2 / n;
     dof = fit->levels - 3;
@@ -53,6 +54,48 @@ TEST(FlowerOnset, TheErrorBarCoversTheTruthLikeAStandardError) {
   }
   EXPECT_NEAR(chi2, 1.0, 4.0 * std::sqrt(2.0 / dof / n));
   EXPECT_GE(double(covered) / n, 0.95 - 3.5 * std::sqrt(0.95 * 0.05 / n));
+}
+
+TEST(FlowerOnset, AnUnderstatedSigmaIsScaledAndTheBootstrapSeesTheScatter) {
+  // The levels scatter 5× more than their stated σ (as a level's up and down legs can agree
+  // better than the level's own a² repeats): χ²/dof ≈ 25. The scaled error must match the true
+  // spread of ω̂_H over draws, the unscaled one must not (the noise of
+  // TheErrorBarCoversTheTruthLikeAStandardError, where the fit is close to linear; with 5× more
+  // noise the fit is not, and the scaled error falls to half the spread: measured 0.78 against
+  // 1.76). With 24 draws
+  // the sample sd has a relative error of 1/√(2·23) ≈ 15 %, so the ratios are asserted within
+  // [0.5, 1.6] (about four of those errors), and the unscaled error is 5× too small.
+  std::mt19937 rng(11);
+  const int n = 24;
+  std::vector<double> omega;
+  double scaled = 0.0, unscaled = 0.0, boot = 0.0, red = 0.0;
+  for (int i = 0; i < n; ++i) {
+    auto lv = levels(15.3, 2e-3, 1e-4, 2e-4, rng);
+    for (auto& l : lv) l.sigma = 4e-5;  // stated 5× too small
+    const auto fit = fit_hopf(lv, 15.5, 60);
+    ASSERT_TRUE(fit);
+    omega.push_back(fit->omega_h);
+    scaled += fit->sigma / n;
+    unscaled += fit->sigma_unscaled / n;
+    boot += fit->sigma_bootstrap / n;
+    red += fit->reduced_chi2 / n;
+    EXPECT_GT(fit->bootstrap_fits, 50);
+  }
+  double mean = 0.0, var = 0.0;
+  for (double w : omega) mean += w / n;
+  for (double w : omega) var += (w - mean) * (w - mean) / (n - 1);
+  const double sd = std::sqrt(var);
+  std::printf("measured: χ²/dof %.1f; sd of ω̂_H %.3f, mean σ scaled %.3f, unscaled %.3f, bootstrap %.3f\n", red, sd,
+              scaled, unscaled, boot);
+  EXPECT_NEAR(red, 25.0, 8.0);
+  EXPECT_GT(scaled / sd, 0.5);
+  EXPECT_LT(scaled / sd, 1.6);
+  // The bootstrap is conservative: a resample keeps on average 63 % of the distinct levels, and
+  // loses some of the few above ω_H that fix the parabola (measured 2.2× the spread here): it
+  // must not be below the spread, nor far above.
+  EXPECT_GT(boot / sd, 0.8);
+  EXPECT_LT(boot / sd, 3.5);
+  EXPECT_LT(unscaled / sd, 0.35);
 }
 
 TEST(FlowerOnset, NeedsThreeLevelsAboveTheFirstFlower) {

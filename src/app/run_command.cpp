@@ -53,7 +53,7 @@ physics::State initial_state(const config::RunConfig& c, const physics::MotorSch
 }
 
 // The samples of a run, held in memory until it ends and then written uncompressed: refused
-// before any work when they cannot fit (Trajectory's 25 doubles and one int a sample; its
+// before any work when they cannot fit (Trajectory's 29 doubles and one int a sample; its
 // vectors grow by doubling, so up to 3 times that while one is reallocated).
 void check_run_size(const config::RunConfig& cfg, double duration, double max_memory_mb) {
   constexpr double kBytesPerSample = results::Trajectory::kBytesPerSample;
@@ -116,7 +116,7 @@ int run_command(const RunArgs& args) {
 
   results::Trajectory traj;
   const auto wall0 = std::chrono::steady_clock::now();
-  const sim::SampleObserver add = [&](const sim::Sample& s) { traj.add(s, cfg.model.p); };
+  const sim::SampleObserver add = [&](const sim::Sample& s) { traj.add(s, cfg.model.p, schedule); };
   const sim::RunSummary sum =
       paper ? sim::run_paper_scheme(cfg.model, schedule, *paper, cfg.run.integ.h_fixed, pair, schedule.duration(),
                                     cfg.output.sample_interval, add, state, cfg.run.omega_window)

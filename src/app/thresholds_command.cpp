@@ -535,7 +535,10 @@ bool threshold_lines(const TableText& table, const SweepWindows& sw, const std::
       table.line({"ω2 (Hopf)", chain_name(sw, c), fmt::format("{:.2f} ± {:.2f}", h.omega_h / pi, h.sigma / pi),
                   fmt::format("{:.3f}", 2 * h.sigma / pi), fmt::format("lag's Hopf point, {} levels", h.levels),
                   fmt::format("{:.2f}", paper / pi), against_paper(h.omega_h - h.sigma, h.omega_h + h.sigma, paper),
-                  fmt::format("fit χ²/dof {:.2g}", h.reduced_chi2)},
+                  h.reduced_chi2 > 1.0
+                      ? fmt::format("χ²/dof {:.2g}: σ {:.2f} × √ = {:.2f}; bootstrap {:.2f}", h.reduced_chi2,
+                                    h.sigma_unscaled / pi, h.sigma / pi, h.sigma_bootstrap / pi)
+                      : fmt::format("χ²/dof {:.2g}; bootstrap {:.2f}", h.reduced_chi2, h.sigma_bootstrap / pi)},
                  widths);
     }
   return any;
@@ -599,9 +602,13 @@ std::string report(const ThresholdsArgs& args, const SweepWindows& sw, const std
     out += fmt::format(
         "\n{}ω2 (Hopf): where the lag turns into a flower, fitted over the held levels with both an up and a down leg up "
         "to {:g}π above the first flower: a² = μ (k + q μ), μ = max(ω_m − ω_H, 0), a = std/mean of the bottom ball's "
-        "radius; ± one standard error (χ² + max(1, χ²/dof)). The classifier's ω2 bracket lies above it: it names a "
-        "flower only once the oscillation is large enough to see.\n",
-        markdown ? "" : "  ", args.onset_span);
+        "radius; ± one standard error, where χ² has risen by max(1, χ²/dof): with χ²/dof > 1 the levels scatter more "
+        "than their σ (half their up and down legs' difference) say, and the error of Δχ² = 1 is scaled by "
+        "√(χ²/dof). The bootstrap is half the central 68 % range of ω_H over {} resamples of the levels (an error from "
+        "their scatter alone). Neither includes the spread over histories: where the bead sticks moves ω_H (the "
+        "sensitivity report). The classifier's ω2 bracket lies above it: it names a flower only once the oscillation is "
+        "large enough to see.\n",
+        markdown ? "" : "  ", args.onset_span, sweep::kBootstrapResamples);
   return out;
 }
 

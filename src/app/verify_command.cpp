@@ -84,7 +84,10 @@ void check_results(const io::File& f, std::vector<std::string>& damaged, std::ve
   std::vector<std::string> paths{"windows/class", "windows/mode_fraction", "samples/count", "tasks/status",
                                  "tasks/steps", "tasks/final_state"};
   for (const auto& st : results::kStats) paths.push_back(std::string("windows/") + st[0]);
-  for (const auto& st : results::kPowers) paths.push_back(std::string("windows/") + st[0]);
+  // string_power and clutch_power since format 4
+  const bool v4 = results::checked_format_version(f, "") >= 4;
+  for (const auto& st : results::kPowers)
+    if (v4 || f.exists(std::string("windows/") + st[0])) paths.push_back(std::string("windows/") + st[0]);
   for (const char* c : results::kSampleColumns) paths.push_back(std::string("samples/") + c);
   std::vector<std::string> unchecked;
   for (const std::string& p : paths) {

@@ -25,12 +25,13 @@ namespace ajx::physics {
   AppliedForces f = applied_forces(p, v1, v2);
   // The diagnostic pair couple (zero unless its layer is on) joins f_i in every mode, so the
   // tensions, the stops' pushes and the guards all see it.
-  d.couple_power = 0.0;
+  d.couple_power = d.couple_loss = 0.0;
   if (m.layers.pair_couple != PairCouple::None) {
     const PairCoupleForces couple = pair_couple_forces(m, top.motor_omega, r1, r2, v1, v2);
     f.f1 += couple.f1;
     f.f2 += couple.f2;
     d.couple_power = couple.power;
+    d.couple_loss = couple.loss;
   }
 
   // F1, F2: the net pulls of the two links on the bead (tension minus any contact push).
@@ -99,6 +100,22 @@ namespace ajx::physics {
   return d;
 }
 
+void ledger_rates(const Model& m, const TopKinematics& top, const Contact& c, const Dynamics& d,
+                  const numerics::Vec& y, numerics::Vec& dydt) {
+  // The motor's power reaches the string through the tie (physics/tie.hpp) and the balls through
+  // the couple: W_m counts both at the motor, W_c both clutches' slip.
+  double rod = d.motor_power, clutch = 0.0;
+  if (has_tie(y)) {
+    const TiePowers tie = tie_powers(m, top, c, d);
+    rod = tie.rod;
+    clutch = tie.clutch;
+    dydt(idx::chi) = top.omega;  // χ̇ and χ̈ of the top (ω_m and ω̇_m while it is held)
+    dydt(idx::chi_dot) = top.omega_dot;
+  }
+  dydt(idx::rod_work) = rod + d.couple_power + d.couple_loss;
+  dydt(idx::clutch_loss) = clutch + d.couple_loss;
+}
+
 [[gnu::flatten]] void rhs(const Model& m, const MotorSchedule& schedule, const Contact& c, double t,
                           const numerics::Vec& y, numerics::Vec& dydt) {
   const TopKinematics top = top_kinematics(m, schedule, c, t, y);
@@ -111,11 +128,7 @@ namespace ajx::physics {
   dydt(idx::motor_work) = d.motor_power + d.couple_power;  // the couple's power comes from the motor
   dydt(idx::drag_loss) = d.drag_power;
   dydt(idx::friction_loss) = d.friction_power;
-  // The tie: χ̇ and χ̈ of the top (ω_m and ω̇_m while it is held, physics/tie.hpp).
-  if (y.size() > idx::dim) {
-    dydt(idx::chi) = top.omega;
-    dydt(idx::chi_dot) = top.omega_dot;
-  }
+  if (y.size() > idx::dim) ledger_rates(m, top, c, d, y, dydt);
 }
 
 }  // namespace ajx::physics

@@ -23,7 +23,8 @@ struct Dynamics {
   double drag_power;      // c_D (|v1|² + |v2|²) [W]
   double friction_power;  // (T1 - T2) ṡ [W], >= 0 whenever the tensions are
   double couple_power;    // F2·(v2 − v1) of the pair couple (physics/pair_couple.hpp), 0 without it [W];
-                          // the ledger's motor work integrates motor_power + couple_power
+                          // the string's side of the ledger integrates motor_power + couple_power
+  double couple_loss;     // the couple's slip loss (physics/pair_couple.hpp), 0 without it [W]
 };
 
 // motion_only: what the equations of motion need (accelerations and powers); in the two-link
@@ -31,7 +32,12 @@ struct Dynamics {
 Dynamics evaluate(const Model& m, const TopKinematics& top, const Contact& c, const numerics::Vec& y,
                   bool motion_only = false);
 
-// dy/dt in the layout of idx (accelerations and the three power quadratures).
+// The motor's ledger rates beyond idx::dim (W_m, W_c; the tie's χ̇, χ̈ where y has them) at the
+// top `top` with the dynamics `d` evaluated there.
+void ledger_rates(const Model& m, const TopKinematics& top, const Contact& c, const Dynamics& d,
+                  const numerics::Vec& y, numerics::Vec& dydt);
+
+// dy/dt in the layout of idx (accelerations and the power quadratures).
 void rhs(const Model& m, const MotorSchedule& schedule, const Contact& c, double t,
          const numerics::Vec& y, numerics::Vec& dydt);
 

@@ -24,6 +24,8 @@ PairCoupleForces pair_couple_forces(const Model& m, double motor_omega, const Ve
   out.f2 = (out.couple / d2.squaredNorm()) * Vec3(-d2.y(), d2.x(), 0.0);
   out.f1 = -out.f2;
   out.power = out.f2.dot(d2_dot);
+  const double rho2 = d2.x() * d2.x() + d2.y() * d2.y();
+  out.loss = out.couple / d2.squaredNorm() * (motor_omega * rho2 - (d2.x() * d2_dot.y() - d2.y() * d2_dot.x()));
   return out;
 }
 

@@ -11,7 +11,11 @@
 //   F2 = (τ / L2²) ẑ × d2 on the bottom ball, F1 = −F2 on the bead.
 // Zero net force; torque about z = τ ρ²/L2² = τ sin²θ12 (θ12 the lower segment's tilt), so
 // |F2| ≤ τ_c/L2 and the couple vanishes for a vertical lower segment. Its power on the balls,
-// F2·(v2 − v1) = τ ẑ·(d2 × ḋ2)/L2², comes from the motor: the ledger counts it with the motor work.
+// F2·(v2 − v1) = τ ẑ·(d2 × ḋ2)/L2², comes from the motor through a slipping clutch: the motor turns
+// its side at ω_m against the torque τ ρ²/L2² and delivers τ ω_m ρ²/L2², of which the slip
+// dissipates the rest, τ (ω_m ρ² − ẑ·(d2 × ḋ2))/L2² >= 0 (τ has the sign of w). The ledger
+// (physics/energy.hpp) counts the power on the balls with the string's work, the motor's share in
+// W_m and the slip's in the clutches' loss W_c.
 #pragma once
 #include "physics/drive.hpp"
 #include "physics/model.hpp"
@@ -28,6 +32,7 @@ struct PairCoupleForces {
   double slip = 0.0;       // w, the regularised ω_m − β̇ [rad/s]
   double couple = 0.0;     // τ [N m]
   double power = 0.0;      // F1·v1 + F2·v2 = F2·(v2 − v1) [W]
+  double loss = 0.0;       // τ (ω_m ρ² − ẑ·(d2 × ḋ2))/L2², the slip's dissipation [W]
 };
 
 // w = (ω_m ρ² − ẑ·(d2 × ḋ2))/(ρ² + (ε |d2|)²) [rad/s]

@@ -27,7 +27,7 @@ TopKinematics top_in_rotating_axes(const MotorSchedule& schedule, double R, doub
   const double w = top.omega;
   // Ω×x = ω (−x_y, x_x, 0)
   const auto omega_cross = [w](const auto& x) { return Vec3(-w * x.y(), w * x.x(), 0.0); };
-  dydt.resize(idx::dim);
+  dydt.resize(y.size());
   dydt.segment<3>(idx::r1) = y.segment<3>(idx::v1) - omega_cross(y.segment<3>(idx::r1));
   dydt.segment<3>(idx::r2) = y.segment<3>(idx::v2) - omega_cross(y.segment<3>(idx::r2));
   dydt.segment<3>(idx::v1) = d.acc1 - omega_cross(y.segment<3>(idx::v1));
@@ -35,6 +35,7 @@ TopKinematics top_in_rotating_axes(const MotorSchedule& schedule, double R, doub
   dydt(idx::motor_work) = d.motor_power + d.couple_power;  // the couple's power comes from the motor
   dydt(idx::drag_loss) = d.drag_power;
   dydt(idx::friction_loss) = d.friction_power;
+  if (y.size() > idx::dim) ledger_rates(m, top, c, d, y, dydt);  // the pair couple's (no tie in these axes)
 }
 
 void rotate_about_z(numerics::Vec& y, double angle) {

@@ -34,7 +34,7 @@ struct Contact {
   } tie;
 };
 
-// Layout of the flat vector the integrators see. The three work integrals are quadratures
+// Layout of the flat vector the integrators see. The work integrals are quadratures
 // of the powers (they do not feed back) so that the energy balance is integrated to the
 // integrator's own accuracy.
 namespace idx {
@@ -42,19 +42,31 @@ inline constexpr int r1 = 0;           // bead position [m] (3)
 inline constexpr int r2 = 3;           // bottom ball position [m] (3)
 inline constexpr int v1 = 6;           // bead velocity [m/s] (3)
 inline constexpr int v2 = 9;           // bottom ball velocity [m/s] (3)
-inline constexpr int motor_work = 12;  // ∫ P_motor dt [J]
+// ∫ −F1 u1·ȧ dt plus the top's impulsive work: the work the top passes into the string (with
+// the pair couple, plus the couple's work on the balls). For a rigid tie it is the motor's.
+inline constexpr int motor_work = 12;  // W_s [J]
 inline constexpr int drag_loss = 13;   // ∫ c_D (|v1|² + |v2|²) dt [J]
 inline constexpr int friction_loss = 14;  // ∫ (T1 - T2) ṡ dt [J]
 inline constexpr int dim = 15;
-// With the tie-clutch layer only (physics/tie.hpp), two more:
-inline constexpr int chi = 15;         // χ, azimuth of the string's tie about the motor axis [rad]
-inline constexpr int chi_dot = 16;     // χ̇ [rad/s] (= ω_m while the tie is held)
-inline constexpr int dim_tie = 17;
+// Where the motor drives through a clutch (the tie-clutch layer, physics/tie.hpp, or the pair
+// couple, physics/pair_couple.hpp), the motor's own work and the clutches' loss:
+inline constexpr int rod_work = 15;    // W_m = ∫ (τ_rod + τ_couple,z) ω_m dt, the motor's work [J]
+inline constexpr int clutch_loss = 16; // W_c = ∫ τ_c (ω_m − χ̇) dt + the couple's slip loss [J]
+inline constexpr int dim_ledger = 17;
+// With the tie-clutch layer, the tie:
+inline constexpr int chi = 17;         // χ, azimuth of the string's tie about the motor axis [rad]
+inline constexpr int chi_dot = 18;     // χ̇ [rad/s] (= ω_m while the tie is held)
+inline constexpr int dim_tie = 19;
 }  // namespace idx
 
-// The length of y for a model: the tie's χ, χ̇ only where the layer needs them, so that a
-// model without it integrates exactly the 15 components it always had.
-inline int state_dim(const Model& m) { return m.layers.tie_clutch ? idx::dim_tie : idx::dim; }
+// The length of y for a model: the motor's ledger and the tie's χ, χ̇ only where a layer needs
+// them, so that a model without a clutch integrates exactly the 15 components it always had.
+inline int state_dim(const Model& m) {
+  return m.layers.tie_clutch ? idx::dim_tie : m.layers.pair_couple != PairCouple::None ? idx::dim_ledger : idx::dim;
+}
+// Whether y carries the motor's ledger (W_m, W_c), and the tie's χ, χ̇.
+inline bool has_ledger(const numerics::Vec& y) { return y.size() > idx::rod_work; }
+inline bool has_tie(const numerics::Vec& y) { return y.size() > idx::chi_dot; }
 
 struct State {
   double t = 0.0;                 // [s]

@@ -50,6 +50,18 @@ double tie_torque_needed(const Model& m, const TopKinematics& held, const Contac
   return tie_torque_needed(m, held, evaluate(m, held, c, y));
 }
 
+TiePowers tie_powers(const Model& m, const TopKinematics& top, const Contact& c, const Dynamics& d) {
+  if (!c.tie.slip) return {tie_torque_needed(m, top, d) * top.motor_omega, 0.0};
+  const double slip = top.motor_omega - top.omega;  // ω_m − χ̇
+  const double tau_c = c.tie.sigma * m.p.tie_kinetic_torque + m.p.tie_damping * slip;
+  return {tau_c * top.motor_omega, tau_c * slip};
+}
+
+double tie_energy(const Parameters& p, const numerics::Vec& y) {
+  if (!has_tie(y)) return 0.0;
+  return 0.5 * p.tie_inertia * y(idx::chi_dot) * y(idx::chi_dot);
+}
+
 void hold_tie(const MotorSchedule& schedule, double t, double offset, numerics::Vec& y) {
   double phi, omega, omega_dot;
   schedule.phase(t, phi, omega, omega_dot);

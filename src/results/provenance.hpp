@@ -21,7 +21,12 @@ namespace ajx::results {
 //   1  (no attribute) before the resolved configuration;
 //   2  /resolved holds every model parameter, layer, integrator setting and the start as
 //      attributes keyed "model.drive_radius", ...; root attribute `format` says "run" or "sweep".
-inline constexpr std::int64_t kFileFormatVersion = 2;
+//   3  (kept for the string lists of the reader's rework, written on another branch)
+//   4  the motor's work is the motor's with a clutch (tie clutch, pair couple): a run's
+//      /trajectory/motor_work and a sweep's /windows/motor_power are at the rod (W_m), the
+//      string's side moved to string_work, string_power; clutch_loss, clutch_power,
+//      /trajectory/chi and tie_energy new; /trajectory/phi is the motor's phase.
+inline constexpr std::int64_t kFileFormatVersion = 4;
 
 inline void write_format(io::File& f, std::string_view kind) {
   f.set_attribute("format", kind);

@@ -3,11 +3,12 @@
 #include <fmt/format.h>
 
 #include "physics/energy.hpp"
+#include "physics/tie.hpp"
 #include "results/provenance.hpp"
 
 namespace ajx::results {
 
-void Trajectory::add(const sim::Sample& s, const physics::Parameters& p) {
+void Trajectory::add(const sim::Sample& s, const physics::Parameters& p, const physics::MotorSchedule& schedule) {
   t.push_back(s.t);
   for (int i = 0; i < 3; ++i) {
     r1.push_back(s.y(physics::idx::r1 + i));
@@ -22,9 +23,16 @@ void Trajectory::add(const sim::Sample& s, const physics::Parameters& p) {
   L1.push_back(s.dyn.g.L1);
   psi.push_back(s.dyn.g.psi);
   omega_m.push_back(s.top.motor_omega);
-  phi.push_back(s.top.phi);
+  double motor_phi, omega, omega_dot;
+  schedule.phase(s.t, motor_phi, omega, omega_dot);
+  phi.push_back(motor_phi);
+  chi.push_back(s.top.phi);
   energy.push_back(physics::mechanical_energy(p, s.y));
-  motor_work.push_back(s.y(physics::idx::motor_work));
+  tie_energy.push_back(physics::tie_energy(p, s.y));
+  const bool ledger = physics::has_ledger(s.y);
+  motor_work.push_back(s.y(ledger ? physics::idx::rod_work : physics::idx::motor_work));
+  string_work.push_back(s.y(physics::idx::motor_work));
+  clutch_loss.push_back(ledger ? s.y(physics::idx::clutch_loss) : 0.0);
   drag_loss.push_back(s.y(physics::idx::drag_loss));
   friction_loss.push_back(s.y(physics::idx::friction_loss));
   impact_loss.push_back(s.impact_loss);
@@ -59,9 +67,17 @@ void Trajectory::write(io::Group& g) const {
   col("L1", L1, "m", "string length above the bead, s = L1");
   col("psi", psi, "rad", "deflection of the string at the bead, arccos(u1.u2)");
   col("omega_m", omega_m, "rad/s", "motor angular velocity");
-  col("phi", phi, "rad", "motor phase");
+  col("phi", phi, "rad", "motor phase φ, the rod's azimuth (dφ/dt = omega_m)");
+  col("chi", chi, "rad", "azimuth χ of the string's tie on the motor's circle: φ for a rigid tie, φ + its offset while "
+                         "the tie clutch holds, the tie's own angle while it slips");
   col("energy", energy, "J", "kinetic + potential energy of both balls");
-  col("motor_work", motor_work, "J", "cumulative work done by the motor (with layers.pair_couple: and by the couple on the pair)");
+  col("tie_energy", tie_energy, "J", "kinetic energy of the tie, ½ I_a χ̇² (0 for a rigid tie)");
+  col("motor_work", motor_work, "J", "cumulative work the motor does at its rod, ∫ τ_rod ω_m dt (for a rigid tie: "
+                                     "= string_work); motor_work = tie_energy change + clutch_loss + string_work");
+  col("string_work", string_work, "J", "cumulative work the top of the string passes into the string, "
+                                       "∫ −F1 u1·ȧ dt and the top's impulses (with layers.pair_couple: plus the "
+                                       "couple's work on the balls); string_work = energy change + the four losses");
+  col("clutch_loss", clutch_loss, "J", "cumulative dissipation of the tie clutch, ∫ τ_c (ω_m − χ̇) dt (0 for a rigid tie)");
   col("drag_loss", drag_loss, "J", "cumulative drag dissipation");
   col("friction_loss", friction_loss, "J", "cumulative friction dissipation");
   col("impact_loss", impact_loss, "J", "cumulative dissipation in impacts");
@@ -85,6 +101,8 @@ void write_run(io::File& f, const std::string& command_line, const config::RunCo
   sg.set_attribute("omega_window", cfg.run.omega_window);
   sg.set_attribute("energy_residual_relative", sum.energy.relative());
   sg.set_attribute("motor_work", sum.energy.motor_work);
+  sg.set_attribute("string_work", sum.energy.string_work);
+  sg.set_attribute("clutch_loss", sum.energy.clutch_loss);
   sg.set_attribute("max_constraint_drift", sum.max_drift);
   sg.set_attribute("max_sample_drift", sum.max_sample_drift);
   sg.set_attribute("steps", sum.steps);

@@ -16,14 +16,15 @@ namespace ajx::results {
 
 // Columns of the sampled trajectory, in memory until the run ends.
 struct Trajectory {
-  // Bytes a sample takes in memory and in the file: 25 doubles and the mode.
-  static constexpr double kBytesPerSample = 25 * sizeof(double) + sizeof(std::int32_t);
+  // Bytes a sample takes in memory and in the file: 29 doubles and the mode.
+  static constexpr double kBytesPerSample = 29 * sizeof(double) + sizeof(std::int32_t);
 
-  std::vector<double> t, r1, r2, v1, v2, T1, T2, contact, L1, psi, omega_m, phi, energy;
-  std::vector<double> motor_work, drag_loss, friction_loss, impact_loss;
+  std::vector<double> t, r1, r2, v1, v2, T1, T2, contact, L1, psi, omega_m, phi, chi, energy, tie_energy;
+  std::vector<double> motor_work, string_work, clutch_loss, drag_loss, friction_loss, impact_loss;
   std::vector<std::int32_t> mode;
 
-  void add(const sim::Sample& s, const physics::Parameters& p);  // one sample
+  // One sample; the schedule gives the motor's phase φ (the sample's top is the tie's, at χ).
+  void add(const sim::Sample& s, const physics::Parameters& p, const physics::MotorSchedule& schedule);
   void write(io::Group& g) const;  // one dataset per quantity, with units and a description
 };
 

@@ -83,9 +83,9 @@ inline std::vector<TaskStatus> read_task_statuses(const io::File& f) {
 // writes its windows and its final state and flushes. An interrupted sweep keeps all that.
 class SweepFile {
  public:
-  // t, mode, sigma, s_star, impact_loss; y (idx::dim); the tie: slip, sigma, offset, χ, χ̇
-  // (χ, χ̇ NaN for a rigid tie).
-  static constexpr std::size_t kStateCols = 5 + physics::idx::dim + 5;
+  // t, mode, sigma, s_star, impact_loss; y (idx::dim); the tie: slip, sigma, offset, χ, χ̇ (NaN for
+  // a rigid tie); the motor's ledger W_m, W_c (NaN without a clutch).
+  static constexpr std::size_t kStateCols = 5 + physics::idx::dim + 7;
 
   SweepFile(io::File file, std::size_t chains, std::size_t windows, std::size_t cap, std::size_t tasks)
       : f_(std::move(file)), C_(chains), W_(windows), cap_(cap), T_(tasks) {}
@@ -150,7 +150,7 @@ class SweepFile {
     tg.create_filled("final_state", {T_, kStateCols}, io::DType::Float64, kNotComputed, {1, kStateCols})
         .set_attribute("columns", "t, mode, sigma, s_star, impact_loss, then r1, r2, v1, v2, motor_work, drag_loss, "
                                   "friction_loss, then tie_slip, tie_sigma, tie_offset, chi, chi_dot (NaN for a rigid "
-                                  "tie) (SI units)");
+                                  "tie), rod_work, clutch_loss (NaN without the tie clutch or the pair couple) (SI units)");
     f_.flush();
   }
 
@@ -175,13 +175,17 @@ class SweepFile {
     s.contact.s_star = st[3];
     s.impact_loss = st[4];
     const double* tie = st + 5 + physics::idx::dim;
-    const bool has_tie = std::isfinite(tie[3]);
-    s.y.resize(has_tie ? physics::idx::dim_tie : physics::idx::dim);
+    const bool has_tie = std::isfinite(tie[3]), has_ledger = std::isfinite(tie[5]);
+    s.y.resize(has_tie ? physics::idx::dim_tie : has_ledger ? physics::idx::dim_ledger : physics::idx::dim);
     for (int k = 0; k < physics::idx::dim; ++k) s.y(k) = st[5 + k];
     if (has_tie) {
       s.contact.tie = {tie[0] != 0.0, int(tie[1]), tie[2]};
       s.y(physics::idx::chi) = tie[3];
       s.y(physics::idx::chi_dot) = tie[4];
+    }
+    if (has_ledger) {
+      s.y(physics::idx::rod_work) = tie[5];
+      s.y(physics::idx::clutch_loss) = tie[6];
     }
     return s;
   }
@@ -202,10 +206,12 @@ class SweepFile {
     const physics::State& s = out.final_state;
     std::vector<double> row{s.t, double(s.contact.mode), double(s.contact.sigma), s.contact.s_star, s.impact_loss};
     row.insert(row.end(), s.y.data(), s.y.data() + physics::idx::dim);
-    const bool has_tie = s.y.size() > physics::idx::dim;
+    const bool has_tie = physics::has_tie(s.y), has_ledger = physics::has_ledger(s.y);
     row.insert(row.end(), {double(s.contact.tie.slip), double(s.contact.tie.sigma), s.contact.tie.offset,
                            has_tie ? s.y(physics::idx::chi) : kNotComputed,
-                           has_tie ? s.y(physics::idx::chi_dot) : kNotComputed});
+                           has_tie ? s.y(physics::idx::chi_dot) : kNotComputed,
+                           has_ledger ? s.y(physics::idx::rod_work) : kNotComputed,
+                           has_ledger ? s.y(physics::idx::clutch_loss) : kNotComputed});
     ds("tasks/final_state").write_region({task, 0}, {1, kStateCols}, std::span<const double>(row));
     f_.flush();
   }

@@ -50,7 +50,7 @@ TaskResult make_result(const sweep::ChainSetup& chain, sweep::TaskOutput out, st
     w.count = std::int32_t(std::min(rec.size(), cap));
     w.row = window_row(classes[i]);
     const sweep::WindowPowers p = sweep::window_powers(rec);
-    w.powers = {p.motor, p.drag, p.other, p.energy_rate};
+    w.powers = {p.motor, p.drag, p.other, p.energy_rate, p.string, p.clutch};
     const auto n = std::size_t(w.count);
     if (n > 0) {
       std::vector<double> mode(rec.mode.begin(), rec.mode.begin() + long(n));

@@ -38,10 +38,14 @@ inline constexpr std::size_t kNumStats = sizeof(kStats) / sizeof(kStats[0]);
 // The window's energy account (sweep::window_powers), also in /windows; not the classifier's,
 // so `astrojax classify` leaves them as the integration wrote them.
 inline constexpr const char* kPowers[][3] = {
-    {"motor_power", "W", "mean power the motor feeds the balls over the window"},
+    {"motor_power", "W", "mean power the motor does at its rod over the window, <τ_rod ω_m> (format 4; format 2 held "
+                         "string_power here); = string_power + clutch_power + the tie's d(½ I_a χ̇²)/dt"},
     {"drag_power", "W", "mean power drag takes"},
     {"friction_impact_power", "W", "mean power friction and impacts take"},
     {"energy_rate", "W", "dE/dt over the window: about 0 for an orbit the motor sustains, negative for a decaying transient"},
+    {"string_power", "W", "mean power the top passes into the string (= motor_power for a rigid tie) = drag_power + "
+                          "friction_impact_power + energy_rate"},
+    {"clutch_power", "W", "mean power the tie clutch dissipates, <τ_c (ω_m − χ̇)> (0 for a rigid tie)"},
 };
 inline constexpr std::size_t kNumPowers = sizeof(kPowers) / sizeof(kPowers[0]);
 

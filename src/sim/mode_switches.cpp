@@ -34,8 +34,7 @@ void ModeSwitches::enter(Contact next, double e) {
   if (next.mode != Mode::Slack) {
     physics::project_positions(ctx_.model, next, top, s.y);
     const physics::ProjectionEnergy pe = physics::project_velocities(ctx_.model, next, top, s.y, e);
-    s.y(physics::idx::motor_work) += pe.motor_work;
-    s.impact_loss += pe.dissipated;
+    book_impulse(pe);
     next = physics::settle(ctx_.model, top_now_, next, s.y, ctx_.band);
   }
   if (next.mode == Mode::Stuck && contact.mode != Mode::Stuck && sum.sticks++ == 0) sum.first_stick = s.t;
@@ -44,9 +43,18 @@ void ModeSwitches::enter(Contact next, double e) {
   contact = next;
 }
 
+// An impulse's work −λᵀb is done by the top, which moves as prescribed through it: with the
+// tie clutch the tie is taken as rigid for the instant (its impulse would need an unbounded
+// clutch torque), so the rod supplies that work too and the tie's balance is untouched.
+void ModeSwitches::book_impulse(const physics::ProjectionEnergy& pe) {
+  State& s = ctx_.s;
+  s.y(physics::idx::motor_work) += pe.motor_work;
+  if (physics::has_ledger(s.y)) s.y(physics::idx::rod_work) += pe.motor_work;
+  s.impact_loss += pe.dissipated;
+}
+
 void ModeSwitches::impact_account(const physics::ProjectionEnergy& pe) {
-  ctx_.s.y(physics::idx::motor_work) += pe.motor_work;
-  ctx_.s.impact_loss += pe.dissipated;
+  book_impulse(pe);
   ++ctx_.sum.impacts;
 }
 
@@ -118,6 +126,11 @@ void ModeSwitches::lock_tie() {
   ++ctx_.sum.mode_switches;
   if (std::abs(tau) <= ctx_.model.p.tie_static_torque + ctx_.band) {
     s.contact.tie = held.tie;
+    // The catch is located to the event's tolerance, χ̇ ≈ ω_m: a plastic catch of I_a by the
+    // rod, J = I_a (ω_m − χ̇), rod work J ω_m, loss ½ I_a (ω_m − χ̇)².
+    const double jump = omega - s.y(physics::idx::chi_dot);
+    s.y(physics::idx::rod_work) += ctx_.model.p.tie_inertia * jump * omega;
+    s.y(physics::idx::clutch_loss) += 0.5 * ctx_.model.p.tie_inertia * jump * jump;
     physics::hold_tie(ctx_.schedule, s.t, held.tie.offset, s.y);
   } else {
     s.contact.tie = {true, tau > 0.0 ? +1 : -1, 0.0};

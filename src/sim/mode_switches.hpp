@@ -25,6 +25,7 @@ class ModeSwitches {
 
  private:
   void enter(Contact next, double e);
+  void book_impulse(const physics::ProjectionEnergy& pe);  // its work and loss into the ledger
   void impact_account(const physics::ProjectionEnergy& pe);
   void meet_stop(bool bottom);
   void pull_taut();

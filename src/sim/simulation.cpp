@@ -18,7 +18,6 @@
 namespace ajx::sim {
 
 using numerics::Vec;
-using physics::idx::dim;
 using physics::Vec3;
 
 Simulation::Simulation(const physics::Model& model, const physics::MotorSchedule& schedule,
@@ -123,7 +122,7 @@ State hanging_at_rest(const physics::Model& model, const physics::MotorSchedule&
   s.t = t0;
   s.contact = {Mode::BottomStop, 0, 0.0};
   s.y.setZero(physics::state_dim(model));
-  if (s.y.size() > dim) physics::hold_tie(schedule, t0, 0.0, s.y);
+  if (physics::has_tie(s.y)) physics::hold_tie(schedule, t0, 0.0, s.y);
   s.y.segment<3>(physics::idx::r1) = top.a - (p.string_length - p.contact_distance) * Vec3::UnitZ();
   s.y.segment<3>(physics::idx::r2) = top.a - p.string_length * Vec3::UnitZ();
   return s;
@@ -138,8 +137,8 @@ State explicit_state(const physics::Model& model, const physics::MotorSchedule& 
   s.t = t0;
   s.contact = {mode, 0, mode == Mode::Stuck ? (r1 - top.a).norm() : 0.0};
   s.y.setZero(physics::state_dim(model));
-  if (s.y.size() > dim) physics::hold_tie(schedule, t0, 0.0, s.y);
-  if (s.y.size() > dim && std::isfinite(tie_slip_rate)) {
+  if (physics::has_tie(s.y)) physics::hold_tie(schedule, t0, 0.0, s.y);
+  if (physics::has_tie(s.y) && std::isfinite(tie_slip_rate)) {
     // Slipping: the clutch torque acts in the sense σ = sgn(ω_m − χ̇) (physics/tie.hpp).
     s.y(physics::idx::chi_dot) = tie_slip_rate;
     const double slip = top.omega - tie_slip_rate;

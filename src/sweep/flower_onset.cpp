@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <random>
 
 namespace ajx::sweep {
 
@@ -49,9 +50,66 @@ double scan_and_refine(F f, double lo, double hi, int n) {
   return 0.5 * (a + b);
 }
 
+// ω_H alone: the minimum of χ² below the third-highest level.
+double best_omega(const std::vector<OnsetLevel>& levels) {
+  std::vector<double> om;
+  for (const OnsetLevel& l : levels) om.push_back(l.omega);
+  std::sort(om.begin(), om.end());
+  const double lo = om.front() - (om.back() - om.front()), hi = om[om.size() - 3];
+  return scan_and_refine([&](double w) { return fit_at(levels, w).chi2; }, lo, hi, 400);
+}
+
+// Where χ² (of the fit at ω) reaches `target` on the side `dir` of the optimum w0: expand, then bisect.
+template <class F>
+double chi2_crossing(F chi2, double w0, double target, double dir, double reach) {
+  double step = 1e-4 * std::max(std::abs(w0), 1.0), x = w0;
+  while (chi2(x + dir * step) < target && std::abs(x - w0) < reach) {
+    x += dir * step;
+    step *= 1.5;
+  }
+  double a = std::min(x, x + dir * step), b = std::max(x, x + dir * step);
+  for (int i = 0; i < 60; ++i) {
+    const double m = 0.5 * (a + b);
+    ((chi2(m) < target) == (dir > 0) ? a : b) = m;
+  }
+  return 0.5 * (a + b);
+}
+
+// The spread of ω_H over resamples of the levels with replacement (a fixed seed: the
+// same file gives the same number); a resample without three distinct levels at or above the
+// first flower cannot fix the parabola and is skipped.
+void bootstrap(const std::vector<OnsetLevel>& levels, double first_flower, int resamples, HopfFit& out) {
+  std::mt19937_64 rng(20261128);
+  std::uniform_int_distribution<std::size_t> pick(0, levels.size() - 1);
+  std::vector<double> found;
+  for (int r = 0; r < resamples; ++r) {
+    std::vector<OnsetLevel> sample;
+    std::vector<double> above;
+    for (std::size_t i = 0; i < levels.size(); ++i) {
+      sample.push_back(levels[pick(rng)]);
+      if (sample.back().omega >= first_flower) above.push_back(sample.back().omega);
+    }
+    std::sort(above.begin(), above.end());
+    if (std::unique(above.begin(), above.end()) - above.begin() < 3) continue;
+    found.push_back(best_omega(sample));
+  }
+  out.bootstrap_fits = int(found.size());
+  out.sigma_bootstrap = std::numeric_limits<double>::quiet_NaN();
+  if (found.size() < 2) return;
+  // Half the central 68 % range: a resample that drops the few levels above ω_H fixes the
+  // parabola poorly, and such tails would dominate a standard deviation.
+  std::sort(found.begin(), found.end());
+  const auto quantile = [&](double q) {
+    const double x = q * double(found.size() - 1);
+    const std::size_t i = std::size_t(x);
+    return i + 1 < found.size() ? found[i] + (x - double(i)) * (found[i + 1] - found[i]) : found.back();
+  };
+  out.sigma_bootstrap = 0.5 * (quantile(0.8413) - quantile(0.1587));
+}
+
 }  // namespace
 
-std::optional<HopfFit> fit_hopf(const std::vector<OnsetLevel>& levels, double first_flower) {
+std::optional<HopfFit> fit_hopf(const std::vector<OnsetLevel>& levels, double first_flower, int resamples) {
   const long above = std::count_if(levels.begin(), levels.end(), [&](const OnsetLevel& l) { return l.omega >= first_flower; });
   if (above < 3) return std::nullopt;
   std::vector<double> om;
@@ -66,21 +124,12 @@ std::optional<HopfFit> fit_hopf(const std::vector<OnsetLevel>& levels, double fi
   const int dof = int(levels.size()) - 3;
   out.reduced_chi2 = dof > 0 ? best.chi2 / dof : std::numeric_limits<double>::quiet_NaN();
   const double target = best.chi2 + std::max(dof > 0 ? out.reduced_chi2 : 1.0, 1.0);
-  // Where χ² reaches the target on each side: expand, then bisect.
-  const auto crossing = [&](double dir) {
-    double step = 1e-4 * std::max(std::abs(out.omega_h), 1.0), x = out.omega_h;
-    while (chi2(x + dir * step) < target && std::abs(x - out.omega_h) < 10 * (hi - lo)) {
-      x += dir * step;
-      step *= 1.5;
-    }
-    double a = std::min(x, x + dir * step), b = std::max(x, x + dir * step);
-    for (int i = 0; i < 60; ++i) {
-      const double m = 0.5 * (a + b);
-      ((chi2(m) < target) == (dir > 0) ? a : b) = m;
-    }
-    return 0.5 * (a + b);
-  };
-  out.sigma = 0.5 * (crossing(+1.0) - crossing(-1.0));
+  const double reach = 10 * (hi - lo);
+  out.sigma = 0.5 * (chi2_crossing(chi2, out.omega_h, target, +1.0, reach) -
+                     chi2_crossing(chi2, out.omega_h, target, -1.0, reach));
+  out.sigma_unscaled = 0.5 * (chi2_crossing(chi2, out.omega_h, best.chi2 + 1.0, +1.0, reach) -
+                              chi2_crossing(chi2, out.omega_h, best.chi2 + 1.0, -1.0, reach));
+  bootstrap(levels, first_flower, resamples, out);
   out.k = best.k;
   out.q = best.q;
   out.levels = int(levels.size());

@@ -10,12 +10,17 @@
 // the smaller circle, the down leg from the larger flower, so the two bracket it; σ is half
 // their difference combined with the window's own sampling error (half the difference of a²
 // over the window's halves). k and q are linear and solved for each trial ω_H; ω_H minimises χ²
-// (scan, then golden section), and σ(ω_H) is where χ² has risen by max(1, χ²/dof).
+// (scan, then golden section), and σ(ω_H) is where χ² has risen by max(1, χ²/dof): the error of
+// Δχ² = 1 scaled by √(χ²/dof) when the levels scatter more than their σ say. Independently of
+// those σ, the spread of ω_H over resamples of the levels (a bootstrap: half its central 68 %
+// range) takes the error from the scatter of the levels themselves.
 #pragma once
 #include <optional>
 #include <vector>
 
 namespace ajx::sweep {
+
+inline constexpr int kBootstrapResamples = 400;  // resamples of the levels for the bootstrap
 
 struct OnsetLevel {
   double omega;  // ω_m of the level [any unit, the fit's ω_H comes in the same]
@@ -28,12 +33,16 @@ struct HopfFit {
   double sigma = 0.0;         // its error, where χ² has risen by max(1, χ²/dof)
   double k = 0.0, q = 0.0;    // a² = μ (k + q μ)
   double reduced_chi2 = 0.0;  // χ²/dof at the optimum (dof = levels − 3)
+  double sigma_unscaled = 0.0;  // where χ² has risen by 1 [the unit of ω]
+  double sigma_bootstrap = 0.0; // half the central 68 % range of ω_H over resamples of the levels (NaN if none fit)
+  int bootstrap_fits = 0;       // resamples that could be fitted
   int levels = 0;
 };
 
 // Needs at least three levels above the first flower (`first_flower`), which fix the parabola;
-// none if there are fewer.
-std::optional<HopfFit> fit_hopf(const std::vector<OnsetLevel>& levels, double first_flower);
+// none if there are fewer. `resamples`: of the bootstrap (0: none, sigma_bootstrap NaN).
+std::optional<HopfFit> fit_hopf(const std::vector<OnsetLevel>& levels, double first_flower,
+                                int resamples = kBootstrapResamples);
 
 // The error of a² = (std/mean)² from a window's finite length: half the difference of a² over
 // the window's two halves (ρ: the radius samples). NaN for fewer than 4 samples.

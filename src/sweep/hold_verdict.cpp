@@ -74,7 +74,8 @@ HoldSide hold_side(const ChainSetup& chain, double t_cut, double hold, double wi
   const WindowRecord &a = out.windows[std::size_t(n - s.measured)], &b = out.windows.back();
   const double dt = b.last.t - a.first.t;
   s.mean = {(b.last.motor_work - a.first.motor_work) / dt, (b.last.drag_loss - a.first.drag_loss) / dt,
-            (b.last.other_loss - a.first.other_loss) / dt, (b.last.energy - a.first.energy) / dt};
+            (b.last.other_loss - a.first.other_loss) / dt, (b.last.energy - a.first.energy) / dt,
+            (b.last.string_work - a.first.string_work) / dt, (b.last.clutch_loss - a.first.clutch_loss) / dt};
   const double r_tol = sustain_tolerance(chain.model.p, s.hold);
   if (!(chain.model.p.drag > 0.0)) {
     // Without drag nothing decays: the classes alone decide.

@@ -63,7 +63,7 @@ struct HoldSide {
   OrbitClass final_class = OrbitClass::Failed;  // the class of the hold's last window
   double first_change = nan;           // time into the hold when a window first differs from reference [s]
   int measured = 0;                    // windows of the measured stretch (the last half)
-  WindowPowers mean{nan, nan, nan, nan};  // mean powers over the measured stretch [W]
+  WindowPowers mean{nan, nan, nan, nan, nan, nan};  // mean powers over the measured stretch [W]
   double ratio = nan;                  // r = (dE/dt)/P_drag over the measured stretch
   double ratio_error = nan;            // standard error of the per-window ratios
   double tolerance = nan;              // the |r| accepted as sustained (see above)

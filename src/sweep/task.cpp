@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "physics/energy.hpp"
+#include "physics/tie.hpp"
 #include "sweep/codec.hpp"
 
 namespace ajx::sweep {
@@ -39,8 +40,11 @@ TaskOutput run_task(const ChainSetup& chain, const TaskSpan& span, physics::Stat
     rec.T1.push_back(s.dyn.T1);
     rec.T2.push_back(s.dyn.T2);
     rec.mode.push_back(static_cast<std::int32_t>(s.contact.mode));
-    rec.last = {s.t, s.y(physics::idx::motor_work), s.y(physics::idx::drag_loss),
-                s.y(physics::idx::friction_loss) + s.impact_loss, physics::mechanical_energy(chain.model.p, s.y)};
+    const bool ledger = physics::has_ledger(s.y);
+    rec.last = {s.t, s.y(ledger ? physics::idx::rod_work : physics::idx::motor_work), s.y(physics::idx::drag_loss),
+                s.y(physics::idx::friction_loss) + s.impact_loss, physics::mechanical_energy(chain.model.p, s.y),
+                s.y(physics::idx::motor_work), ledger ? s.y(physics::idx::clutch_loss) : 0.0,
+                physics::tie_energy(chain.model.p, s.y)};
     if (rec.size() == 1) rec.first = rec.last;
   };
   start.t = span.t_begin;
@@ -65,7 +69,8 @@ WindowPowers window_powers(const WindowRecord& rec) {
     return {nan, nan, nan, nan};
   }
   return {(rec.last.motor_work - rec.first.motor_work) / dt, (rec.last.drag_loss - rec.first.drag_loss) / dt,
-          (rec.last.other_loss - rec.first.other_loss) / dt, (rec.last.energy - rec.first.energy) / dt};
+          (rec.last.other_loss - rec.first.other_loss) / dt, (rec.last.energy - rec.first.energy) / dt,
+          (rec.last.string_work - rec.first.string_work) / dt, (rec.last.clutch_loss - rec.first.clutch_loss) / dt};
 }
 
 std::vector<OrbitClassification> classify_windows(const ChainSetup& chain, const TaskOutput& out,

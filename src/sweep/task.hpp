@@ -30,10 +30,13 @@ struct ChainSetup {
 // mechanical energy, to tell an orbit the motor sustains from a decaying transient.
 struct EnergyLedger {
   double t = 0.0;             // [s]
-  double motor_work = 0.0;    // W_m [J]
+  double motor_work = 0.0;    // W_m, the motor's at the rod [J]
   double drag_loss = 0.0;     // [J]
   double other_loss = 0.0;    // friction and impact losses [J]
   double energy = 0.0;        // E = kinetic + potential [J]
+  double string_work = 0.0;   // W_s, passed into the string at its top (= W_m for a rigid tie) [J]
+  double clutch_loss = 0.0;   // W_c, the tie clutch's loss [J]
+  double tie_energy = 0.0;    // ½ I_a χ̇² [J]
 };
 
 struct WindowRecord {
@@ -44,12 +47,16 @@ struct WindowRecord {
   std::size_t size() const { return t.size(); }
 };
 
-// Mean powers over a window from its ledgers [W]: what the motor feeds, what drag and
-// friction with impacts take, and the rate of change of E. Over any window
-// P_motor = P_drag + P_other + dE/dt (the energy balance); a sustained orbit has dE/dt ≈ 0,
+// Mean powers over a window from its ledgers [W]: what the motor does at its rod, what the top
+// passes into the string, what the tie clutch, drag and friction with impacts take, and the rate
+// of change of E. Over any window P_string = P_drag + P_other + dE/dt and P_motor = P_string +
+// P_clutch + dE_tie/dt (the energy balance); a sustained orbit has dE/dt ≈ 0,
 // a decaying transient dE/dt < 0 of the order of P_drag. NaN with fewer than two samples.
 struct WindowPowers {
   double motor, drag, other, energy_rate;
+  // With the tie clutch P_motor = P_string + P_clutch + dE_tie/dt and P_string = P_drag + P_other
+  // + dE/dt; for a rigid tie P_string = P_motor, P_clutch = 0.
+  double string = 0.0, clutch = 0.0;
 };
 WindowPowers window_powers(const WindowRecord& rec);
 
