@@ -13,7 +13,7 @@ SettleWatch::SettleWatch(RunContext& ctx) : ctx_(ctx) { restart(-std::numeric_li
 
 // Ω: ω_m for the top on the rod (held tie or none), χ̇ for a slipping tie.
 double SettleWatch::top_rate(double t, const numerics::Vec& y) const {
-  if (y.size() > idx::dim && ctx_.s.contact.tie.slip) return y(idx::chi_dot);
+  if (physics::has_tie(y) && ctx_.s.contact.tie.slip) return y(idx::chi_dot);
   double phi, w, wd;
   ctx_.schedule.phase(t, phi, w, wd);
   return w;
@@ -22,7 +22,7 @@ double SettleWatch::top_rate(double t, const numerics::Vec& y) const {
 // ψ in the integrator's axes: χ (the tie's azimuth, in the lab) or φ, less the axes' own angle.
 SettleWatch::Vec6 SettleWatch::in_top_frame(double t, const numerics::Vec& y) const {
   double psi;
-  if (y.size() > idx::dim) {
+  if (physics::has_tie(y)) {
     psi = y(idx::chi);
   } else {
     double w, wd;
@@ -40,8 +40,14 @@ SettleWatch::Vec6 SettleWatch::in_top_frame(double t, const numerics::Vec& y) co
   return x;
 }
 
+// The work integrals of y that a jump carries on: the string's, drag's and friction's, and
+// where a clutch is modelled the motor's and the clutch's (physics/state.hpp).
+constexpr int kWorks[] = {idx::motor_work, idx::drag_loss, idx::friction_loss, idx::rod_work, idx::clutch_loss};
+
 SettleWatch::Record SettleWatch::record(double t, const numerics::Vec& y) const {
-  return {t, {y(idx::motor_work), y(idx::drag_loss), y(idx::friction_loss)}, ctx_.s.impact_loss};
+  Record r{t, {}, ctx_.s.impact_loss};
+  for (int k = 0; k < 5; ++k) r.work[k] = kWorks[k] < y.size() ? y(kWorks[k]) : 0.0;
+  return r;
 }
 
 void SettleWatch::restart(double t) {
@@ -103,8 +109,8 @@ bool SettleWatch::recognised(double t) {
   if (known) {
     const Record now = record(t, yend_);
     const double len = t - block_start_.t;
-    for (int k = 0; k < 3; ++k) rate_[k] = (now.work[k] - block_start_.work[k]) / len;
-    rate_[3] = (now.impact - block_start_.impact) / len;
+    for (int k = 0; k < 5; ++k) rate_[k] = (now.work[k] - block_start_.work[k]) / len;
+    rate_[5] = (now.impact - block_start_.impact) / len;
   }
   return known;
 }
@@ -116,11 +122,10 @@ void SettleWatch::jump() {
   const double Omega = top_rate(s.t, s.y);
   // The lab state turns by Ω Δ; the integrator's axes turn by their own angle meanwhile.
   physics::rotate_about_z(s.y, Omega * dt - (ctx_.axes.angle(end) - ctx_.axes.angle(s.t)));
-  if (s.y.size() > idx::dim) s.y(idx::chi) += Omega * dt;  // the held tie keeps χ − φ
-  s.y(idx::motor_work) += rate_[0] * dt;
-  s.y(idx::drag_loss) += rate_[1] * dt;
-  s.y(idx::friction_loss) += rate_[2] * dt;
-  s.impact_loss += rate_[3] * dt;
+  if (physics::has_tie(s.y)) s.y(idx::chi) += Omega * dt;  // the held tie keeps χ − φ
+  for (int k = 0; k < 5; ++k)
+    if (kWorks[k] < s.y.size()) s.y(kWorks[k]) += rate_[k] * dt;
+  s.impact_loss += rate_[5] * dt;
   s.t = end;
   ctx_.sum.skipped += dt;
   ++ctx_.sum.settle_stops;

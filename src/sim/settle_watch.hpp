@@ -48,7 +48,7 @@ class SettleWatch {
   using Vec6 = Eigen::Matrix<double, 6, 1>;
   struct Record {
     double t = 0.0;
-    double work[3] = {0, 0, 0};  // the work integrals (motor, drag, friction) [J]
+    double work[5] = {0, 0, 0, 0, 0};  // the work integrals of y (settle_watch.cpp, kWorks) [J]
     double impact = 0.0;         // cumulative impact loss [J]
   };
   double top_rate(double t, const numerics::Vec& y) const;  // Ω [rad/s]
@@ -67,7 +67,7 @@ class SettleWatch {
   Vec6 lo_, hi_, centre_;           // this block's box of x, the last block's centre
   double spread_prev_ = 0.0, shift_prev_ = 0.0;
   Record block_start_;
-  double rate_[4] = {0, 0, 0, 0};  // d/dt of the work integrals and the impact loss over the last block
+  double rate_[6] = {0, 0, 0, 0, 0, 0};  // d/dt of the work integrals and the impact loss over the last block
   physics::Mode mode_ = physics::Mode::Sliding;
   bool tie_slip_ = false;
   numerics::Vec yend_;
