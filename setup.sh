@@ -4,7 +4,10 @@
 #   ./setup.sh demo        install, build the program, run the main job: sweeps/paper.toml under mpirun,
 #                          its thresholds and its figures (out/paper*)
 #   ./setup.sh test        install, build, run the default test suite (ctest -L unit)
-#   ./setup.sh docs        install, build the program, build the documentation site offline (build/site)
+#   ./setup.sh docs        install, build the program and the live page, build the documentation site offline
+#                          (build/site, the live page in build/site/live/)
+#   ./setup.sh web         install emscripten, build the live page: the engine in WebAssembly (build/web/index.html)
+#   ./setup.sh test-browser  the native-versus-WebAssembly comparison and the page in headless Chromium (ctest -L browser)
 #   ./setup.sh test-long   install, build, run the long physics validations (ctest -L long)
 #   ./setup.sh install | build
 #   ./setup.sh peers       also install Boost and SUNDIALS, build astrojax_peers and astrojax_matched (benchmarks only)
@@ -15,15 +18,21 @@ cd "$(dirname "$0")"
 PACKAGES=(build-essential cmake pkg-config libeigen3-dev libopenmpi-dev openmpi-bin
           libhdf5-dev hdf5-tools libcli11-dev libtomlplusplus-dev libfmt-dev
           libgtest-dev libgmock-dev libbenchmark-dev
-          python3-numpy python3-h5py python3-matplotlib
+          python3-numpy python3-h5py python3-matplotlib python3-scipy
+          python3-venv python3-setuptools python3-wheel  # pip install -e analysis (docs/guide/analysis)
           zlib1g-dev libdeflate-dev clang libclang-rt-14-dev
-          procps)  # pgrep, for the fault tests
+          procps   # pgrep, for the fault tests
+          git)     # the commit --version and every file's provenance name (src/results/source_commit.cmake)
 # Only for the work-precision comparison with peer solvers (./setup.sh peers); the product
 # never needs them.
 PEER_PACKAGES=(libboost-dev libsundials-dev)
 # The documentation site (./setup.sh docs) and its tests in the default suite (./setup.sh test):
 # MkDocs, its Material theme, the Markdown extensions and MathJax for the equations, all offline.
 DOCS_PACKAGES=(mkdocs mkdocs-material python3-pymdownx libjs-mathjax)
+# The live page (./setup.sh web, docs, test-browser): Debian's emscripten (it brings Debian's
+# nodejs, which its optimiser and the comparison test run under, and node-acorn), and for the
+# browser tests headless Chromium, its WebDriver and Selenium.
+WEB_PACKAGES=(emscripten nodejs node-acorn chromium chromium-driver python3-selenium)
 # Only for ./setup.sh test-cluster: a Slurm and its authentication, started by the test itself.
 CLUSTER_PACKAGES=(slurm-wlm munge)
 BUILD_DIR=${BUILD_DIR:-build}
@@ -48,6 +57,15 @@ build() {
   # target (build astrojax), only that target and what it needs.
   cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DASTROJAX_PEERS=OFF >/dev/null
   cmake --build "$BUILD_DIR" -j"$(nproc)" ${1:+--target "$1"}
+}
+
+web() {
+  # The engine's layers compiled to WebAssembly (web/CMakeLists.txt) and the page beside it.
+  # Emscripten's optimiser finds Debian's acorn only on NODE_PATH when node is not Debian's own.
+  export NODE_PATH=/usr/share/nodejs${NODE_PATH:+:$NODE_PATH}
+  emcmake cmake -S web -B "$BUILD_DIR/web" -DCMAKE_BUILD_TYPE=Release >/dev/null
+  cmake --build "$BUILD_DIR/web" -j"$(nproc)"
+  echo "live page: $BUILD_DIR/web/index.html"
 }
 
 demo() {
@@ -91,13 +109,17 @@ case "${1:-}" in
   install) install ;;
   build) install; build ;;
   demo) install; build astrojax; demo ;;
-  docs) PACKAGES+=("${DOCS_PACKAGES[@]}"); install; build astrojax
-        tests/docs/build_docs.sh "$BUILD_DIR"/astrojax "$BUILD_DIR"/site ;;
+  docs) PACKAGES+=("${DOCS_PACKAGES[@]}" "${WEB_PACKAGES[@]}"); install; build astrojax; web
+        tests/docs/build_docs.sh "$BUILD_DIR"/astrojax "$BUILD_DIR"/site "$BUILD_DIR"/web ;;
+  web) PACKAGES+=("${WEB_PACKAGES[@]}"); install; web ;;
+  test-browser) PACKAGES+=("${DOCS_PACKAGES[@]}" "${WEB_PACKAGES[@]}"); install; build; web
+                tests/docs/build_docs.sh "$BUILD_DIR"/astrojax "$BUILD_DIR"/site "$BUILD_DIR"/web
+                (cd "$BUILD_DIR" && ctest -L browser --output-on-failure) ;;
   test) PACKAGES+=("${DOCS_PACKAGES[@]}"); install; build; (cd "$BUILD_DIR" && ctest -L unit -j"$(nproc)" --output-on-failure) ;;
   peers) PACKAGES+=("${PEER_PACKAGES[@]}"); install
          cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DASTROJAX_PEERS=ON >/dev/null
          cmake --build "$BUILD_DIR" -j"$(nproc)" --target astrojax astrojax_peers astrojax_matched ;;
   test-long) install; build; (cd "$BUILD_DIR" && ctest -L long --output-on-failure) ;;
   test-cluster) PACKAGES+=("${CLUSTER_PACKAGES[@]}"); install; build; (cd "$BUILD_DIR" && ctest -L cluster --output-on-failure) ;;
-  *) sed -n '2,11p' "$0" | sed 's/^# \{0,1\}//'; exit 2 ;;
+  *) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 2 ;;
 esac

@@ -21,7 +21,6 @@ usage: /usr/bin/python3 analysis/calibrate.py out/calibration.h5 -o out/calibrat
 """
 import csv
 import os
-import sys
 
 import numpy as np
 
@@ -210,4 +209,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:])
+    ajx.run(main)

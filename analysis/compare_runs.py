@@ -9,27 +9,28 @@ plot_work_precision.py).
   /usr/bin/python3 analysis/compare_runs.py k0=out/wp_k0.csv k3=out/wp_k3.csv \
       [--rtols 1e-3,1e-6,1e-9] [--errors 1e-3,1e-6,1e-9]
 """
-import argparse
 import math
 
+import astrojax_analysis as ajx
 # The CSV reader and the "cheapest run within an error" rule of the work-precision table.
-from plot_work_precision import cheapest, read
+from astrojax_analysis.workprecision import cheapest, read
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+def main(argv=None):
+    ap = ajx.parser(__doc__)
     ap.add_argument("runs", nargs="+", help="LABEL=CSV")
     ap.add_argument("--rtols", default="1e-3,1e-6,1e-9")
     ap.add_argument("--errors", default="1e-3,1e-6,1e-9")
-    a = ap.parse_args()
+    a = ap.parse_args(argv)
+    rtols, errors = ajx.float_list(a.rtols, "--rtols"), ajx.float_list(a.errors, "--errors")
     runs = []
     for spec in a.runs:
         label, _, path = spec.partition("=")
         if not path:
             ap.error(f"'{spec}': expected LABEL=CSV")
         runs.append((label, read([path])))
-    rtols = [float(x) for x in a.rtols.split(",")]
-    errors = [float(x) for x in a.errors.split(",")]
+        if any(c not in runs[-1][1][0] for c in ("steps", "rhs_evals")):
+            ajx.fail(f"{path}: not a CSV of `astrojax bench work-precision` (columns steps, rhs_evals missing)")
     keys = list(dict.fromkeys((r["scene"], r["method"]) for _, rows in runs for r in rows))
     for scene, method in keys:
         print(f"\n{scene}, {method}")
@@ -39,7 +40,7 @@ def main():
                 continue
             work = []
             for t in rtols:
-                m = [r for r in rs if r["param_kind"] == "rtol" and math.isclose(float(r["param"]), t)]
+                m = [r for r in rs if r["param_kind"] == "rtol" and math.isclose(ajx.number(r["param"]), t)]
                 work.append(f"{m[0]['steps']}/{m[0]['rhs_evals']}" if m else "—")
             cpu = [cheapest(rs, method, e, "err_position_m") for e in errors]
             print(f"  {label:10s} steps/evals at rtol {'/'.join(f'{t:.0e}' for t in rtols)}: {' / '.join(work)};"
@@ -48,4 +49,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    ajx.run(main)

@@ -68,7 +68,7 @@ def main(argv=None):
     total = {}
     for v in variants:
         chains = [c for c in range(sweep.n_chains) if sweep.variant_name(c) == v]
-        label = sweep.variant_label(chains[0]) if sweep.is_grouped else "every chain"
+        label = ajx.printable(sweep.variant_label(chains[0]), 120) if sweep.is_grouped else "every chain"
         lines += [f"## {label}", "", "| R [mm] | d [cm] | " + " | ".join(f"{r:g} rad/s²" for r in rates) + " |",
                   "|---|---|" + "---|" * len(rates)]
         cells = {}
@@ -88,4 +88,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    main()
+    ajx.run(main)

@@ -86,7 +86,7 @@ def hopf_fit(omega, a2, sigma):
 
     # ω_H lies below the third-highest level (three points above it fix the parabola).
     lo, hi = float(omega.min()) - (omega.max() - omega.min()), float(np.sort(omega)[-3])
-    wh = ajx._scan_and_refine(chi2, lo, hi, 400)
+    wh = ajx.scan_and_refine(chi2, lo, hi, 400)
     c0 = chi2(wh)
     dof = len(omega) - 3
     red = c0 / dof if dof > 0 else np.nan
@@ -189,13 +189,13 @@ def report(path, rows, span):
     return "\n".join(lines)
 
 
-def main():
+def main(argv=None):
     ap = ajx.parser(__doc__)
     ap.add_argument("input", help="sweep file with steps up and down (sweeps/table1_staircase.toml)")
     ap.add_argument("-o", "--output", required=True, help="markdown report to write")
     ap.add_argument("--span", type=float, default=SPAN,
                     help=f"fit the levels up to this many π rad/s above the first flower window (default {SPAN:g})")
-    args = ap.parse_args()
+    args = ap.parse_args(argv)
     if not (args.span > 0):
         ajx.fail(f"--span {args.span}: allowed > 0 (π rad/s)")
     sweep = ajx.Sweep(args.input)
@@ -206,4 +206,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    ajx.run(main)

@@ -22,7 +22,7 @@ import tempfile
 import numpy as np
 
 import astrojax_analysis as ajx
-import tie_scan
+from astrojax_analysis import tie
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 PAPER_FALL, PAPER_LAG = 3.24, 4.80  # [π rad/s]
@@ -30,8 +30,8 @@ TOLERANCE = 0.05  # the issue's target: within 5 %
 
 
 def numbers(text, option, lo, hi):
-    """tie_scan's list of numbers, each also within [lo, hi]."""
-    values = tie_scan.numbers(text, option)
+    """tie.numbers' list of numbers, each also within [lo, hi]."""
+    values = tie.numbers(text, option)
     if any(not (lo <= v <= hi) for v in values):
         ajx.fail(f"{option}: '{text}': each value must lie in [{lo}, {hi}]")
     return values
@@ -134,4 +134,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    main()
+    ajx.run(main)

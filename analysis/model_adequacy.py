@@ -40,10 +40,10 @@ import os
 import re
 import sys
 
-import h5py
 import numpy as np
 
 import astrojax_analysis as ajx
+from astrojax_analysis.orbits import read_predicted
 
 PI = np.pi
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -136,7 +136,7 @@ def simulate(exe, layers, files, work, name, extra, s_points):
     out["holds"] = []
     for c in range(hold.n_chains):
         ks = hold.windows(c)
-        seed = hold.seed_names[int(hold.seed[c])]
+        seed = ajx.printable(hold.seed_name(int(hold.seed[c])), 40)
         cls = hold.class_name(c, ks[-1]) if ks else "never ran"
         wb = float(hold.stats["omega_ball"][c, ks[-1]]) if ks else np.nan
         out["holds"].append((float(hold.hold_omega[c]), seed, cls, wb))
@@ -148,8 +148,7 @@ def simulate(exe, layers, files, work, name, extra, s_points):
     orbits_h5 = os.path.join(work, f"{name}_orbits.h5")
     ajx.run_checked([exe, "orbits", files["ramp"], "--omega", "4.8pi", "--thresholds", "--threshold-s-points",
                      str(s_points), "-o", orbits_h5, *sets])
-    with h5py.File(orbits_h5, "r") as f:
-        out["predicted"] = {k: predicted_value(g) for k, g in f["thresholds"].items()}
+    out["predicted"] = read_predicted(orbits_h5)
     return out
 
 
@@ -183,10 +182,8 @@ def staircase(exe, path):
     out["hopf"] = hopf_point_printed(printed)
     ks = sweep.windows(0)
     out["L1_min"] = float(np.min(sweep.stats["L1_min"][0, ks])) if ks else np.nan
-    with h5py.File(path, "r") as f:
-        s = f["samples"]
-        taken = np.arange(s["T1"].shape[2]) < s["count"][0][:, None]  # the stored samples of each window
-        out["T_min"] = min((float(np.min(s[k][0][taken])) for k in ("T1", "T2") if taken.any()), default=np.nan)
+    tensions = [sweep.samples(0, k) for k in range(sweep.n_windows) if sweep.count[0, k] > 0]
+    out["T_min"] = min((float(np.min(s[k])) for s in tensions for k in ("T1", "T2")), default=np.nan)
     return out
 
 
@@ -200,28 +197,11 @@ def hopf_point_printed(text):
     return np.nan, np.nan
 
 
-def predicted_value(group):
-    """A prediction of `astrojax orbits --thresholds` [rad/s]; NaN where the branches give none,
-    or where they merely run to the end of the continuation range (nothing happened there)."""
-    if "end of the range" in ajx.text_attr(group, "mechanism"):
-        return np.nan
-    return float(group.attrs["predicted"])
-
-
 def read_violations(path):
     """[(what, count, first time [s], worst, units)] from a run file's /summary/violations,
     and its status."""
-    out = []
-    with h5py.File(path, "r") as f:
-        v = f["summary"].get("violations")
-        if v is not None:
-            for name in sorted(v, key=int):
-                a = v[name].attrs
-                if int(a["count"]) > 0:  # a watched assumption that held is not a violation
-                    out.append((ajx.as_text(a["what"]), int(a["count"]), float(a["first_time"]), float(a["worst"]),
-                                ajx.as_text(a["worst_units"])))
-        status = ajx.text_attr(f["summary"], "status")
-    return {"status": status, "list": out}
+    run = ajx.read_run(path)
+    return {"status": ajx.as_text(run["summary"].get("status", "")), "list": run["violations"]}
 
 
 # ---- judging ---------------------------------------------------------------------------
@@ -481,7 +461,7 @@ def report(ladder, omitted, full, meta, stair_sets, stair_omitted):
     return "\n".join(lines) + "\n"
 
 
-def main():
+def main(argv=None):
     ap = ajx.parser(__doc__)
     ap.add_argument("-o", "--output", required=True, help="the Markdown report to write")
     ap.add_argument("--work", default=None, help="directory for the runs' files (default: next to the report)")
@@ -498,7 +478,7 @@ def main():
                     help="bead positions of `astrojax orbits --thresholds` (default 21)")
     ap.add_argument("--sets-only", default=None, metavar="NAMES",
                     help="comma-separated ladder set names to run (default: all; the full model always runs)")
-    args = ap.parse_args()
+    args = ap.parse_args(argv)
     if not args.output.endswith(".md"):
         ajx.fail(f"-o {args.output}: the report is Markdown and must end in .md")
     for kv in args.sets:
@@ -541,10 +521,8 @@ def main():
         if layer_key(m["layers"]) not in seen:
             seen.add(layer_key(m["layers"]))
             stair_sets.append((name, m))
-    with h5py.File(os.path.join(work, f"{layer_tag(FULL)}_ramp.h5"), "r") as f:
-        cols = ajx.text_attr(f["chains"]["model"], "columns").split(",")
-        vals = f["chains"]["model"][0]
-    model = ", ".join(f"{c.strip()} {v:g}" for c, v in zip(cols, vals))
+    ramp = ajx.SweepFile(os.path.join(work, f"{layer_tag(FULL)}_ramp.h5"))
+    model = ", ".join(f"{c} {v:g}" for c, v in zip(ramp.model_columns_with_units, ramp.model[0]))
     meta = {"model": model,
             "runs": f"`{os.path.relpath(args.ramp)}`, `{os.path.relpath(args.hold)}`, `{os.path.relpath(args.run_ramp)}`, "
                     f"`{os.path.relpath(args.run_hold)}`, `{os.path.relpath(args.staircase)}` with "
@@ -556,4 +534,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    ajx.run(main)

@@ -40,7 +40,7 @@ import time
 import numpy as np
 
 import astrojax_analysis as ajx
-import fit_thresholds as ft
+from astrojax_analysis import fit as ft
 
 PI = math.pi
 DOCUMENTED = dict(ft.BASE)  # sweeps/paper.toml's clutch: R 15 mm, d 3.5 cm, τ_s, τ_k, c_a
@@ -295,4 +295,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    main()
+    ajx.run(main)

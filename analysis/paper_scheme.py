@@ -23,10 +23,10 @@ import os
 import re
 import tempfile
 
-import h5py
 import numpy as np
 
 import astrojax_analysis as ajx
+from astrojax_analysis.ledger import read_ledger
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SCENE = os.path.join(HERE, "..", "sweeps", "scenes", "paper_table1.toml")
@@ -61,11 +61,8 @@ def run(astrojax, work, name, omega, duration, model, sets):
 
 
 def read(path):
-    with h5py.File(path, "r") as f:
-        tr = f["trajectory"]
-        d = {k: tr[k][:] for k in ("t", "r1", "r2", "L1", "energy", "motor_work", "drag_loss", "friction_loss",
-                                   "impact_loss", "omega_m")}
-        d["status"] = ajx.text_attr(f["summary"], "status")
+    d = read_ledger(path)
+    d["status"] = ajx.as_text(d["summary"].get("status", "?"))
     return d
 
 
@@ -159,10 +156,13 @@ def table1(args, astrojax, work):
                           [f"initial.orbit={orbit}"])
             d = read(path)
             runs[orbit, model] = d
-            with h5py.File(path, "r") as f:
-                a = f["summary"].attrs
-                moved = a.get("start_projection", float("nan"))
+            a = d["summary"]
+            moved = a.get("start_projection", float("nan"))
+            try:
                 start = (a["start_pair_length_excess"], a["start_pair_speed_bead"], a["start_pair_speed_ball"])
+            except KeyError as e:
+                raise ajx.SweepFileError(path, "/summary", f"attribute {e} missing (the paper scheme's start pair)") \
+                    from None
             t_end = d["t"][-1]
             tail = d["t"] >= t_end - args.tail
             head = d["t"] <= d["t"][0] + args.tail
@@ -256,4 +256,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    main()
+    ajx.run(main)

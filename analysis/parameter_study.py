@@ -72,7 +72,7 @@ def holds(path):
         st["off_string"] = reach if reach > (1 + 1e-6) * (sweep.parameter(c, "string_length") +
                                                            sweep.parameter(c, "drive_radius")) else np.nan
         out.append((float(sweep.grid[c][0]), float(sweep.grid[c][1]), float(sweep.hold_omega[c]),
-                    sweep.seed_names[int(sweep.seed[c])], sweep.class_name(c, k), st))
+                    ajx.printable(sweep.seed_name(int(sweep.seed[c])), 40), sweep.class_name(c, k), st))
     return out
 
 
@@ -139,7 +139,7 @@ def report(eq, held, config, gravity=9.81):
     return "\n".join(lines) + "\n"
 
 
-def main():
+def main(argv=None):
     ap = ajx.parser(__doc__)
     ap.add_argument("input", nargs="?", default=DEFAULT, help="the hold sweep file (default sweeps/parameter_study.toml)")
     ap.add_argument("-o", "--output", required=True, help="the Markdown report to write")
@@ -147,7 +147,7 @@ def main():
     ap.add_argument("--astrojax", metavar="PATH", help="the astrojax executable")
     ap.add_argument("--set", dest="sets", action="append", default=[], metavar="KEY=VALUE",
                     help="an override for every run (model.*, layers.*)")
-    args = ap.parse_args()
+    args = ap.parse_args(argv)
     if not args.output.endswith(".md"):
         ajx.fail(f"-o {args.output}: the report is Markdown and must end in .md")
     if not os.path.isfile(args.input):
@@ -174,4 +174,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    ajx.run(main)

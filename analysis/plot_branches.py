@@ -26,7 +26,7 @@ def draw_column(ax_l, ax_r, sweep, chains, rows):
         if not sweep.is_hold:
             ax_l.plot(x, st["L1_mean"][c, ks] * 100, "-", color="0.75", lw=0.6, zorder=1)
         for k, xk in zip(ks, x):
-            colour = ajx.CLASS_COLOURS.get(sweep.class_name(c, k), "k")
+            colour = sweep.class_colour(c, k)
             m = sweep.marker(c, k)
             lo, mean, hi = (st[n][c, k] * 100 for n in ("L1_min", "L1_mean", "L1_max"))
             ax_l.errorbar(xk, mean, yerr=[[mean - lo], [hi - mean]], fmt=m, color=colour, ms=4, mec="k", mew=0.3,
@@ -59,11 +59,11 @@ def main(argv=None):
     axes, leg = ajx.panels(fig, 2, len(groups), len(handles), sharex=True)
     for j, (label, cs) in enumerate(groups):
         draw_column(axes[0, j], axes[1, j], sweep, cs, rows)
-        axes[0, j].set_title(label if len(cs) > 1 else sweep.chain_label(cs[0]), fontsize=9, pad=12)
+        axes[0, j].set_title(label if len(cs) > 1 else ajx.for_figure(sweep.chain_label(cs[0]), 200), fontsize=9, pad=12)
     ajx.legend(leg, handles)
     fig.suptitle(f"{args.input}: bead position and orbit radius along the branches", fontsize=10)
     ajx.save(fig, args)
 
 
 if __name__ == "__main__":
-    main()
+    ajx.run(main)

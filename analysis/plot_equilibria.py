@@ -16,16 +16,10 @@ Run with Debian's interpreter (it has numpy, h5py and matplotlib):
     build/astrojax orbits sweeps/orbits.toml --continue omega --s 0.5443 --range 3 63 -o out/orbits.h5
     /usr/bin/python3 analysis/plot_equilibria.py out/orbits.h5 -o out/branches.png --sweep out/quick.h5
 """
-import argparse
+import numpy as np
 
-import h5py
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-from astrojax_analysis import CLASS_COLOURS  # noqa: E402  the sweep's class colours
+import astrojax_analysis as ajx
+from astrojax_analysis.orbits import read_branches
 
 PAPER = {"ω_rise": 12.63, "ω_fall": 3.24, "ω1": 4.80, "ω2": 15.00}  # [π rad/s], the paper's measured thresholds
 CASES = ["stuck", "bottom_stop", "frictionless", "cone_up", "cone_down"]
@@ -42,25 +36,10 @@ EVENT_MARKERS = {
 }
 
 
-def text(v):
-    return v.decode() if isinstance(v, bytes) else str(v)
-
-
-def runs(mask):
-    """Index ranges [i, j] (inclusive) of consecutive equal values of mask."""
-    out, i = [], 0
-    while i < len(mask):
-        j = i
-        while j + 1 < len(mask) and mask[j + 1] == mask[i]:
-            j += 1
-        out.append((i, j, mask[i]))
-        i = j + 1
-    return out
-
 
 def draw_branch(axes, x, ys, stable, admissible, colour, pi_units):
     key = stable.astype(int) * 2 + admissible.astype(int)
-    for i, j, k in runs(key):
+    for i, j, k in ajx.runs(key):
         sl = slice(i, min(j + 2, len(x)))  # overlap one point so that the line is continuous
         st, adm = k // 2, k % 2
         for ax, y in zip(axes, ys):
@@ -69,25 +48,25 @@ def draw_branch(axes, x, ys, stable, admissible, colour, pi_units):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap = ajx.parser(__doc__)
     ap.add_argument("input", help="HDF5 file from `astrojax orbits ... --continue PARAM -o FILE`")
     ap.add_argument("-o", "--output", required=True, help="image to write (.png or .pdf)")
     ap.add_argument("--sweep", help="a sweep's HDF5 file to overlay (windows as points)")
     ap.add_argument("--branches", default="all", help="comma-separated branch ids to draw (default: all)")
     args = ap.parse_args(argv)
 
-    with h5py.File(args.input, "r") as f:
-        if "branches" not in f:
-            raise SystemExit(f"{args.input}: no /branches; run astrojax orbits with --continue and -o")
-        param = text(f["branches"].attrs["parameter"])
-        p = {k: f["branches/points"][k][:] for k in f["branches/points"]}
-        e = {k: f["branches/events"][k][:] for k in f["branches/events"]}
-        kinds = text(f["branches/events"].attrs["kinds"]).split(",") if len(e["lambda"]) else []
+    ajx.check_output(args.output)
+    param, p, e, kinds = read_branches(args.input)
+    sweep = ajx.Sweep(args.sweep) if args.sweep else None
+    plt = ajx.pyplot()
     pi_units = param == "omega"
     fig, (ax_r, ax_s) = plt.subplots(2, 1, figsize=(9, 8), sharex=True)
     ids = np.unique(p["branch_id"]).astype(int)
     if args.branches != "all":
-        ids = [int(i) for i in args.branches.split(",")]
+        try:
+            ids = [int(i) for i in args.branches.split(",")]
+        except ValueError:
+            ajx.fail(f"--branches: '{args.branches}' is not 'all' or comma-separated branch ids")
     for b in ids:
         m = p["branch_id"] == b
         if not np.any(m):
@@ -101,25 +80,22 @@ def main(argv=None):
             continue
         marker, colour = EVENT_MARKERS.get(kind, ("x", "black"))
         x = e["lambda"][i] / (np.pi if pi_units else 1)
-        label = kind if kind not in seen else None
+        label = ajx.for_figure(kind) if kind not in seen else None
         seen.add(kind)
         ax_r.plot(x, e["rho1"][i], marker, color=colour, ms=8, mfc="none" if kind == "fold" else colour, label=label)
         ax_s.plot(x, e["s"][i], marker, color=colour, ms=8, mfc="none" if kind == "fold" else colour)
 
-    if args.sweep:
-        with h5py.File(args.sweep, "r") as f:
-            w = f["windows"]
-            names = {int(k): v for k, v in (item.split(" ", 1) for item in text(w["class"].attrs["names"]).split(","))}
-            cls = w["class"][:].ravel()
-            wm = (0.5 * (w["omega_m_begin"][:] + w["omega_m_end"][:])).ravel()
-            rb = w["radius_bead_mean"][:].ravel()
-            L1 = w["L1_mean"][:].ravel()
-        for c, name in names.items():
+    if sweep is not None:
+        cls = sweep.cls.ravel()
+        wm = sweep.omega_mean.ravel()
+        rb = sweep.stats["radius_bead_mean"].ravel() if "radius_bead_mean" in sweep.stats else np.full(cls.shape, np.nan)
+        L1 = sweep.stats["L1_mean"].ravel() if "L1_mean" in sweep.stats else np.full(cls.shape, np.nan)
+        for c, name in sweep.class_names.items():
             m = (cls == c) & np.isfinite(wm)
             if np.any(m):
-                ax_r.scatter(wm[m] / np.pi, rb[m], s=10, color=CLASS_COLOURS.get(name, "black"), alpha=0.5,
-                             label=f"sweep: {name}")
-                ax_s.scatter(wm[m] / np.pi, L1[m], s=10, color=CLASS_COLOURS.get(name, "black"), alpha=0.5)
+                colour = sweep.class_colours.get(name, "black")
+                ax_r.scatter(wm[m] / np.pi, rb[m], s=10, color=colour, alpha=0.5, label=f"sweep: {ajx.for_figure(name)}")
+                ax_s.scatter(wm[m] / np.pi, L1[m], s=10, color=colour, alpha=0.5)
 
     if pi_units:
         for name, v in PAPER.items():
@@ -128,7 +104,7 @@ def main(argv=None):
             ax_r.text(v, 1.0, f" {name}", transform=ax_r.get_xaxis_transform(), fontsize=8, va="bottom")
     ax_r.set_ylabel("bead radius ρ1 [m]")
     ax_s.set_ylabel("bead position s = L1 [m]")
-    ax_s.set_xlabel("ω_m [π rad/s]" if pi_units else param)
+    ax_s.set_xlabel("ω_m [π rad/s]" if pi_units else ajx.for_figure(param))
     for ax in (ax_r, ax_s):
         ax.grid(alpha=0.3)
     handles = [plt.Line2D([], [], color=c, lw=2, label=n) for n, c in zip(CASES, CASE_COLOURS)]
@@ -137,11 +113,11 @@ def main(argv=None):
                 plt.Line2D([], [], color="k", lw=0.8, alpha=0.4, label="outside the friction cone")]
     h2, _ = ax_r.get_legend_handles_labels()
     ax_r.legend(handles=handles + h2, fontsize=7, ncol=2, loc="upper right")
-    fig.suptitle(f"Locked orbits continued in {param}")
+    fig.suptitle(f"Locked orbits continued in {ajx.for_figure(param)}")
     fig.tight_layout()
     fig.savefig(args.output, dpi=130)
     print(f"wrote {args.output}")
 
 
 if __name__ == "__main__":
-    main()
+    ajx.run(main)

@@ -60,7 +60,7 @@ def draw_panel(ax, sweep, chains, rows, paper):
         if not sweep.is_hold:
             draw_path(ax, x, y, sweep.direction[c, ks])
         for k, xk, yk in zip(ks, x, y):
-            colour = ajx.CLASS_COLOURS.get(sweep.class_name(c, k), "k")
+            colour = sweep.class_colour(c, k)
             if np.isfinite(yk):
                 ax.plot(xk, yk, marker(sweep, c, k), color=colour, ms=5, mec="k", mew=0.3, zorder=3)
             else:
@@ -76,19 +76,19 @@ def legend_handles(sweep, chains, rows, paper):
     from matplotlib.lines import Line2D
     handles = []
     used = {sweep.class_name(c, k) for c in chains for k in sweep.windows(c)}
-    for name in ajx.CLASS_COLOURS:
+    for name, colour in sweep.class_colours.items():
         if name in used:
-            handles.append(Line2D([], [], ls="", marker="o", ms=6, mec="k", mew=0.3, color=ajx.CLASS_COLOURS[name],
-                                  label=name))
+            handles.append(Line2D([], [], ls="", marker="o", ms=6, mec="k", mew=0.3, color=colour,
+                                  label=ajx.for_figure(name)))
     if sweep.is_grouped:
         for i in sorted({int(sweep.group[c]) for c in chains}):
             starts = {sweep.start_seed_name(c) for c in chains if int(sweep.group[c]) == i}
             start = {"hanging": "from rest", "circular_high": "from Table 1's orbit"}.get(min(starts), min(starts))
             handles.append(Line2D([], [], ls="", marker=ajx.GROUP_MARKERS[i % len(ajx.GROUP_MARKERS)], color="0.6",
-                                  mec="k", mew=0.3, label=f"'{sweep.group_names[i]}': {start}"))
+                                  mec="k", mew=0.3, label=f"'{ajx.for_figure(sweep.group_names[i])}': {ajx.for_figure(start)}"))
     if sweep.is_hold:
         for i in sorted({int(sweep.seed[c]) for c in chains}):
-            name = sweep.seed_names[i] if i < len(sweep.seed_names) else str(i)
+            name = ajx.for_figure(sweep.seed_name(i))
             handles.append(Line2D([], [], ls="", marker=ajx.SEED_MARKERS[i % len(ajx.SEED_MARKERS)], color="0.6",
                                   mec="k", mew=0.3, label=f"held, seed {name}"))
     else:
@@ -102,7 +102,7 @@ def title(sweep, label, cs):
     """A panel's title in symbols and units, never a file path."""
     if sweep.is_grouped:
         return f"{label}\n{sweep.parameter_title(cs[0])}"
-    return label if len(cs) > 1 else sweep.chain_label(cs[0])
+    return label if len(cs) > 1 else ajx.for_figure(sweep.chain_label(cs[0]), 200)
 
 
 def main(argv=None):
@@ -132,4 +132,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    main()
+    ajx.run(main)

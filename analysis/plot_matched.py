@@ -18,15 +18,9 @@ mode, as astrojax_matched counts it).
 Usage: /usr/bin/python3 analysis/plot_matched.py out/matched.csv -o analysis/figures/matched_comparison.png
        [--costs 1e-6,1e-9]
 """
-import argparse
-import csv
 from collections import defaultdict
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
-from matplotlib.lines import Line2D
+import astrojax_analysis as ajx
 
 COLOURS = [("astrojax", "black"), ("rkf78", "tab:blue"), ("dopri5", "tab:orange"),
            ("bulirsch", "tab:green"), ("CVODE", "tab:red"), ("ARKODE", "tab:purple")]
@@ -36,8 +30,12 @@ LABELS = {"black": "astrojax dop853 (the project)", "tab:blue": "hand-written pe
           "tab:purple": "hand-written peer: ARKODE ERK Fehlberg 7(8) + ERKStepRootInit"}
 
 
+NEED = {"scene", "horizon_s", "method", "family", "status", "same_final_mode", "err_position_m", "cpu_min_s", "rtol",
+        "reference_floor_m"}
+
+
 def colour(method):
-    return next(c for key, c in COLOURS if key in method)
+    return next((c for key, c in COLOURS if key in method), "tab:gray")
 
 
 def cheapest(rows, scene, horizon, method, family, target):
@@ -59,16 +57,32 @@ def print_costs(rows, targets):
                   "  ".join(f"{e:.0e} m: {100 * c:+4.0f} %" for e, c in zip(targets, costs)))
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+def read(path):
+    """The rows of astrojax_matched's CSV, checked: its columns, and numbers where numbers go."""
+    rows = ajx.read_astrojax_csv(path, NEED, "astrojax_matched")
+    if not rows:
+        ajx.fail(f"{path}: no rows: not a CSV of `astrojax_matched`")
+    for i, r in enumerate(rows):
+        try:
+            [float(r[k]) for k in ("horizon_s", "err_position_m", "cpu_min_s", "rtol", "reference_floor_m")]
+        except (TypeError, ValueError):
+            ajx.fail(f"{path}: row {i + 2}: horizon_s, err_position_m, cpu_min_s, rtol and reference_floor_m must be "
+                     f"numbers")
+    return rows
+
+
+def main(argv=None):
+    ap = ajx.parser(__doc__)
     ap.add_argument("csv")
     ap.add_argument("-o", "--output", default="out/matched.png")
     ap.add_argument("--costs", help="target errors, e.g. 1e-6,1e-9: print the guarantee's cost per method")
-    a = ap.parse_args()
-    with open(a.csv, newline="") as f:
-        rows = list(csv.DictReader(f))
+    a = ap.parse_args(argv)
+    ajx.check_output(a.output)
+    rows = read(a.csv)
     if a.costs:
-        print_costs(rows, [float(x) for x in a.costs.split(",")])
+        print_costs(rows, ajx.float_list(a.costs, "--costs"))
+    plt = ajx.pyplot()
+    from matplotlib.lines import Line2D
     scenes = list(dict.fromkeys(r["scene"] for r in rows))
     horizons = sorted({float(r["horizon_s"]) for r in rows})
     fig, axes = plt.subplots(len(scenes), len(horizons), figsize=(5.2 * len(horizons), 3.9 * len(scenes)),
@@ -113,4 +127,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    ajx.run(main)

@@ -102,11 +102,12 @@ def sweep_orbits(args):
         wb = sweep.stats["omega_ball"][c, k]
         arrow = {1: "▲", -1: "▼", 0: "●"}[int(sweep.direction[c, k])]
         if args.top:
-            title = (f"{sweep.class_name(c, k)}\nω_m = {sweep.omega_mean[c, k] / PI:.2f}π {arrow}, ω_ball = " +
+            title = (f"{ajx.for_figure(sweep.class_name(c, k))}\nω_m = {sweep.omega_mean[c, k] / PI:.2f}π {arrow}, ω_ball = " +
                      (f"{wb / PI:.2f}π rad/s" if np.isfinite(wb) else "undefined"))
         else:
-            title = (f"{sweep.chain_label(c)}, window {k}: ω_m {sweep.omega_mean[c, k] / PI:.2f}π {arrow}, "
-                     f"{sweep.class_name(c, k)}, ω_ball " + (f"{wb / PI:.2f}π rad/s" if np.isfinite(wb) else "undefined"))
+            title = (f"{ajx.for_figure(sweep.chain_label(c), 200)}, window {k}: "
+                     f"ω_m {sweep.omega_mean[c, k] / PI:.2f}π {arrow}, "
+                     f"{ajx.for_figure(sweep.class_name(c, k))}, ω_ball " + (f"{wb / PI:.2f}π rad/s" if np.isfinite(wb) else "undefined"))
         out.append((title, s, R))
     return out
 
@@ -251,4 +252,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    main()
+    ajx.run(main)

@@ -71,7 +71,7 @@ def strips_of(sweep, chains):
 
 def strip_label(sweep, key):
     if sweep.is_hold:
-        seed = sweep.seed_names[key[0]] if key[0] < len(sweep.seed_names) else str(key[0])
+        seed = ajx.for_figure(sweep.seed_name(key[0]), 40)
         return seed + (f"+{key[1]}" if key[1] else "")
     return {1: "▲", -1: "▼", 0: "●"}.get(key[2], "") + str(key[1])
 
@@ -134,7 +134,7 @@ def main(argv=None):
 
     from matplotlib.patches import Patch, Rectangle
     used = {name for s in row_strips.values() for windows in s.values() for _, _, name, _ in windows}
-    handles = [Patch(color=ajx.CLASS_COLOURS[n], label=n) for n in ajx.CLASS_COLOURS if n in used]
+    handles = [Patch(color=col, label=ajx.for_figure(n)) for n, col in sweep.class_colours.items() if n in used]
     handles.append(Patch(facecolor="none", edgecolor="k", hatch=HATCH["class"], label="coexisting classes (hysteresis)"))
     if args.omega_ball_tol is not None:
         handles.append(Patch(facecolor="none", edgecolor="k", hatch=HATCH["omega_ball"],
@@ -148,7 +148,7 @@ def main(argv=None):
         for j, (key, windows) in enumerate(strips.items()):
             y = y0 + (len(strips) - 1 - j) * h  # the first pass on top
             for lo, hi, name, _ in windows:
-                ax.add_patch(Rectangle((lo / PI, y), (hi - lo) / PI, h, facecolor=ajx.CLASS_COLOURS.get(name, "k"),
+                ax.add_patch(Rectangle((lo / PI, y), (hi - lo) / PI, h, facecolor=sweep.class_colours.get(name, "k"),
                                        edgecolor="none"))
                 top = max(top, hi / PI)
             ax.text(-0.005, y + 0.5 * h, strip_label(sweep, key), transform=ax.get_yaxis_transform(), ha="right",
@@ -169,4 +169,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    main()
+    ajx.run(main)

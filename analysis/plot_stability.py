@@ -6,22 +6,38 @@ error against the reference (right).
 
 Usage: /usr/bin/python3 analysis/plot_stability.py out/stability.csv -o out/stability.png
 """
-import argparse
 import csv
 
-import matplotlib
+import astrojax_analysis as ajx
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
+NEED = ("method", "omega_over_pi", "largest_stable", "step", "energy_residual_rel", "err_position_m", "final_mode_ok")
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("csv")
-    ap.add_argument("-o", "--output", default="out/stability.png")
-    a = ap.parse_args()
-    with open(a.csv, newline="") as f:
-        rows = list(csv.DictReader(l for l in f if not l.startswith("#")))
+def read(path):
+    """The rows of `astrojax bench stability`'s CSV, checked: its columns, numbers where numbers go."""
+    try:
+        with open(path, newline="") as f:
+            rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
+    except (OSError, UnicodeDecodeError, csv.Error) as e:
+        ajx.fail(f"{path}: cannot read: {getattr(e, 'strerror', None) or e}")
+    if not rows or any(c not in rows[0] for c in NEED):
+        ajx.fail(f"{path}: not a CSV of `astrojax bench stability` (columns {', '.join(NEED)})")
+    for i, r in enumerate(rows):
+        try:
+            [float(r[c]) for c in NEED[1:6]]
+        except (TypeError, ValueError):
+            ajx.fail(f"{path}: row {i + 2}: {', '.join(NEED[1:6])} must be numbers")
+    return rows
+
+
+def main(argv=None):
+    ap = ajx.parser(__doc__)
+    ap.add_argument("csv", help="CSV of `astrojax bench stability`")
+    ap.add_argument("-o", "--output", default="out/stability.png", help="image to write: .png or .pdf")
+    a = ap.parse_args(argv)
+    ajx.check_output(a.output)
+    rows = read(a.csv)
+    plt = ajx.pyplot()
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.2))
     for m in dict.fromkeys(r["method"] for r in rows):
         pts = {}
@@ -55,4 +71,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    ajx.run(main)

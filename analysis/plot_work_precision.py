@@ -13,60 +13,25 @@ cheapest run that reached it (same final contact mode, status ok), and the ratio
 Usage: /usr/bin/python3 analysis/plot_work_precision.py out/work_precision.csv [more.csv] -o out/wp.png
        [--table 1e-6,1e-9]
 """
-import argparse
-import csv
 import math
 from collections import defaultdict
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
+import astrojax_analysis as ajx
+from astrojax_analysis.workprecision import read, table
 
 
-def read(paths):
-    rows = []
-    for p in paths:
-        with open(p, newline="") as f:
-            lines = [l for l in f if not l.startswith("#")]
-        rows += list(csv.DictReader(lines))
-    return rows
-
-
-def cheapest(rows, method, target, column):
-    ok = [float(r["cpu_median_s"]) for r in rows if r["method"] == method and r["status"] == "ok"
-          and r.get("same_final_mode", "1") == "1" and float(r[column]) <= target]
-    return min(ok) if ok else math.nan
-
-
-def table(rows, targets, column):
-    """CPU [s] of the cheapest run of each method reaching each target error, per scene."""
-    for scene in dict.fromkeys(r["scene"] for r in rows):
-        rs = [r for r in rows if r["scene"] == scene]
-        methods = list(dict.fromkeys(r["method"] for r in rs))
-        floor = float(rs[0].get("reference_floor_m", rs[0].get("omega_floor", "nan")))
-        print(f"\n{scene} (reference floor {floor:.1e})")
-        print(f"  {'method':24s}" + "".join(f"{'err <= %.0e' % t:>22s}" for t in targets))
-        best = {t: min((cheapest(rs, m, t, column) for m in methods), key=lambda x: (math.isnan(x), x))
-                for t in targets}
-        for m in methods:
-            cells = []
-            for t in targets:
-                c = cheapest(rs, m, t, column)
-                cells.append("—" if math.isnan(c) else f"{c * 1e3:8.2f} ms ({c / best[t]:4.1f}x)")
-            print(f"  {m:24s}" + "".join(f"{x:>22s}" for x in cells))
-
-
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+def main(argv=None):
+    ap = ajx.parser(__doc__)
     ap.add_argument("csv", nargs="+")
     ap.add_argument("-o", "--output", default="out/work_precision.png")
     ap.add_argument("--error", default="err_position_m", help="error column (err_position_m, omega_ball_error, ...)")
     ap.add_argument("--table", default="", help="comma-separated target errors for a table at equal error")
-    a = ap.parse_args()
-    rows = read(a.csv)
+    a = ap.parse_args(argv)
+    ajx.check_output(a.output)
+    rows = read(a.csv, a.error)
     if a.table:
-        table(rows, [float(x) for x in a.table.split(",")], a.error)
+        table(rows, ajx.float_list(a.table, "--table"), a.error)
+    plt = ajx.pyplot()
     scenes = list(dict.fromkeys(r["scene"] for r in rows))
     n = len(scenes)
     cols = min(n, 3)
@@ -116,4 +81,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    ajx.run(main)

@@ -34,11 +34,11 @@ ball_mass, drive_radius, else the model's defaults) and its recorded --set overr
 """
 import tomllib
 
-import h5py
 import numpy as np
 
 import astrojax_analysis as ajx
-import run_ledger
+from astrojax_analysis.config import model_values
+from astrojax_analysis.ledger import HEADER, fmt_row, ledger, read_ledger, window_row
 
 BOTTOM = 1  # /trajectory/mode: on the bottom ball
 # physics::Model's defaults (src/physics/model.hpp), for keys a run's config leaves out
@@ -47,49 +47,32 @@ COUPLE_DEFAULTS = {"couple_torque": 0.0, "couple_slip_rate": 1.0}  # τ_c [N m],
 COUPLE_TILT_FLOOR = 1e-3  # ε of physics::kCoupleTiltFloor (src/physics/pair_couple.hpp)
 
 
-def model_values(path, defaults):
-    """[model] values from the run's stored config and its --set overrides (one per line)."""
-    with h5py.File(path, "r") as f:
-        cfg = tomllib.loads(ajx.as_text(f["config"][()]))
-        overrides = ajx.text_attr(f["config"], "overrides")
-    model = cfg.get("model", {})
-    out = {k: float(model.get(k, v)) for k, v in defaults.items()}
-    for item in filter(None, overrides.splitlines()):
-        key, _, value = item.strip().partition("=")
-        name = key.strip().removeprefix("model.")
-        if key.strip().startswith("model.") and name in out:
-            out[name] = float(value)
-    return out
-
-
-def couple_values(path):
+def couple_values(path, run):
     """(τ_c [N m], Ω_ε [rad/s]) of the pair couple from the run's config and --set overrides,
     τ_c = 0 when layers.pair_couple is not "motor_clutch" (physics::Model's defaults otherwise)."""
-    with h5py.File(path, "r") as f:
-        cfg = tomllib.loads(ajx.as_text(f["config"][()]))
-        overrides = ajx.text_attr(f["config"], "overrides")
-    layer = cfg.get("layers", {}).get("pair_couple", "none")
-    for item in filter(None, overrides.splitlines()):
+    try:
+        layer = tomllib.loads(run["config"]).get("layers", {}).get("pair_couple", "none")
+    except tomllib.TOMLDecodeError as e:
+        raise ajx.SweepFileError(path, "/config", f"not TOML: {e}") from None
+    for item in run["overrides"]:
         key, _, value = item.strip().partition("=")
         if key.strip() == "layers.pair_couple":
             layer = value.strip().strip('"')
-    v = model_values(path, COUPLE_DEFAULTS)
+    v = model_values(path, run, COUPLE_DEFAULTS)
     return (v["couple_torque"] if layer == "motor_clutch" else 0.0), v["couple_slip_rate"]
 
 
 def read(path):
-    run = run_ledger.read_ledger(path)
-    with h5py.File(path, "r") as f:
-        tr = f["trajectory"]
-        for name in ("v1", "v2", "T1", "T2", "psi"):
-            run[name] = tr[name][:]
-    v = model_values(path, DEFAULTS)
+    run = read_ledger(path, ("v1", "v2", "T1", "T2", "psi"))
+    v = model_values(path, run, DEFAULTS)
     run["m1"], run["m2"], run["R"] = v["bead_mass"], v["ball_mass"], v["drive_radius"]
-    run["couple_torque"], run["couple_slip_rate"] = couple_values(path)
-    with h5py.File(path, "r") as f:
-        a = f["summary"].attrs
+    run["couple_torque"], run["couple_slip_rate"] = couple_values(path, run)
+    a = run["summary"]
+    try:
         run["ledger"] = float(a["energy_residual_relative"]) if "energy_residual_relative" in a else np.nan
         run["tie_slips"] = int(a["tie_slips"]) if "tie_slips" in a else 0
+    except (TypeError, ValueError):
+        raise ajx.SweepFileError(path, "/summary", "energy_residual_relative or tie_slips is not a number") from None
     return run
 
 
@@ -133,7 +116,7 @@ def final_state(run, tail):
     """The last `tail` seconds: a coarse label and its numbers (module docstring)."""
     t = run["t"]
     sel = t >= t[-1] - tail
-    r = run_ledger.window_row(run, sel)
+    r = window_row(run, sel)
     on_ball = np.mean(run["mode"][sel] == BOTTOM)
     rho = [np.hypot(run[k][sel, 0], run[k][sel, 1]) for k in ("r1", "r2")]
     spread = max(np.ptp(x) / max(np.mean(x), 1e-12) for x in rho + [run["L1"][sel]])
@@ -308,10 +291,10 @@ def report(path, run, before, after, window, levels=()):
     t0 = run["t"][eps[0][0] - 1]
     sel = (run["t"] >= t0 - before) & (run["t"] <= t0 + after)
     sub = {k: (v[sel] if isinstance(v, np.ndarray) and len(v) == len(run["t"]) else v) for k, v in run.items()}
-    ledger_rows, _ = run_ledger.ledger(sub, window, window)
+    ledger_rows, _ = ledger(sub, window, window)
     lines += ["", f"Energy ledger from {before:g} s before the first onset to {after:g} s after it "
-              "(run_ledger.py's columns):", "", "```", run_ledger.HEADER]
-    lines += [run_ledger.fmt_row(r) for r in ledger_rows]
+              "(run_ledger.py's columns):", "", "```", HEADER]
+    lines += [fmt_row(r) for r in ledger_rows]
     lines += ["```", ""]
     return "\n".join(lines)
 
@@ -346,4 +329,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    main()
+    ajx.run(main)

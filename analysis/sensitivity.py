@@ -185,17 +185,13 @@ def tornado(path, symbol, v0, rows, unit="π rad/s", paper=None):
     plt.close(fig)
 
 
-def hold_settle(path):
+def hold_settle(sweep):
     """The hold sweep's settle time [s]: its --set hold.settle override, else its /config's."""
-    import h5py
     import tomllib
-    with h5py.File(path, "r") as f:
-        text = ajx.as_text(f["config"][()])
-        overrides = ajx.text_attr(f["config"], "overrides")
-    for item in overrides.replace(";", "\n").split("\n"):
+    for item in (part for o in sweep.overrides for part in o.split(";")):
         if item.strip().startswith("hold.settle="):
             return float(item.split("=", 1)[1])
-    return float(tomllib.loads(text).get("hold", {}).get("settle", np.nan))
+    return float(tomllib.loads(sweep.config).get("hold", {}).get("settle", np.nan))
 
 
 def histories(paths, astrojax):
@@ -206,7 +202,7 @@ def histories(paths, astrojax):
         sweep = ajx.Sweep(path)
         if not sweep.is_hold:
             ajx.fail(f"{path}: --histories needs a hold sweep (sweeps/lag_histories.toml)")
-        settle = hold_settle(path)
+        settle = hold_settle(sweep)
         for c in range(sweep.n_chains):
             k = sweep.n_windows - 1
             if not sweep.valid[c, k] or sweep.class_name(c, k) != "lagging-circular":
@@ -281,7 +277,7 @@ def report(path, out, values, table, hist, hist_paths):
     return "\n".join(lines)
 
 
-def main():
+def main(argv=None):
     ap = ajx.parser(__doc__)
     ap.add_argument("input", help="the paired sweep (sweeps/sensitivity.toml)")
     ap.add_argument("-o", "--output", required=True, help="markdown report to write")
@@ -289,7 +285,7 @@ def main():
     ap.add_argument("--histories", action="append", default=[], metavar="H5",
                     help="hold sweeps of the lag (sweeps/lag_histories.toml), repeatable")
     ap.add_argument("--astrojax", metavar="PATH", help="the astrojax executable")
-    args = ap.parse_args()
+    args = ap.parse_args(argv)
     exe = ajx.require_astrojax(args.astrojax)
     out, values, _ = measure_variants(args.input, exe)
     table = sensitivity_rows(out, values)
@@ -307,4 +303,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    ajx.run(main)

@@ -18,11 +18,10 @@ import math
 import os
 import tempfile
 
-import h5py
 import numpy as np
 
 import astrojax_analysis as ajx
-import tie_scan
+from astrojax_analysis import tie
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SCENES = os.path.join(HERE, "..", "sweeps", "scenes")
@@ -39,10 +38,8 @@ def held_state(astrojax, work, sets):
     for s in sets:
         args += ["--set", s]
     ajx.run_checked(args)
-    with h5py.File(out, "r") as f:
-        cls = int(f["windows/class"][0, -1])
-        state = f["tasks/final_state"][0]
-    return state, cls
+    sweep = ajx.SweepFile(out)
+    return sweep.final_state(0), int(sweep.cls[0, -1])
 
 
 def scene_with_state(template, state, path):
@@ -71,9 +68,8 @@ def scene_with_state(template, state, path):
 
 def fall_omega(path):
     """ω_m [π] where the stuck bead first slides down, and where it lands (mode 1)."""
-    with h5py.File(path, "r") as f:
-        g = f["trajectory"]
-        mode, w = g["mode"][:], g["omega_m"][:]
+    run = ajx.read_run(path)
+    mode, w = run["mode"], run["omega_m"]
     slide = np.nonzero(mode != 2)[0]
     land = np.nonzero(mode == 1)[0]
     return (w[slide[0]] / np.pi if len(slide) else None, w[land[0]] / np.pi if len(land) else None)
@@ -92,7 +88,7 @@ def main(argv=None):
                     help="an override for every run (model.* or layers.*), e.g. layers.tie=clutch")
     ap.add_argument("--astrojax", default=None, help="the astrojax binary (default: build/astrojax)")
     args = ap.parse_args(argv)
-    radii, dists = tie_scan.numbers(args.radii, "--radii"), tie_scan.numbers(args.distances, "--distances")
+    radii, dists = tie.numbers(args.radii, "--radii"), tie.numbers(args.distances, "--distances")
     for kv in args.set:
         if "=" not in kv or not kv.startswith(("model.", "layers.")):
             ajx.fail(f"--set {kv}: expected model.key=value or layers.key=value")
@@ -125,7 +121,7 @@ def main(argv=None):
                     lines.append(f"{label} stored mode cannot start a run | — | — | — | — |")
                     continue
                 slide, land = fall_omega(res["lock_to_fall"])
-                lag = tie_scan.summarise(res["lock_to_lag"], 5.0, 30.0)
+                lag = tie.summarise(res["lock_to_lag"], 5.0, 30.0)
                 last = lag["last"]
                 end = "fallen" if lag["fallen"] else f"ω_ball {last['omega_bottom']:.2f}π, L1 {last['L1']:.3f} m"
                 lines.append(f"{label} locked, bead at z = {state[7]:.3f} m | "
@@ -139,4 +135,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    main()
+    ajx.run(main)

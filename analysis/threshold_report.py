@@ -64,8 +64,9 @@ def markdown(path, rows, sweep, seq=()):
     refine_head = (f"refined {factor}× slower [π rad/s]", "refined relative difference") if factor else ()
     facts = [("command", prov.get("command_line", "")), ("git commit", prov.get("git_commit", "")),
              ("version", prov.get("version", "")), ("finished", prov.get("end_time", ""))]
-    lines += [f"- {k}: `{v}`" for k, v in facts if v]
-    lines += [f"- chains: {sweep.n_chains}" + (f", grid axes: {', '.join(sweep.axes)}" if sweep.axes else ""),
+    lines += [f"- {k}: `{ajx.printable(v, 2000)}`" for k, v in facts if v]
+    lines += [f"- chains: {sweep.n_chains}" + (f", grid axes: {ajx.printable(', '.join(sweep.axes), 400)}"
+                                               if sweep.axes else ""),
               f"- made by `astrojax thresholds {path}{f' --refine {factor}' if factor else ''}"
               f"{' --hold T' if any(r.get('verdict') for r in rows) else ''}`; definitions in docs/guide/thresholds.md "
               "(\"Bifurcation or time limit\") and docs/physics/orbit-classes.md.",
@@ -221,4 +222,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    main()
+    ajx.run(main)

@@ -18,78 +18,15 @@ usage: /usr/bin/python3 analysis/tie_scan.py -o out/tie_scan.md [--static 7e-4,8
 import os
 import tempfile
 
-import h5py
-import numpy as np
-
 import astrojax_analysis as ajx
-import run_ledger
-
-HERE = os.path.dirname(os.path.abspath(__file__))
-PAPER_OMEGA_1 = 4.80  # [π rad/s]
-
-
-def numbers(text, name):
-    try:
-        values = [float(v) for v in text.split(",") if v.strip()]
-    except ValueError:
-        ajx.fail(f"{name}: '{text}' is not a comma-separated list of numbers")
-    if not values or any(not (v >= 0) for v in values):
-        ajx.fail(f"{name}: '{text}': give one or more numbers >= 0")
-    return values
-
-
-def run(astrojax, scene, out, overrides):
-    ajx.run_checked([astrojax, "run", scene, "-o", out, "-q", *(a for o in overrides for a in ("--set", o))])
-
-
-def string_params(path):
-    """l and d of the run: its stored configuration, then its --set overrides."""
-    import tomllib
-    with h5py.File(path, "r") as f:
-        text = ajx.as_text(f["config"][()])
-        overrides = ajx.text_attr(f["config"], "overrides")
-    model = tomllib.loads(text).get("model", {})
-    l, d = model.get("string_length", 0.826), model.get("contact_distance", 0.03)
-    for kv in overrides.splitlines():
-        key, _, value = kv.partition("=")
-        if key.strip() == "model.string_length":
-            l = float(value)
-        elif key.strip() == "model.contact_distance":
-            d = float(value)
-    return l, d
-
-
-def summarise(path, window, tail):
-    run = run_ledger.read_ledger(path)
-    with h5py.File(path, "r") as f:
-        first_slip = float(f["summary"].attrs.get("first_tie_slip", -1.0))
-    l, d = string_params(path)
-    rows, last = run_ledger.ledger(run, window, tail)
-    up = l - d - 0.01  # the bead counts as up above the bottom stop by 1 cm [m]
-    # The lock is lost when the balls have fallen half a turn behind the motor: a locked orbit
-    # keeps a bounded phase lag, a lagging one accumulates it at ω_m − ω_ball.
-    t, wm = run["t"], run["omega_m"]
-    motor = np.concatenate(([0.0], np.cumsum(0.5 * (wm[1:] + wm[:-1]) * np.diff(t))))
-    ball = np.unwrap(np.arctan2(run["r2"][:, 1], run["r2"][:, 0]))
-    behind = (motor - ball) - (motor[0] - ball[0])
-    k = np.argmax(behind > np.pi) if np.any(behind > np.pi) else None
-    t_lost = t[k] if k is not None else None
-    after = [r for r in rows if t_lost is not None and r["t0"] >= t_lost and r["L1"] < up]
-    slip_omega = (np.interp(first_slip, t, wm) / np.pi) if first_slip >= 0 else None
-    return dict(lost=wm[k] / np.pi if k is not None else None, slip=slip_omega,
-                plateau=(min(r["omega_bottom"] for r in after), max(r["omega_bottom"] for r in after),
-                         after[0]["omega_m"], after[-1]["omega_m"]) if after else None,
-                last=last, fallen=last["L1"] >= up)
-
-
-def cell(v, fmt="{:.2f}π"):
-    return "—" if v is None else fmt.format(v)
+from astrojax_analysis.paths import SWEEPS
+from astrojax_analysis.tie import PAPER_OMEGA_1, cell, numbers, run, summarise
 
 
 def main(argv=None):
     ap = ajx.parser(__doc__)
     ap.add_argument("-o", "--output", required=True, help="Markdown table to write")
-    ap.add_argument("--scene", default=os.path.join(HERE, "..", "sweeps", "scenes", "lock_to_lag.toml"))
+    ap.add_argument("--scene", default=os.path.join(SWEEPS, "scenes", "lock_to_lag.toml"))
     ap.add_argument("--static", default="7e-4,8e-4,9e-4", help="τ_s values [N m] (default 7e-4,8e-4,9e-4)")
     ap.add_argument("--ratio", default="0.875,1", help="τ_k / τ_s values in [0, 1] (default 0.875,1)")
     ap.add_argument("--window", type=float, default=10.0, help="window [s] (default 10)")
@@ -132,4 +69,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    main()
+    ajx.run(main)

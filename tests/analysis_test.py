@@ -29,7 +29,9 @@ ASTROJAX, SOURCE, DATA = (os.path.abspath(p) for p in sys.argv[1:4])
 os.environ["ASTROJAX"] = ASTROJAX
 ANALYSIS = os.path.join(SOURCE, "analysis")
 PYTHON = sys.executable
-sys.path.insert(0, ANALYSIS)
+sys.path.insert(0, ANALYSIS)  # the package, as the scripts beside it find it
+
+import astrojax_analysis as ajx  # noqa: E402
 
 
 def data(name):
@@ -64,6 +66,9 @@ def make():
     # tiny work-precision and stability scan (about 1 s together).
     run([ASTROJAX, "orbits", os.path.join(SOURCE, "sweeps/orbits.toml"), "--continue", "omega", "--s", "0.5443",
          "--range", "10", "30", "-o", data("equilibria.h5")])
+    # For plot_map.py: the cone_down and fold curves over R at the documented set (about 1 s).
+    run([ASTROJAX, "orbits", os.path.join(SOURCE, "sweeps/orbits_map.toml"), "--map", "drive_radius",
+         "--curves", "cone_down,fold", "--range", "0.01", "0.02", "-o", data("map.h5")])
     run([ASTROJAX, "bench", "work-precision", os.path.join(SOURCE, "sweeps/scenes/locked_circular.toml"),
          "--methods", "dop853,rk4", "--rtols", "1e-4,1e-6", "--steps", "0.01,0.005", "--horizon", "1",
          "--repeats", "1", "-o", data("work_precision.csv")])
@@ -417,6 +422,38 @@ class studies(ImageChecks):
     def test_equilibria(self):
         self.figure("plot_equilibria.py", data("equilibria.png"), data("equilibria.h5"), "--sweep", data("phase.h5"))
 
+    def map_figure(self, out, *args):
+        # Thresholds are drawn in black and grey only (astrojax_analysis.py): no colour to find.
+        if os.path.exists(out):
+            os.remove(out)
+        script("plot_map.py", *args, "-o", out)
+        self.assert_png(out, *png_size(out), coloured=False)
+
+    def test_map(self):
+        self.map_figure(data("map.png"), data("map.h5"))
+
+    def test_map_with_brackets_and_bad_input(self):
+        # A sweep's brackets overlaid (the form a sweep map's `thresholds --csv` gives).
+        with open(data("brackets.csv"), "w") as f:
+            f.write("symbol,p,before,after\nomega_fall,0.012,10.0,10.6\nomega_fall,0.018,10.3,10.9\n")
+        self.map_figure(data("map_brackets.png"), data("map.h5"), "--brackets", data("brackets.csv"))
+        with open(data("brackets_bad.csv"), "w") as f:
+            f.write("symbol,p,lo\nomega_fall,0.012,x\n")
+        rc, out = script("plot_map.py", data("map.h5"), "--brackets", data("brackets_bad.csv"), "-o",
+                         data("map_bad.png"), check=False)
+        self.assertEqual(rc, 2, out)
+        self.assertIn("symbol, p, before, after", out)
+        rc, out = script("plot_map.py", data("phase.h5"), "-o", data("map_bad.png"), check=False)
+        self.assertEqual(rc, 2, out)
+        self.assertIn("/curves: missing", out)  # SweepFileError: file, dataset, problem
+        # The reader: every curve point is on its curve's kind, and the codim-2 names match rows.
+        from astrojax_analysis import Curves
+        c = Curves(data("map.h5"))
+        self.assertEqual(c.parameter, "drive_radius")
+        self.assertEqual(c.parameter_unit, "m")
+        self.assertEqual(len(c.codim2_names), len(c.codim2["p"]))
+        self.assertTrue(c.curve_ids(("cone_down",)))
+
     def test_work_precision(self):
         self.figure("plot_work_precision.py", data("work_precision.png"), data("work_precision.csv"))
 
@@ -697,6 +734,68 @@ class cli(unittest.TestCase):
         script("plot_run.py", data("run.h5"), "-o", out, "--size", "8,6", "--dpi", "40")
         ImageChecks().assert_png(out, 320, 240)
 
+    def test_compare_runs(self):
+        # The fixture's work-precision CSV under two labels: each label prints the same
+        # steps/evaluations at rtol 1e-4 and 1e-6 as the CSV holds, and the cheapest CPU time
+        # within 1 m (every ok run reaches it) of each method.
+        with open(data("work_precision.csv"), newline="") as f:
+            rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
+        _, out = script("compare_runs.py", f"a={data('work_precision.csv')}", f"b={data('work_precision.csv')}",
+                        "--rtols", "1e-4,1e-6", "--errors", "1")
+        dop = [r for r in rows if r["method"] == "dop853" and r["param_kind"] == "rtol"]
+        want = " / ".join(f"{r['steps']}/{r['rhs_evals']}" for r in sorted(dop, key=lambda r: -float(r["param"])))
+        lines = [line for line in out.splitlines() if line.strip().startswith(("a ", "b "))]
+        self.assertEqual(len(lines), 2 * len({(r["scene"], r["method"]) for r in rows}), out)
+        section = out[out.index(", dop853"):]
+        self.assertIn(want, section.splitlines()[1], out)
+        cpu = min(float(r["cpu_median_s"]) for r in dop if r["status"] == "ok")
+        self.assertIn(f"{cpu * 1e3:.2f}", section.splitlines()[1], out)
+        for bad, word in (("a", "LABEL=CSV"), (f"a={data('thresholds.csv')}", "not a CSV"),
+                          (f"a={data('missing.csv')}", "missing.csv")):
+            rc, text = script("compare_runs.py", bad, check=False)
+            self.assertEqual((rc, word in text, len(text.strip().splitlines())), (2, True, 1), text)
+
+    def test_plot_matched(self):
+        # A constructed astrojax_matched CSV: one scene, one horizon, one method in both
+        # families. With the guarantee the cheapest run within 1e-6 m costs 3 ms, without it
+        # 2 ms: the cost printed is +50 %. The figure: 5.2 × 3.9 in at 110 dpi.
+        path = data("matched.csv")
+        head = "scene,horizon_s,method,family,rtol,status,same_final_mode,err_position_m,cpu_min_s,reference_floor_m\n"
+        with open(path, "w") as f:
+            f.write(head)
+            for family, cpu in (("guarantee", 3e-3), ("no guarantee", 2e-3)):
+                f.write(f"locked,10,astrojax dop853,{family},1e-8,ok,1,1e-7,{cpu},1e-12\n")
+                f.write(f"locked,10,astrojax dop853,{family},1e-4,ok,1,1e-3,{cpu / 3},1e-12\n")
+        out = data("matched.png")
+        _, text = script("plot_matched.py", path, "-o", out, "--costs", "1e-6")
+        self.assertRegex(text, r"locked\s+10 s\s+astrojax dop853\s+1e-06 m:\s+\+50 %")
+        ImageChecks().assert_png(out, round(5.2 * 110), round(3.9 * 110))
+        rc, text = script("plot_matched.py", data("thresholds.csv"), "-o", out, check=False)
+        self.assertEqual((rc, "not a CSV of `astrojax_matched`" in text), (2, True), text)
+
+    def test_scene_state(self):
+        # The final state of chain 0 of the tiny hold sweep, turned back by φ = ω_m t about z:
+        # a scene's [initial] table (TOML) whose positions keep the stored radii and heights.
+        import tomllib
+        sweep = ajx.SweepFile(data("hold.h5"))
+        _, out = script("scene_state.py", data("hold.h5"), "0")
+        table = tomllib.loads(out)["initial"]
+        self.assertEqual(table["preset"], "explicit")
+        self.assertIn(table["mode"], ("sliding", "bottom_stop", "stuck", "slack"))
+        rows = np.nonzero((sweep.task_chain == 0) & (sweep.task_status == 1))[0]
+        state = sweep.final_state(rows[np.argmax(sweep.task_t_end[rows])])
+        for k, name in enumerate(("r1", "r2", "v1", "v2")):
+            stored, printed = state[5 + 3 * k: 8 + 3 * k], np.array(table[name])
+            self.assertAlmostEqual(np.hypot(*printed[:2]), np.hypot(*stored[:2]), delta=1e-12)
+            self.assertEqual(printed[2], stored[2])
+        phi = math.fmod(float(sweep.hold_omega[0]) * state[0], 2 * math.pi)
+        turned = math.atan2(table["r1"][1], table["r1"][0]) - math.atan2(state[6], state[5])
+        self.assertAlmostEqual(math.remainder(turned + phi, 2 * math.pi), 0.0, delta=1e-9)
+        for args, word in (([data("phase.h5"), "0"], "not a hold-mode sweep"), ([data("hold.h5"), "99"], "chain 99"),
+                           ([data("run.h5"), "0"], "not a sweep file")):
+            rc, text = script("scene_state.py", *args, check=False)
+            self.assertEqual((rc, word in text, len(text.strip().splitlines())), (2, True, 1), text)
+
 
 class flower_onset(unittest.TestCase):
     """analysis/flower_onset.py: the Hopf fit on constructed amplitudes, then the script's
@@ -952,7 +1051,7 @@ class fit(unittest.TestCase):
     SIGMA = np.array([0.01, 0.02, 0.05])                  # σ_k of the relative residuals
 
     def test_covariance_of_a_linear_model(self):
-        import fit_thresholds as ft
+        from astrojax_analysis import fit as ft
         # Full rank, m > n, χ² below m − n: C = (AᵀWA)⁻¹ exactly (the scale S drops out).
         W = np.diag(1 / self.SIGMA**2)
         expected = np.linalg.inv(self.A.T @ W @ self.A)
@@ -967,7 +1066,7 @@ class fit(unittest.TestCase):
         self.assertEqual(ft.covariance(self.A[:2], self.SIGMA[:2], [1.0, 1.0], chi2=50.0)[3], 1.0)
 
     def test_a_degenerate_direction_is_reported_not_inverted(self):
-        import fit_thresholds as ft
+        from astrojax_analysis import fit as ft
         # Only p0 + p1 enters: the direction (1, −1)/√2 has singular value 0 and is returned;
         # the pseudo-inverse then gives var(p0) = var(p1) = 1/(2 Σ a_k²/σ_k²) / 2 along (1, 1)/√2.
         a = np.array([1.0, 2.0, 3.0])
@@ -989,7 +1088,7 @@ class fit(unittest.TestCase):
         return 1.0 + r
 
     def test_nelder_mead_finds_the_cell_of_the_optimum(self):
-        import fit_thresholds as ft
+        from astrojax_analysis import fit as ft
         x_star, q = np.array([0.3, 0.6]), 0.01
         sigma = np.full(3, q / 2)  # the bracket half-width
         f = lambda x: ft.chi2_of((self.quantised(x, x_star, q) - 1.0) / sigma)
@@ -1009,7 +1108,7 @@ class fit(unittest.TestCase):
         self.assertEqual(ft.nelder_mead(f, [0.5, 0.2], [0.15, 0.15], [0, 0], [1, 1], max_evals=0)[2], 0)
 
     def test_jacobian_steps_past_the_resolution(self):
-        import fit_thresholds as ft
+        from astrojax_analysis import fit as ft
         # The quantised model through the script's own jacobian(): with steps h = 0.1 |p| the
         # central difference of a rounded line errs by at most q / (2h) per entry (each end
         # off by ≤ q/2), so the covariance matches (AᵀWA)⁻¹ to that relative order.
@@ -1059,7 +1158,7 @@ class fit(unittest.TestCase):
         self.assertAlmostEqual(d, 0.75, places=12)
 
     def test_omega_2_only_where_a_lag_ends(self):
-        import fit_thresholds as ft
+        from astrojax_analysis import fit as ft
         # An ω2 bracket whose lower window lies in the locked run (no lag before the flower) is
         # not the paper's lag → flower: not reached, with the reason; in a lagging run it counts.
         pi = math.pi
@@ -1089,7 +1188,7 @@ class fit(unittest.TestCase):
         self.assertAlmostEqual(m["omega_2"][0], 15.0 * pi)
 
     def test_a_bracket_over_unsettled_windows_weighs_as_one_step(self):
-        import fit_thresholds as ft
+        from astrojax_analysis import fit as ft
         # ω_fall between a lagging window at 4.0π and the first fallen one at 3.0π, with four
         # not-settled windows at 3.8–3.2π in between (0.2π apart): σ is half the window
         # spacing, 0.1π, not the bracket's half-width 0.5π, so the same miss costs 25× more χ².
@@ -1120,7 +1219,7 @@ class fit(unittest.TestCase):
 
     def test_a_sweep_with_failed_tasks_is_kept_and_flagged(self):
         import tempfile
-        import fit_thresholds as ft
+        from astrojax_analysis import fit as ft
         # A stand-in for astrojax: `sweep` exits 3 (some tasks failed) with its reason on
         # stderr, `thresholds` writes one ω1 row and an empty sequence. The sweep's rows are
         # kept and the note carries the reason; any other exit code stops with code 2.
@@ -1140,7 +1239,7 @@ done
             rows, seq, note = ft.run_sweep(fake, os.path.join(tmp, "up.toml"), os.path.join(tmp, "o.h5"), {}, "clutch", 0)
             self.assertEqual((rows[0]["threshold"], seq), ("omega_1", []))
             self.assertIn("up sweep: some tasks failed (failed: task 6: event bound hit)", note)
-            code = ("import os, sys; sys.path.insert(0, %r); import fit_thresholds as ft; "
+            code = ("import os, sys; sys.path.insert(0, %r); from astrojax_analysis import fit as ft; "
                     "ft.run_sweep(%r, 'up.toml', 'o.h5', {}, 'clutch', 0)" % (ANALYSIS, fake))
             p = subprocess.run([PYTHON, "-c", code], capture_output=True, text=True,
                                env=dict(os.environ, FAKE_SWEEP_EXIT="1"))
@@ -1149,7 +1248,7 @@ done
 
     def test_protocol_copies(self):
         import tempfile
-        import fit_thresholds as ft
+        from astrojax_analysis import fit as ft
         with tempfile.TemporaryDirectory() as tmp:
             files, _ = ft.rise_file(os.path.join(SOURCE, "sweeps/paper_ramps.toml"), tmp)
             files.update(ft.ramp_files(os.path.join(SOURCE, "sweeps/table1.toml"), 18 * math.pi, tmp)[0])
@@ -1166,7 +1265,7 @@ done
         # --protocol holds: the staircase without its grid (each evaluation sets its one chain),
         # its steps unchanged, and no ramp copies beside it.
         import tempfile
-        import fit_thresholds as ft
+        from astrojax_analysis import fit as ft
         stair = os.path.join(SOURCE, "sweeps/table1_staircase.toml")
         with tempfile.TemporaryDirectory() as tmp:
             files, how = ft.staircase_file(stair, tmp)
@@ -1225,7 +1324,7 @@ class out_of_sample(unittest.TestCase):
     def test_fall_file_and_settings(self):
         import tempfile
         import tomllib
-        import fit_thresholds as ft
+        from astrojax_analysis import fit as ft
         import out_of_sample as oos
         with tempfile.TemporaryDirectory() as tmp:
             with open(oos.fall_file(tmp), "rb") as f:

@@ -11,6 +11,8 @@ B=$src/tests/bad_input/files
 RUN=$src/sweeps/spin_up.toml
 SWEEP=$src/tests/data/tiny_sweep.toml
 HOLD=$src/tests/data/tiny_hold.toml
+QUICK=$src/sweeps/quick.toml
+PAPER=$src/sweeps/paper.toml
 NL=$'\n'
 FX=$work/fixtures
 mkdir -p "$FX/adir" "$FX/partdir/out.h5.part"

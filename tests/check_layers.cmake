@@ -10,7 +10,7 @@
 #   3  sweep                    protocols, tasks, the orbit classifier, thresholds
 #   4  config                   files and overrides into the model, runs and sweeps
 #   5  bench, results           work-precision and stability studies; run and sweep files
-#   6  app                      the commands
+#   6  app, web                 the commands; the live page's engine (WebAssembly)
 set(AJX_LAYER_numerics 0)
 set(AJX_LAYER_io 0)
 set(AJX_LAYER_parallel 0)
@@ -22,6 +22,7 @@ set(AJX_LAYER_config 4)
 set(AJX_LAYER_bench 5)
 set(AJX_LAYER_results 5)
 set(AJX_LAYER_app 6)
+set(AJX_LAYER_web 6)
 
 # Known exceptions, each "file -> layer": to be removed, not added to. None today.
 set(AJX_LAYER_EXCEPTIONS "")

@@ -34,7 +34,7 @@ check "mistyped command: exit 2 and the nearest command" "[ $? -eq 2 ] && grep -
 "$bin" thresholds x.h5 --hodl >/dev/null 2>"$work/typo_opt.err"
 check "mistyped option: exit 2 and the nearest option" "[ $? -eq 2 ] && grep -q \"did you mean '--hold'\" '$work/typo_opt.err'"
 "$bin" --version >"$work/version.out" 2>&1
-check "--version: exit 0, the version and the git commit" "[ $? -eq 0 ] && grep -Eq '^astrojax [0-9]+\.[0-9]+\.[0-9]+ \(git commit [0-9a-f]+|unknown\)' '$work/version.out'"
+check "--version: exit 0, the version and the git commit" "[ $? -eq 0 ] && grep -Eq '^astrojax [0-9]+\.[0-9]+\.[0-9]+ \(git commit ([0-9a-f]{12}|unknown); ' '$work/version.out'"
 
 # sweep --dry-run: the plan per group and variant, nothing run or written; bad input still 2.
 "$bin" sweep "$src/sweeps/paper.toml" --dry-run -o "$work/dry.h5" >"$work/dry.out" 2>&1

@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <limits>
 #include <numeric>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -465,4 +466,27 @@ TEST_F(Hdf5FileTest, AByteChangedOnDiskFailsItsChecksum) {
       EXPECT_NE(std::string(e.what()).find("Fletcher32"), std::string::npos) << e.what();
     }
   }
+}
+
+// Format 3's lists: 1-D attributes and datasets of variable-length UTF-8 strings, any item
+// (newlines, NUL-free control characters, empty strings, an empty list) read back as written.
+TEST_F(Hdf5FileTest, StringListsRoundTrip) {
+  const std::vector<std::string> items{"first", "two\nlines", "", "c_D × 1.2 — µ", std::string(10240, 'x')};
+  const std::vector<std::string> none;
+  {
+    File f = File::create(file("s.h5"));
+    f.set_attribute("items", std::span<const std::string>(items));
+    f.set_attribute("none", std::span<const std::string>(none));
+    f.write_dataset("names", std::span<const std::string>(items));
+    const std::vector<std::int8_t> flags{1, 0, -1};
+    f.write_dataset("flags", std::span<const std::int8_t>(flags));
+  }
+  const File f = File::open_read(file("s.h5"));
+  EXPECT_EQ(f.read_strings_attribute("items"), items);
+  EXPECT_EQ(f.read_strings_attribute("none"), none);
+  EXPECT_EQ(f.attribute_dims("items"), Dims{items.size()});
+  EXPECT_EQ(f.attribute_type_class("items"), ajx::io::TypeClass::String);
+  EXPECT_EQ(f.open_dataset("names").read_strings(), items);
+  EXPECT_EQ(f.open_dataset("flags").type_class(), ajx::io::TypeClass::Integer);
+  EXPECT_EQ(f.read_int32s("flags").data, (std::vector<std::int32_t>{1, 0, -1}));
 }

@@ -25,6 +25,29 @@ bad bad_range "orbits.range" "lo < hi" --set "orbits.range=[2.0,1.0]"
 bad lag_rigid_tie "layers.tie" "clutch" --lag --s 0.4589
 bad lag_without_s "--lag" "--s" --lag --set layers.tie=clutch --set model.tie_static_torque=1e-3 \
   --set model.tie_kinetic_torque=9e-4
+# --map: the second parameter is a continuation parameter (the list named), not ω; --s given;
+# the curves known, hopf only with the clutch; the range contains the model's value.
+bad map_not_continuation "top_stop" "not a continuation parameter; allowed: s, string_length" --map top_stop --s 0.4589
+bad map_omega "omega" "not a continuation parameter; allowed: s, string_length" --map omega --s 0.4589
+bad map_without_s "--map" "--s" --map drive_radius
+bad map_hopf_rigid "layers.tie" "clutch" --map drive_radius --s 0.4589 --curves hopf
+bad map_unknown_curve "--curves" "cone_down" --map drive_radius --s 0.4589 --curves wobble
+bad map_range "--range 0.02 0.03" "drive_radius = 0.01" --map drive_radius --s 0.4589 --range 0.02 0.03
+bad map_with_continue "--map cannot be combined" "--continue" --map drive_radius --s 0.4589 --continue omega
+
+# --map: the fold and cone_up curves over R at the documented set; the point where they meet is
+# found from both curves at the same place.
+"$bin" orbits "$src/sweeps/orbits_map.toml" --map drive_radius --range 0.005 0.03 --curves cone_up,fold \
+  --curves-csv "$work/map.csv" -o "$work/map.h5" >"$work/map.out" 2>&1
+rc=$?
+check "map: exit 0 (got $rc)" "[ $rc -eq 0 ]"
+check "map: fold meets cone_up, from the fold curve" "grep -q 'codim-2: fold+cone_up  *at drive_radius = 0.00930[0-9]*, omega_m = 4.626[0-9]*π' '$work/map.out'"
+check "map: and from the cone_up curve" "grep -q 'codim-2: cone_up+fold  *at drive_radius = 0.00930[0-9]*, omega_m = 4.626[0-9]*π' '$work/map.out'"
+check "map: CSV with header, curve rows and codim-2 rows" "head -1 '$work/map.csv' | grep -q '^row,parameter,curve_id,kind,s,p,omega_m' && grep -q '^curve,drive_radius,' '$work/map.csv' && grep -q '^fold+cone_up,' '$work/map.csv'"
+check "map: HDF5 written" "[ -s '$work/map.h5' ] && [ ! -e '$work/map.h5.part' ]"
+if command -v h5dump >/dev/null; then
+  check "map: the parameter's unit" "h5dump -a /curves/parameter_unit '$work/map.h5' | grep -q '\"m\"'"
+fi
 
 # --lag: the one set's lagging orbit at s = 0.4589 m, its Hopf point and the CSV.
 "$bin" orbits "$cfg" --lag --s 0.4589 --omega 10pi --set layers.tie=clutch --set model.drive_radius=0.015 \
@@ -70,11 +93,16 @@ for nm in "10 10" "14 14" "12 16"; do
 import h5py, shutil, sys
 shutil.copy(sys.argv[1], sys.argv[2])
 with h5py.File(sys.argv[2], 'r+') as f:
-    names = f['chains/model'].attrs['columns']
-    names = (names.decode() if isinstance(names, bytes) else names).split(',')
+    names = f['chains/model'].attrs['columns']  # a string array from format 3 on, joined by commas before
+    joined = isinstance(names, (bytes, str))
+    names = (names.decode() if isinstance(names, bytes) else names).split(',') if joined else [str(n) for n in names]
     m = f['chains/model'][:, :int(sys.argv[3])]
     del f['chains/model']
-    f.create_dataset('chains/model', data=m).attrs['columns'] = ','.join(names[:int(sys.argv[4])])" \
+    d = f.create_dataset('chains/model', data=m)
+    if joined:
+        d.attrs['columns'] = ','.join(names[:int(sys.argv[4])])
+    else:
+        d.attrs.create('columns', names[:int(sys.argv[4])], dtype=h5py.string_dtype())" \
     "$work/rise.h5" "$work/rise_$1.h5" $1 $2
 done
 cmp_run compare_10 "$work/rise_10.h5"; rc=$?

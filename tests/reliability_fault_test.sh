@@ -47,7 +47,7 @@ for dk in chains/model:0 chains/grid_values:0 windows/omega_ball:1 windows/class
   "$bin" verify flipped.h5 > verify.out 2>&1
   rc=$?
   check "a byte flipped in a chunk of /$d of a finished file: verify exit 2 (got $rc) naming it" \
-    "[ $rc -eq 2 ] && grep -q 'DAMAGED: /$d cannot be read' verify.out"
+    "[ $rc -eq 2 ] && grep -q 'DAMAGED: /$d: cannot be read' verify.out"
 done
 
 # Finished work is never discarded silently.
@@ -77,18 +77,20 @@ with h5py.File(sys.argv[1], "r+") as f:
 PY
 "$bin" verify damaged.h5.part > verify.out 2>&1
 check "astrojax verify of the damaged .part: exit 2, names /chains/grid_values and /samples/t" \
-  "[ $? -eq 2 ] && grep -q 'DAMAGED: /chains/grid_values differs' verify.out && grep -q 'DAMAGED: /samples/t cannot be read' verify.out"
+  "[ $? -eq 2 ] && grep -q 'DAMAGED: /chains/grid_values at ' verify.out && grep -q 'DAMAGED: /samples/t: cannot be read' verify.out"
 "$bin" sweep "${sweep[@]}" -o damaged.h5 --resume > damaged.out 2>&1
 check "damaged .part: resume exit 0, rebuilt from the journal" "[ $? -eq 0 ] && grep -q 'rebuilt from' damaged.out"
 check "damaged .part: the resumed file equals the uninterrupted one" "same damaged.h5 straight.h5"
 "$bin" verify damaged.h5 > verify.out 2>&1
 check "astrojax verify of the resumed file: exit 0, ok" "[ $? -eq 0 ] && tail -1 verify.out | grep -q '^ok '"
-# A byte flipped inside the journal: its CRC ends the journal there; those tasks run again.
+# A byte flipped inside the journal: its CRC marks that record damaged; the intact records after
+# it are kept, the resume says how many results it kept and discarded, and those tasks run again.
 "$bin" sweep "${sweep[@]}" -o flip.h5 --max-tasks 20 > /dev/null 2>&1
 at=$(($(size flip.h5.journal) / 2))
 printf '\xff' | dd of=flip.h5.journal bs=1 seek=$at conv=notrunc status=none
 "$bin" sweep "${sweep[@]}" -o flip.h5 --resume > flip.out 2>&1
-check "flipped journal byte: resume exit 0 and says so" "[ $? -eq 0 ] && grep -q 'cut short or damaged' flip.out"
+check "flipped journal byte: resume exit 0 and says what it kept and discarded" \
+  "[ $? -eq 0 ] && grep -Eq 'results kept, [1-9][0-9]* discarded' flip.out"
 check "flipped journal byte: the resumed file equals the uninterrupted one" "same flip.h5 straight.h5"
 # A .part without its journal cannot be checked: refused.
 "$bin" sweep "${sweep[@]}" -o nojournal.h5 --max-tasks 5 > /dev/null 2>&1

@@ -297,6 +297,17 @@ TEST(SweepConfig, BadGroupsAndVariantsNameFileAndKey) {
             std::string::npos);
   EXPECT_NE(grouped_error(replaced(kGrouped, "[group.grid]", "[group.output]")).find("key 'group[1].output': unknown key"),
             std::string::npos);
+  // Labels and purposes: any UTF-8 but control characters other than TAB.
+  EXPECT_NE(grouped_error(replaced(kGrouped, "label = \"rigid tie\"", "label = \"rigid\\ntie\""))
+                .find("key 'variant.rigid.label': control character U+000A not allowed"),
+            std::string::npos);
+  EXPECT_NE(grouped_error(replaced(kGrouped, "label = \"rigid tie\"", "label = \"\\u001b[31mred\""))
+                .find("key 'variant.rigid.label': control character U+001B not allowed"),
+            std::string::npos);
+  EXPECT_NE(grouped_error(replaced(kGrouped, "purpose = \"from rest\"", "purpose = \"from\\u0085rest\""))
+                .find("key 'group[0].purpose': control character U+0085 not allowed"),
+            std::string::npos);
+  EXPECT_EQ(grouped_error(replaced(kGrouped, "label = \"rigid tie\"", "label = \"rigid\\ttie — µ ✓\"")), "");
   // A group's own bad value names the file, the group, the variant and the key.
   const std::string e = grouped_error(replaced(kGrouped, "num = 2\n", "num = 0\n"));
   EXPECT_NE(e.find("g.toml (group[1] 'orbit', variant 'clutch'): key 'protocol.segment[0].num'"), std::string::npos) << e;
@@ -304,6 +315,40 @@ TEST(SweepConfig, BadGroupsAndVariantsNameFileAndKey) {
   // One sample rate for the file.
   const std::string rate = grouped_error(replaced(kGrouped, "start_omega = 12.0", "start_omega = 12.0\nsample_rate = 20.0"));
   EXPECT_NE(rate.find("key 'sample_rate'"), std::string::npos) << rate;
+}
+
+// --set means one thing in a plain and a grouped sweep: an unknown table is refused by both with
+// the same words and the nearest table; keys are compared as typed (a Cyrillic о is another
+// letter); a variant the file lacks is refused unless the same overrides give its label.
+TEST(SweepConfig, SetIsRefusedAlikeInPlainAndGroupedSweeps) {
+  const std::string grouped_text = kGrouped;
+  const std::string plain_text = grouped_text.substr(0, grouped_text.find("[variant.rigid]"));
+  for (const std::string set : {"nosuch.x=1", "mоdel.drag=0.5", "modl.drag=0.5"}) {
+    const std::string table = set.substr(0, set.find('.'));
+    const std::string grouped = grouped_error(kGrouped, {set}), plain = grouped_error(plain_text, {set});
+    const std::string expected = "g.toml: key '" + table + "': unknown key";
+    EXPECT_NE(grouped.find(expected), std::string::npos) << grouped;
+    EXPECT_NE(plain.find(expected), std::string::npos) << plain;
+    if (table != "nosuch") {
+      EXPECT_NE(grouped.find("did you mean 'model'"), std::string::npos) << grouped;
+      EXPECT_NE(plain.find("did you mean 'model'"), std::string::npos) << plain;
+    }
+  }
+  // A key of a known table, mistyped with a lookalike letter (Cyrillic а), in every part.
+  const std::string key = grouped_error(kGrouped, {"model.drаg=0.5"});
+  EXPECT_NE(key.find("key 'model.drаg': unknown key (did you mean 'drag'?)"), std::string::npos) << key;
+
+  const std::string missing = grouped_error(kGrouped, {"variant.slip.model.tie_damping=3e-6"});
+  EXPECT_NE(missing.find("g.toml: key 'variant.slip': no such variant; allowed: rigid, clutch"), std::string::npos) << missing;
+  EXPECT_NE(grouped_error(kGrouped, {"variant.clutc.model.tie_damping=3e-6"}).find("did you mean 'clutch'"),
+            std::string::npos);
+  // Defined completely by the same command: a third variant, run by the group that runs all.
+  const SweepConfig c =
+      parse_sweep_config(kGrouped, "g.toml", {"variant.slip.label=slipping", "variant.slip.model.tie_damping=3e-6"});
+  ASSERT_EQ(c.parts.size(), 4u);
+  EXPECT_EQ(c.parts[2].variant, "slip");
+  EXPECT_EQ(c.parts[2].variant_label, "slipping");
+  EXPECT_DOUBLE_EQ(c.parts[2].model.p.tie_damping, 3e-6);
 }
 
 TEST(SweepConfig, TheShippedPaperSweepHasBothVariantsOfEveryGroup) {

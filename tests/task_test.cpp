@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "one_set.hpp"
+#include "physics/state_row.hpp"
 #include "sim/simulation.hpp"
 #include "sweep/seeds.hpp"
 #include "sweep/task.hpp"
@@ -174,6 +175,37 @@ TEST(Task, EncodingRoundTripsExactly) {
   EXPECT_EQ(st.t, out.final_state.t);
   std::vector<std::byte> cut(bytes.begin(), bytes.end() - 3);
   EXPECT_THROW(decode_output(cut), std::runtime_error);
+}
+
+// The state row (physics/state_row.hpp), the one codec of the carry and /tasks/final_state:
+// every field, the tie's χ and χ̇ too, back bit for bit; a rigid tie's row has NaN χ and
+// decodes to the 15 components it had.
+TEST(Task, TheStateRowRoundTripsEveryField) {
+  physics::State s;
+  s.t = 12.5;
+  s.contact = physics::Contact(physics::Mode::Stuck, -1, 0.4321);
+  s.contact.tie = {true, -1, 0.25};
+  s.impact_loss = 1.5e-3;
+  s.y.resize(physics::idx::dim_tie);
+  for (int k = 0; k < physics::idx::dim_tie; ++k) s.y(k) = 0.1 * k - 0.7;
+  const std::vector<double> row = physics::state_row(s);
+  ASSERT_EQ(row.size(), physics::kStateCols);
+  ASSERT_EQ(physics::state_column_names().size(), physics::kStateCols);
+  const physics::State back = physics::state_from_row(row);
+  EXPECT_EQ(physics::state_row(back), row);
+  EXPECT_EQ(back.y, s.y);
+  EXPECT_EQ(back.contact.mode, s.contact.mode);
+  EXPECT_EQ(back.contact.sigma, -1);
+  EXPECT_EQ(back.contact.s_star, 0.4321);
+  EXPECT_TRUE(back.contact.tie.slip);
+  EXPECT_EQ(back.contact.tie.sigma, -1);
+  EXPECT_EQ(back.contact.tie.offset, 0.25);
+  EXPECT_EQ(decode_state(encode(s)).y, s.y);
+  s.y.conservativeResize(physics::idx::dim);
+  const std::vector<double> rigid = physics::state_row(s);
+  EXPECT_TRUE(std::isnan(rigid[physics::kStateChiColumn]));
+  EXPECT_EQ(physics::state_from_row(rigid).y.size(), physics::idx::dim);
+  EXPECT_EQ(physics::state_from_row(rigid).y, s.y);
 }
 
 TEST(Task, AFailedIntegrationComesBackWithItsReasonAndLastGoodState) {

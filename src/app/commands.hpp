@@ -92,6 +92,9 @@ struct OrbitsArgs {
   int threshold_s_points = 21;
   std::string compare;                 // a sweep's HDF5: its brackets next to the predictions
   bool lag = false;                    // the lagging orbits of the slipping tie instead (orbits/lagging_orbit.hpp)
+  std::string map_parameter;           // --map: the threshold curves in (this parameter, ω_m) (app/orbits_map.hpp)
+  std::vector<std::string> map_curves; // --curves: fold, cone_up, cone_down, hopf (default: all the model has)
+  std::string curves_csv;              // --curves-csv
   std::string csv, branches_csv, events_csv, output;
   std::string command_line;
 };

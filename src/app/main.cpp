@@ -180,6 +180,12 @@ int main(int argc, char** argv) {
   orbits_cmd->add_flag("--lag", orbits.lag,
                        "The lagging orbits of the slipping tie (layers.tie = clutch) with the bead stuck at each --s: "
                        "at each --omega, and their Hopf point and cone limits along the branch (over --range in ω_ball)");
+  orbits_cmd->add_option("--map", orbits.map_parameter,
+                         "Follow the threshold curves (fold, cone exits, the lag's Hopf point) of the bead stuck at "
+                         "each --s in the plane of ω_m and this parameter: drive_radius, mass, s, ...");
+  orbits_cmd->add_option("--curves", orbits.map_curves, "With --map: fold, cone_up, cone_down, hopf (default: all)")
+      ->delimiter(',');
+  orbits_cmd->add_option("--curves-csv", orbits.curves_csv, "With --map: write the curves and their codimension-2 points as CSV");
   orbits_cmd->add_option("--csv", orbits.csv, "Write every orbit found as CSV");
   orbits_cmd->add_option("--branches-csv", orbits.branches_csv, "Write the continuation's points as CSV");
   orbits_cmd->add_option("--events-csv", orbits.events_csv, "Write the continuation's events as CSV");
@@ -263,7 +269,8 @@ int main(int argc, char** argv) {
   th_cmd->add_option("--sample", th_sample, "Sampling step that brackets the landing [s]")->capture_default_str();
 
   require_finite(app);
-  app.set_version_flag("--version", fmt::format("astrojax {} (git commit {})", ajx::results::program_version(), ajx::results::program_commit()));
+  app.set_version_flag("--version", fmt::format("astrojax {} (git commit {}; {})", ajx::results::program_version(),
+                                                  ajx::results::program_commit(), ajx::results::program_commit_origin()));
   // A mistyped command or option: name the nearest one, as git and cargo do.
   std::vector<std::string> names;
   for (const CLI::App* sub : app.get_subcommands({})) names.push_back(sub->get_name());

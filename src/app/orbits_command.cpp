@@ -16,9 +16,11 @@
 #include <vector>
 
 #include "app/commands.hpp"
+#include "app/orbits_map.hpp"
 #include "results/provenance.hpp"
-#include "results/sweep_file.hpp"
+#include "results/sweep_reader.hpp"
 #include "config/config.hpp"
+#include "config/text.hpp"
 #include "io/hdf5_file.hpp"
 #include "orbits/continuation.hpp"
 #include "physics/parameter_table.hpp"
@@ -190,11 +192,10 @@ struct SweepBrackets {
   std::map<std::string, std::vector<std::optional<sweep::Bracket>>> by_symbol;
 };
 SweepBrackets sweep_brackets(const std::string& path, const physics::Model& m) {
-  const io::File f = io::File::open_read(path);
-  results::checked_format_version(f, path);
-  const auto cls = f.read_int32s("windows/class"), dir = f.read_int32s("windows/direction");
-  const auto wb = f.read_doubles("windows/omega_m_begin"), we = f.read_doubles("windows/omega_m_end");
-  const results::StoredModels models = results::read_chain_models(f);
+  const results::SweepReader in(path);
+  const auto &cls = in.classes(), &dir = in.direction();
+  const auto &wb = in.omega_m_begin(), &we = in.omega_m_end();
+  const results::StoredModels& models = in.models();
   SweepBrackets out;
   out.lacking = models.lacking;
   for (std::size_t c = 0; c < cls.rows(); ++c) {
@@ -365,6 +366,7 @@ config::OrbitsConfig parse_orbits(const OrbitsArgs& args, std::vector<double>& o
     throw config::ConfigError("--lag: give the bead's position with --s (repeatable)");
   if (args.lag && !(p.drive_radius > 0.0))
     throw config::ConfigError(fmt::format("{}: --lag needs key 'model.drive_radius' > 0", cfg.source_name));
+  check_map_args(args, cfg);
   return cfg;
 }
 
@@ -492,8 +494,11 @@ int predict(const config::OrbitsConfig& cfg, const OrbitsArgs& args, std::option
   SweepBrackets sb;
   try {
     sb = sweep_brackets(args.compare, m);
+  } catch (const results::SweepFileError& e) {
+    std::fprintf(stderr, "error: %s\n", config::printable(e.what()).c_str());
+    return kExitBadInput;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s: cannot read a sweep file: %s\n", args.compare.c_str(), e.what());
+    std::fprintf(stderr, "error: %s: cannot read a sweep file: %s\n", args.compare.c_str(), config::printable(e.what()).c_str());
     return kExitBadInput;
   }
   std::printf("\nagainst the sweep %s (%zu chains with this model):\n", args.compare.c_str(), sb.chains.size());
@@ -568,6 +573,7 @@ int orbits_command(const OrbitsArgs& args) {
   }
   print_model(cfg);
   if (args.lag) return lag_report(cfg, omegas, args);
+  if (!args.map_parameter.empty()) return orbits_map(cfg, omegas, args);
 
   const std::vector<Row> table = orbit_table(cfg, omegas, args.all);
   Branches br;

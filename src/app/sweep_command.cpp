@@ -141,23 +141,6 @@ struct SweepOutput {
   void make_file() {
     file.emplace(io::File::create(part_path), plan.setups.size(), plan.max_windows, plan.max_samples, plan.n_tasks);
     file->create(cfg, plan);
-    if (cfg.hold) {  // which ω_m, seed and perturbation each chain holds
-      std::vector<double> w;
-      std::vector<std::int32_t> seed, pert;
-      for (const sweep::ChainStart& s : plan.starts) {
-        w.push_back(s.omega);
-        seed.push_back(std::int32_t(std::find(cfg.hold->seeds.begin(), cfg.hold->seeds.end(), s.seed) -
-                                    cfg.hold->seeds.begin()));
-        pert.push_back(s.perturbation);
-      }
-      io::Group cg = file->file().open_group("chains");
-      cg.write_dataset("hold_omega", std::span<const double>(w)).set_attribute("units", "rad/s");
-      cg.write_dataset("seed", std::span<const std::int32_t>(seed))
-          .set_attribute("names", fmt::format("{}", fmt::join(cfg.hold->seeds, ",")));
-      cg.write_dataset("perturbation", std::span<const std::int32_t>(pert))
-          .set_attribute("description", "0: the seed itself; k >= 1: the seed with velocity kick k");
-    }
-    file->file().flush();
   }
 
   // --resume: the journal checked and reopened, the .part made again from the sweep file.
@@ -173,18 +156,14 @@ struct SweepOutput {
       throw config::ConfigError(fmt::format(
           "{}: key 'output.path': {} has no journal {}, so what it holds cannot be checked; start afresh with "
           "--force", cfg.source_name, part_path.string(), journal_path.string()));
-    journal.emplace(io::Journal::open_append(journal_path));  // locked: no other sweep writes it
-    replay = io::Journal::read(journal_path);
+    // Locked (no other sweep writes it), and checked before its damage, if any, is cut away.
+    journal.emplace(io::Journal::open_append(journal_path, [&](const io::JournalContents& c) {
+      results::check_journal_identity(cfg, journal_path, c);
+    }));
+    replay = std::move(journal->found());
     if (replay.records.empty())  // killed before its first record
       journal->append(results::kJournalIdentity, results::journal_identity(cfg));
-    else if (replay.records.front().key != results::kJournalIdentity || replay.records.front().payload != results::journal_identity(cfg))
-      throw config::ConfigError(fmt::format(
-          "{}: key 'output.path': {} was written by a different sweep file or overrides; resume it with the "
-          "same ones, or start afresh with --force",
-          cfg.source_name, journal_path.string()));
-    if (journal->cut_torn_tail())
-      std::fprintf(stderr, "warning: %s ended in a result cut short or damaged; that task runs again\n",
-                   journal_path.c_str());
+    results::report_journal_damage(journal_path, replay);
     // Every dataset made again from the sweep file, and every result from the journal (below).
     std::printf("%s rebuilt from the sweep file and %s (%zu checksummed results)\n", part_path.c_str(),
                 journal_path.c_str(), replay.records.empty() ? 0 : replay.records.size() - 1);
@@ -197,6 +176,10 @@ struct SweepOutput {
   std::string open() {
     try {
       check_output_path(cfg.source_name, "output.path", cfg.output_path, {args.config_path}, {".part", ".journal"});
+      // A sweep running on this output holds its journal's lock: said first, --resume or not.
+      if (io::Journal::in_use(journal_path))
+        throw config::ConfigError(fmt::format("{}: key 'output.path': {} is in use by another running sweep (wait for "
+                                              "it to end, or end it)", cfg.source_name, journal_path.string()));
       if (!args.resume) check_not_overwriting(cfg.source_name, "output.path", cfg.output_path, args.force);
       if (!args.resume && !args.force) results::check_no_unfinished_sweep(cfg, part_path, journal_path);
       if (args.resume) {
@@ -389,7 +372,7 @@ void write_sweep_provenance(io::Group& prov, const SweepArgs& args, int ranks, c
   prov.set_attribute("master_result_seconds", fs.result_seconds);  // classify, journal, write
   prov.set_attribute("threads", args.threads);  // of rank 0 that integrate
   prov.set_attribute("version", results::program_version());
-  prov.set_attribute("git_commit", results::program_commit());  // at configure time
+  prov.set_attribute("git_commit", results::program_commit());  // when built
 }
 
 // Rank 0 after the farm: the file finished (and renamed when complete), the summary line, the

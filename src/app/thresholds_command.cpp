@@ -22,10 +22,10 @@
 #include <vector>
 
 #include "app/commands.hpp"
-#include "results/reclassify.hpp"
-#include "results/sweep_file.hpp"
 #include "config/config.hpp"
-#include "io/hdf5_file.hpp"
+#include "config/text.hpp"
+#include "results/reclassify.hpp"
+#include "results/sweep_reader.hpp"
 #include "sweep/class_sequence.hpp"
 #include "sweep/flower_onset.hpp"
 #include "sweep/hold_verdict.hpp"
@@ -39,57 +39,36 @@ namespace {
 
 constexpr double pi = std::numbers::pi;
 
-std::vector<std::string> lines(const std::string& text) {
-  std::vector<std::string> out;
-  std::istringstream in(text);
-  for (std::string l; std::getline(in, l);)
-    if (!l.empty()) out.push_back(l);
-  return out;
-}
-
 // What a refinement needs from the file: the sweep's plan rebuilt from the stored
 // configuration, and for each chain the state to start from before a given time.
 struct RefineSource {
   sweep::SweepPlan plan;
   sweep::ClassifierSettings settings;
-  std::vector<results::TaskStatus> status;
-  std::optional<results::SweepFile> file;
+  const results::SweepReader* in = nullptr;
 
   // The last finished task's final state no later than t, else the chain's start state.
   physics::State state_before(std::size_t c, double t) const {
     const auto& spans = plan.spans[c];
     std::optional<std::size_t> best;
     for (std::size_t j = 0; j < spans.size() && spans[j].t_end <= t; ++j) {
-      if (status[plan.first_task[c] + j] != results::TaskStatus::Ok) break;
+      if (in->status()[plan.first_task[c] + j] != results::TaskStatus::Ok) break;
       best = j;
     }
-    return best ? file->state(plan.first_task[c] + *best) : plan.start_state(c);
+    return best ? in->final_state(plan.first_task[c] + *best) : plan.start_state(c);
   }
 };
 
 // `settings`: the classifier's for the holds and refinements when --set gave some; else the
 // settings the file's windows were classified with.
-RefineSource open_refine_source(const std::string& path, std::size_t chains, std::size_t windows,
-                                const std::optional<sweep::ClassifierSettings>& settings) {
+RefineSource open_refine_source(const results::SweepReader& in, const std::optional<sweep::ClassifierSettings>& settings) {
   RefineSource src;
-  io::File f = io::File::open_read(path);
-  results::checked_format_version(f, path);
-  const io::Dataset config = f.open_dataset("config");
-  const config::SweepConfig cfg = config::parse_sweep_config(
-      config.read_string(), config.read_string_attribute("source"), lines(config.read_string_attribute("overrides")));
-  src.plan = config::make_plan(cfg);
-  if (src.plan.chains() != chains || src.plan.max_windows != windows)
-    throw std::runtime_error(fmt::format("its configuration makes {} chains of up to {} windows, the file has {} of {}",
-                                         src.plan.chains(), src.plan.max_windows, chains, windows));
-  const io::Group wg = f.open_group("windows");
-  if (settings) {
-    src.settings = *settings;
-  } else if (wg.has_attribute("classifier_settings")) {
-    const std::string used = wg.read_string_attribute("classifier_settings");
-    if (used != "defaults") src.settings = sweep::parse_classifier_settings(lines(used));
-  }
-  src.status = results::read_task_statuses(f);
-  src.file.emplace(std::move(f), chains, windows, 0, src.plan.n_tasks);
+  src.in = &in;
+  src.plan = config::make_plan(in.config());
+  if (src.plan.chains() != in.chains() || src.plan.max_windows != in.windows() || src.plan.n_tasks != in.tasks())
+    throw std::runtime_error(fmt::format("its configuration makes {} chains of up to {} windows in {} tasks, the file "
+                                         "has {} of {} in {}", src.plan.chains(), src.plan.max_windows, src.plan.n_tasks,
+                                         in.chains(), in.windows(), in.tasks()));
+  src.settings = settings ? *settings : sweep::parse_classifier_settings(in.classifier_settings());
   return src;
 }
 
@@ -123,16 +102,9 @@ bool write_csv(const std::string& path, const std::string& text) {
   return false;
 }
 
-std::string parameters_of(const std::string& axes, const io::Array<double>& grid, std::size_t c) {
+std::string parameters_of(const std::vector<std::string>& axes, const results::Array<double>& grid, std::size_t c) {
   std::string params;
-  if (!axes.empty() && grid.data.size() > 0) {
-    std::size_t a = 0;
-    for (std::size_t start = 0; start <= axes.size(); ++a) {
-      const std::size_t comma = std::min(axes.find(',', start), axes.size());
-      params += fmt::format("{}{}={:g}", a ? " " : "", axes.substr(start, comma - start), grid(c, a));
-      start = comma + 1;
-    }
-  }
+  for (std::size_t a = 0; a < axes.size(); ++a) params += fmt::format("{}{}={:g}", a ? " " : "", axes[a], grid(c, a));
   return params;
 }
 
@@ -180,36 +152,28 @@ struct SweepWindows {
   std::vector<std::string> group;                         // per chain: its group ("" for a plain file)
   std::vector<std::size_t> variant;                       // per chain: index into `variants`
   std::vector<Variant> variants;
-  io::Array<double> radius_bottom_mean, radius_bottom_std;  // chains × windows [m]
+  results::Array<double> radius_bottom_mean, radius_bottom_std;  // chains × windows [m]
   std::size_t n_windows = 0;
 };
 
-std::vector<std::string> split_lines(const std::string& text) {
-  std::vector<std::string> out;
-  std::size_t a = 0;
-  for (std::size_t b; (b = text.find('\n', a)) != std::string::npos; a = b + 1) out.push_back(text.substr(a, b - a));
-  out.push_back(text.substr(a));
-  return out;
-}
-
 // `settings`: classify the windows again from their samples with these (--set), in memory,
-// instead of reading the file's classes.
-SweepWindows read_sweep_windows(const io::File& f, const std::optional<sweep::ClassifierSettings>& settings) {
+// instead of reading the file's classes. Names and labels escaped for printing.
+SweepWindows read_sweep_windows(const results::SweepReader& in, const std::optional<sweep::ClassifierSettings>& settings) {
   SweepWindows s;
-  auto cls = f.read_int32s("windows/class");
-  const auto dir = f.read_int32s("windows/direction");
-  const auto wb = f.read_doubles("windows/omega_m_begin"), we = f.read_doubles("windows/omega_m_end");
-  auto ob = f.read_doubles("windows/omega_ball");
-  s.radius_bottom_mean = f.read_doubles("windows/radius_bottom_mean");
-  s.radius_bottom_std = f.read_doubles("windows/radius_bottom_std");
+  auto cls = in.classes();
+  const auto& dir = in.direction();
+  const auto &wb = in.omega_m_begin(), &we = in.omega_m_end();
+  auto ob = in.stat("omega_ball");
+  s.radius_bottom_mean = in.stat("radius_bottom_mean");
+  s.radius_bottom_std = in.stat("radius_bottom_std");
   if (settings)
-    for (const results::ReclassifiedWindow& w : results::reclassify_windows(f, *settings)) {
+    for (const results::ReclassifiedWindow& w : results::reclassify_windows(in, *settings)) {
       cls(w.chain, w.window) = w.row.cls;
       ob(w.chain, w.window) = results::row_stat(w.row, "omega_ball");
       s.radius_bottom_mean(w.chain, w.window) = results::row_stat(w.row, "radius_bottom_mean");
       s.radius_bottom_std(w.chain, w.window) = results::row_stat(w.row, "radius_bottom_std");
     }
-  const std::size_t C = cls.rows(), W = cls.cols();
+  const std::size_t C = in.chains(), W = in.windows();
   s.n_windows = W;
   for (std::size_t c = 0; c < C; ++c) {
     std::vector<sweep::ClassedWindow> w;
@@ -222,20 +186,16 @@ SweepWindows read_sweep_windows(const io::File& f, const std::optional<sweep::Cl
     s.chains.push_back(std::move(w));
     s.omega_ball.push_back(std::move(o));
   }
-  const io::Group cg = f.open_group("chains");
-  const std::string axes = cg.read_string_attribute("axes");
-  io::Array<double> grid;
-  if (cg.exists("grid_values")) grid = f.read_doubles("chains/grid_values");
-  for (std::size_t c = 0; c < C; ++c) s.params.push_back(parameters_of(axes, grid, c));
-  if (cg.exists("variant")) {
-    const io::Dataset vd = f.open_dataset("chains/variant"), gd = f.open_dataset("chains/group");
-    const auto names = split_lines(vd.read_string_attribute("names")), labels = split_lines(vd.read_string_attribute("labels"));
-    for (std::size_t i = 0; i < names.size(); ++i) s.variants.push_back({names[i], i < labels.size() ? labels[i] : ""});
-    const auto groups = split_lines(gd.read_string_attribute("names"));
-    const auto v = vd.read_int32s(), g = gd.read_int32s();
+  std::vector<std::string> axes;
+  for (const std::string& a : in.axes()) axes.push_back(config::printable(a));
+  for (std::size_t c = 0; c < C; ++c) s.params.push_back(parameters_of(axes, in.grid_values(), c));
+  if (in.grouped()) {
+    const results::NameList &v = in.variants(), &g = in.groups();
+    for (std::size_t i = 0; i < v.names.size(); ++i)
+      s.variants.push_back({config::printable(v.names[i]), config::printable(v.texts[i])});
     for (std::size_t c = 0; c < C; ++c) {
-      s.variant.push_back(std::size_t(v.data[c]));
-      s.group.push_back(groups.at(std::size_t(g.data[c])));
+      s.variant.push_back(std::size_t(v.of_chain[c]));
+      s.group.push_back(config::printable(g.names[std::size_t(g.of_chain[c])]));
     }
   } else {
     s.variants.push_back({});
@@ -270,12 +230,12 @@ sweep::OrbitClass class_at(const std::vector<sweep::ClassedWindow>& windows, int
 
 // Holds (and refinements) of every bracket, spread over threads: each is an independent
 // integration from the file's stored state before it. Returns an error message, or "".
-std::string judge_rows(const ThresholdsArgs& args, const std::optional<sweep::ClassifierSettings>& settings,
-                       const std::optional<HoldTime>& hold, const SweepWindows& sw,
-                       std::vector<Row>& rows) {
+std::string judge_rows(const ThresholdsArgs& args, const results::SweepReader& in,
+                       const std::optional<sweep::ClassifierSettings>& settings, const std::optional<HoldTime>& hold,
+                       const SweepWindows& sw, std::vector<Row>& rows) {
   RefineSource src;
   try {
-    src = open_refine_source(args.input, sw.chains.size(), sw.n_windows, settings);
+    src = open_refine_source(in, settings);
   } catch (const std::exception& e) {
     return fmt::format("{}: cannot rebuild the sweep to {} it: {}", args.input, args.refine > 0 ? "refine" : "hold",
                        e.what());
@@ -364,14 +324,14 @@ std::map<long long, std::pair<int, int>> held_levels(const std::vector<sweep::Cl
 
 // The bottom ball's stored samples, read from the file once, when a chain first needs them.
 struct BottomBallSamples {
-  const io::File& f;
-  io::Array<std::int32_t> count;
-  io::Array<double> r2;  // chains × windows × samples × 3
+  const results::SweepReader& in;
+  results::Array<std::int32_t> count;
+  results::Array<double> r2;  // chains × windows × samples × 3
   bool read = false;
   void load() {
     if (read) return;
-    count = f.read_int32s("samples/count");
-    r2 = f.read_doubles("samples/r2");
+    count = in.count();
+    r2 = in.samples("r2");
     read = true;
   }
 };
@@ -397,7 +357,7 @@ std::optional<Onset> flower_onset(BottomBallSamples& samples, const SweepWindows
     if (w < *first_flower && class_at(sw.chains[c], index) == OrbitClass::LaggingCircular) on.last_lag = w;
   samples.load();
   const auto& count = samples.count;
-  const io::Array<double>& r2 = samples.r2;
+  const results::Array<double>& r2 = samples.r2;
   const std::size_t cap = r2.dims[2];
   const auto a2 = [&](int w) {
     const double r = sw.radius_bottom_std(c, std::size_t(w)) / sw.radius_bottom_mean(c, std::size_t(w));
@@ -733,22 +693,25 @@ int thresholds_command(const ThresholdsArgs& args) {
   }
   SweepWindows sw;
   std::vector<std::optional<Onset>> onsets;
+  std::optional<results::SweepReader> in;
   try {
-    const io::File f = io::File::open_read(args.input);
-    results::checked_format_version(f, args.input);
-    sw = read_sweep_windows(f, settings);
-    BottomBallSamples samples{f, {}, {}};
+    in.emplace(args.input);
+    sw = read_sweep_windows(*in, settings);
+    BottomBallSamples samples{*in, {}, {}};
     for (std::size_t c = 0; c < sw.chains.size(); ++c) onsets.push_back(flower_onset(samples, sw, c, args.onset_span));
+  } catch (const results::SweepFileError& e) {
+    std::fprintf(stderr, "error: %s\n", config::printable(e.what()).c_str());
+    return kExitBadInput;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s: cannot read a sweep file: %s\n", args.input.c_str(), e.what());
+    std::fprintf(stderr, "error: %s: cannot read a sweep file: %s\n", args.input.c_str(), config::printable(e.what()).c_str());
     return kExitBadInput;
   }
   std::vector<Row> rows;
   for (std::size_t c = 0; c < sw.chains.size(); ++c)
     for (sweep::Threshold t : sweep::kThresholds) rows.push_back({c, t, sweep::find_threshold(t, sw.chains[c]), {}, {}});
   if (args.refine > 0 || hold)
-    if (const std::string error = judge_rows(args, settings, hold, sw, rows); !error.empty()) {
-      std::fprintf(stderr, "error: %s\n", error.c_str());
+    if (const std::string error = judge_rows(args, *in, settings, hold, sw, rows); !error.empty()) {
+      std::fprintf(stderr, "error: %s\n", config::printable(error).c_str());
       return kExitBadInput;
     }
   const std::string hold_text =

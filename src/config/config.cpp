@@ -14,6 +14,7 @@
 #include <toml++/toml.h>
 
 #include "config/did_you_mean.hpp"
+#include "config/text.hpp"
 #include "config/key_catalogue.hpp"
 #include "physics/parameter_table.hpp"
 #include "numerics/stepper.hpp"
@@ -388,15 +389,24 @@ toml::table parse_text(std::string_view text, std::string_view file) {
   }
 }
 
+// A top-level table not in `known` (a typo in the file or in a --set) is refused, naming the
+// nearest allowed one. Keys are compared as typed: a lookalike letter (a Cyrillic о for an o)
+// makes another key.
+void reject_unknown_tables(const toml::table& root, const std::set<std::string>& known, std::string_view file) {
+  for (const auto& [k, v] : root)
+    if (!known.count(std::string(k.str()))) {
+      const std::string near = closest(k.str(), known);
+      throw ConfigError(fmt::format("{}: key '{}': unknown key{}; allowed tables: {}", file, k.str(),
+                                    near.empty() ? "" : " (did you mean '" + near + "'?)", fmt::join(known, ", ")));
+    }
+}
+
 // The file parsed, the overrides applied, and the top-level tables checked against `known`.
 toml::table parse_root(std::string_view text, std::string_view file, const std::vector<std::string>& overrides,
                        const std::set<std::string>& known) {
   toml::table root = parse_text(text, file);
   for (const auto& o : overrides) apply_override(root, o, file);
-  for (const auto& [k, v] : root)
-    if (!known.count(std::string(k.str())))
-      throw ConfigError(fmt::format("{}: key '{}': unknown key; allowed tables: {}", file, k.str(),
-                                    fmt::join(known, ", ")));
+  reject_unknown_tables(root, known, file);
   return root;
 }
 
@@ -659,7 +669,7 @@ void check_name(const std::string& name, const std::string& key, std::string_vie
                   std::all_of(name.begin(), name.end(), [](char ch) { return std::isalnum((unsigned char)ch) || ch == '_' || ch == '-'; });
   if (!ok)
     throw ConfigError(fmt::format("{}: key '{}': '{}' is not a name; allowed: 1 to 40 letters, digits, '_' or '-'",
-                                  file, key, name));
+                                  file, key, printable(name)));
 }
 
 struct VariantSpec {
@@ -671,6 +681,19 @@ struct GroupSpec {
   std::vector<std::string> variants;
   toml::table tables;  // its model, layers, integrator, initial, protocol or hold, grid
 };
+
+// A key of a variant or a group that is neither one of its own (`own`) nor a table it may set:
+// refused naming the nearest of both, as a mistyped key of [model] is.
+void reject_unknown_part_keys(Reader& r, const std::set<std::string>& own, const std::set<std::string>& tables) {
+  std::set<std::string> allowed = own;
+  allowed.insert(tables.begin(), tables.end());
+  for (const auto& [k, v] : r.table())
+    if (!allowed.count(std::string(k.str()))) {
+      const std::string near = closest(k.str(), allowed);
+      r.fail(k.str(), fmt::format("unknown key{}; allowed: {}", near.empty() ? "" : " (did you mean '" + near + "'?)",
+                                  fmt::join(allowed, ", ")));
+    }
+}
 
 // [variant.NAME] tables: label and the tables they set. None: one unnamed variant.
 std::vector<VariantSpec> read_variants(const toml::table& root, std::string_view file) {
@@ -687,19 +710,27 @@ std::vector<VariantSpec> read_variants(const toml::table& root, std::string_view
     Reader r(*t, key, file);
     spec.label = r.text("label", "");
     if (spec.label.empty()) r.fail("label", "missing: say what the variant is, e.g. \"the paper's physics (rigid tie)\"");
+    if (const auto cp = control_character(spec.label))
+      r.fail("label", fmt::format("control character {} not allowed (a label is one line of text; TAB is allowed)",
+                                  code_point_name(*cp)));
     for (const auto& [tk, tv] : *t) {
       if (!kVariantTables.count(std::string(tk.str()))) continue;
       if (!tv.is_table()) r.fail(tk.str(), "expected a table");
       r.known(tk.str());
       spec.tables.insert(tk.str(), tv);
     }
+    reject_unknown_part_keys(r, {"label"}, kVariantTables);
     r.reject_unknown();
     out.push_back(std::move(spec));
   }
   if (out.empty()) throw ConfigError(fmt::format("{}: key 'variant': no [variant.NAME] table", file));
   // In the order the file gives them (a TOML table's keys come sorted).
   const toml::table& vt = *n->as_table();
-  const auto line = [&](const VariantSpec& v) { return vt.get(v.name)->source().begin.line; };
+  // A variant defined by --set has no line: after the file's.
+  const auto line = [&](const VariantSpec& v) {
+    const auto l = vt.get(v.name)->source().begin.line;
+    return l == 0 ? std::numeric_limits<decltype(l)>::max() : l;
+  };
   std::stable_sort(out.begin(), out.end(), [&](const VariantSpec& a, const VariantSpec& b) { return line(a) < line(b); });
   return out;
 }
@@ -725,6 +756,9 @@ std::vector<GroupSpec> read_groups(const toml::table& root, const std::vector<Va
       if (o.name == g.name) r.fail("name", fmt::format("'{}' names two groups; allowed: a name used once", g.name));
     g.purpose = r.text("purpose", "");
     if (g.purpose.empty()) r.fail("purpose", "missing: say why these chains are there");
+    if (const auto cp = control_character(g.purpose))
+      r.fail("purpose", fmt::format("control character {} not allowed (a purpose is one line of text; TAB is allowed)",
+                                    code_point_name(*cp)));
     g.variants = all;
     if (r.has("variants")) {
       r.known("variants");
@@ -746,6 +780,7 @@ std::vector<GroupSpec> read_groups(const toml::table& root, const std::vector<Va
       r.known(tk.str());
       g.tables.insert(tk.str(), tv);
     }
+    reject_unknown_part_keys(r, {"name", "purpose", "variants"}, kGroupTables);
     if (g.tables.contains("protocol") && g.tables.contains("hold"))
       r.fail("hold", "a group has either [group.protocol] (ramps, steps) or [group.hold], not both");
     out.push_back(std::move(g));
@@ -764,6 +799,36 @@ toml::table part_root(const toml::table& base, const VariantSpec& v, const Group
   return root;
 }
 
+// --set variant.NAME.KEY=VALUE: NAME must be a variant of the file, or one the same command
+// defines completely (gives its label, --set variant.NAME.label=...); a mistyped name would
+// otherwise make a new variant of the file's tables and run it beside the others.
+void check_variant_overrides(const toml::table& root, const std::vector<std::string>& overrides, std::string_view file) {
+  const toml::table* variants = root.get_as<toml::table>("variant");
+  std::vector<std::string> names;
+  if (variants) {
+    for (const auto& [k, v] : *variants) names.emplace_back(k.str());
+    std::stable_sort(names.begin(), names.end(), [&](const std::string& a, const std::string& b) {
+      return variants->get(a)->source().begin.line < variants->get(b)->source().begin.line;  // the file's order
+    });
+  }
+  for (const std::string& o : overrides) {
+    if (o.rfind("variant.", 0) != 0) continue;
+    const std::string key = o.substr(0, o.find('='));
+    const std::string name = key.substr(8, key.find('.', 8) == std::string::npos ? std::string::npos : key.find('.', 8) - 8);
+    if (std::find(names.begin(), names.end(), name) != names.end()) continue;
+    const std::string label = "variant." + name + ".label=";
+    if (std::any_of(overrides.begin(), overrides.end(), [&](const std::string& x) { return x.rfind(label, 0) == 0; }))
+      continue;
+    const std::string near = closest(name, names);
+    throw ConfigError(fmt::format(
+        "{}: key 'variant.{}': no such variant{}; allowed: {}, or a new variant defined completely by the same "
+        "command (--set variant.{}.label=\"what it is\" and the tables it changes)",
+        file, name, near.empty() ? "" : " (did you mean '" + near + "'?)",
+        names.empty() ? std::string("(the file has no [variant.NAME] tables)") : fmt::format("{}", fmt::join(names, ", ")),
+        name));
+  }
+}
+
 SweepConfig parse_grouped_sweep(toml::table root, std::string_view text, std::string_view source_name,
                                 const std::vector<std::string>& overrides) {
   SweepConfig top;
@@ -773,16 +838,21 @@ SweepConfig parse_grouped_sweep(toml::table root, std::string_view text, std::st
   const std::string_view file = top.source_name;
   // --set variant.NAME.KEY=VALUE sets a key of one variant; any other key is set in every part,
   // over what its variant and group say.
+  check_variant_overrides(root, overrides, file);
   std::vector<std::string> part_overrides;
   for (const std::string& o : overrides)
     if (o.rfind("variant.", 0) == 0)
       apply_override(root, o, file);
     else
       part_overrides.push_back(o);
-  for (const auto& [k, v] : root)
-    if (!kSweepTables.count(std::string(k.str())) && k.str() != "variant" && k.str() != "group")
-      throw ConfigError(fmt::format("{}: key '{}': unknown key; allowed tables: {}, variant, group", file, k.str(),
-                                    fmt::join(kSweepTables, ", ")));
+  std::set<std::string> known = kSweepTables;
+  known.insert({"variant", "group"});
+  reject_unknown_tables(root, known, file);
+  {  // the other overrides' tables, refused as in a plain sweep before any part is read
+    toml::table set;
+    for (const std::string& o : part_overrides) apply_override(set, o, file);
+    reject_unknown_tables(set, kSweepTables, file);
+  }
   const std::vector<VariantSpec> variants = read_variants(root, file);
   const std::vector<GroupSpec> groups = read_groups(root, variants, file);
   toml::table base = root;

@@ -223,10 +223,11 @@ void grid_keys(std::vector<KeyInfo>& k) {
 
 // [variant.NAME] and [[group]] (astrojax sweep)
 void group_keys(std::vector<KeyInfo>& k) {
-  k.push_back(other("variant", "label", "text", "", "non-empty", "", "what the model variant is, for tables and figures; "
-                    "a variant may also hold [model], [layers], [integrator] and [initial] tables"));
+  k.push_back(other("variant", "label", "text", "", "non-empty", "", "what the model variant is, for tables and figures (any "
+                    "UTF-8 but control characters other than TAB); a variant may also hold [model], [layers], [integrator] and [initial] tables"));
   k.push_back(other("group", "name", "text", "", "1 to 40 letters, digits, '_' or '-'", "", "the chain group's name"));
-  k.push_back(other("group", "purpose", "text", "", "non-empty", "", "why its chains are there; a group may also hold "
+  k.push_back(other("group", "purpose", "text", "", "non-empty", "", "why its chains are there (any UTF-8 but control "
+                    "characters other than TAB); a group may also hold "
                     "[model], [layers], [integrator], [initial], [protocol] or [hold], and [grid] tables"));
   k.push_back(other("group", "variants", "list of words", "", "names of [variant.NAME] tables", "every variant",
                     "the variants the group runs with"));

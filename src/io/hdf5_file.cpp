@@ -208,6 +208,16 @@ T read_scalar(const Source& src) {
   return value;
 }
 
+// The memory type of variable-length strings read from `type`, in its character set.
+Handle variable_string_type(const Handle& type, Where w) {
+  Handle mem = own(H5Tcopy(H5T_C_S1), Kind::Datatype, "H5Tcopy", w);
+  check(H5Tset_size(mem.get(), H5T_VARIABLE), "H5Tset_size", w);
+  H5T_cset_t cset = H5Tget_cset(type.get());
+  if (cset < 0) fail("H5Tget_cset", w);
+  check(H5Tset_cset(mem.get(), cset), "H5Tset_cset", w);
+  return mem;
+}
+
 std::string read_string_from(const Source& src) {
   Handle type = src.type();
   H5T_class_t cls = H5Tget_class(type.get());
@@ -218,11 +228,7 @@ std::string read_string_from(const Source& src) {
   if (n != 1) fail_plain(fmt::format("holds {} strings, expected a single one", n), src.w);
 
   if (check_tri(H5Tis_variable_str(type.get()), "H5Tis_variable_str", src.w)) {
-    Handle mem = own(H5Tcopy(H5T_C_S1), Kind::Datatype, "H5Tcopy", src.w);
-    check(H5Tset_size(mem.get(), H5T_VARIABLE), "H5Tset_size", src.w);
-    H5T_cset_t cset = H5Tget_cset(type.get());
-    if (cset < 0) fail("H5Tget_cset", src.w);
-    check(H5Tset_cset(mem.get(), cset), "H5Tset_cset", src.w);
+    Handle mem = variable_string_type(type, src.w);
     char* ptr = nullptr;
     src.read(mem.get(), &ptr);
     std::string out = ptr != nullptr ? std::string(ptr) : std::string();
@@ -242,6 +248,47 @@ std::string read_string_from(const Source& src) {
     buf.resize(last == std::string::npos ? 0 : last + 1);
   }
   return buf;
+}
+
+std::vector<std::string> read_strings_from(const Source& src) {
+  Handle type = src.type();
+  H5T_class_t cls = H5Tget_class(type.get());
+  if (cls == H5T_NO_CLASS) fail("H5Tget_class", src.w);
+  if (cls != H5T_STRING) fail_plain("is not a string", src.w);
+  Handle space = src.space();
+  const std::size_t n = space_points(space.get(), src.w);
+  std::vector<std::string> out;
+  if (n == 0) return out;
+  if (check_tri(H5Tis_variable_str(type.get()), "H5Tis_variable_str", src.w)) {
+    Handle mem = variable_string_type(type, src.w);
+    std::vector<char*> ptrs(n, nullptr);
+    src.read(mem.get(), ptrs.data());
+    for (char* p : ptrs) out.emplace_back(p != nullptr ? p : "");
+    check(H5Dvlen_reclaim(mem.get(), space.get(), H5P_DEFAULT, ptrs.data()), "H5Dvlen_reclaim", src.w);
+    return out;
+  }
+  const std::size_t size = H5Tget_size(type.get());
+  if (size == 0) fail("H5Tget_size", src.w);
+  Handle mem = own(H5Tcopy(type.get()), Kind::Datatype, "H5Tcopy", src.w);
+  std::string buf(size * n, '\0');
+  src.read(mem.get(), buf.data());
+  for (std::size_t i = 0; i < n; ++i) {
+    std::string item = buf.substr(i * size, size);
+    item.resize(std::min(item.find('\0'), item.size()));
+    out.push_back(item);
+  }
+  return out;
+}
+
+TypeClass type_class_of(const Source& src) {
+  Handle type = src.type();
+  switch (H5Tget_class(type.get())) {
+    case H5T_INTEGER: return TypeClass::Integer;
+    case H5T_FLOAT: return TypeClass::Float;
+    case H5T_STRING: return TypeClass::String;
+    case H5T_NO_CLASS: fail("H5Tget_class", src.w);
+    default: return TypeClass::Other;
+  }
 }
 
 std::string attr_path(const Object& obj, std::string_view name) { return fmt::format("{}@{}", obj.path(), name); }
@@ -415,6 +462,32 @@ void Object::set_attribute(std::string_view name, std::span<const double> values
                   values.empty() ? &dummy : values.data());
 }
 
+void Object::set_attribute(std::string_view name, std::span<const std::string> values) {
+  std::string where_path = attr_path(*this, name);
+  Where w{file_name(), where_path};
+  Handle type = utf8_string_type(w);
+  Handle space = make_space({values.size()}, w);
+  std::vector<const char*> ptrs;
+  for (const std::string& v : values) ptrs.push_back(v.c_str());
+  static const char* const dummy = "";  // HDF5 rejects a null buffer even for zero elements
+  write_attribute(*this, name, type.get(), type.get(), space, ptrs.empty() ? &dummy : ptrs.data());
+}
+
+std::vector<std::string> Object::read_strings_attribute(std::string_view name) const {
+  return with_attribute(*this, name, [](const Source& s) { return read_strings_from(s); });
+}
+
+TypeClass Object::attribute_type_class(std::string_view name) const {
+  return with_attribute(*this, name, [](const Source& s) { return type_class_of(s); });
+}
+
+Dims Object::attribute_dims(std::string_view name) const {
+  return with_attribute(*this, name, [](const Source& s) {
+    Handle space = s.space();
+    return space_dims(space.get(), s.w);
+  });
+}
+
 bool Object::has_attribute(std::string_view name) const {
   std::string n(name);
   std::string where_path = attr_path(*this, name);
@@ -444,6 +517,12 @@ Dims Dataset::dims() const {
   Where w{file_name(), path_};
   Handle space = own(H5Dget_space(handle_.get()), Kind::Dataspace, "H5Dget_space", w);
   return space_dims(space.get(), w);
+}
+
+TypeClass Dataset::type_class() const { return type_class_of(Source{handle_.get(), false, {file_name(), path_}}); }
+
+std::vector<std::string> Dataset::read_strings() const {
+  return read_strings_from(Source{handle_.get(), false, {file_name(), path_}});
 }
 
 bool Dataset::checksummed() const {
@@ -640,6 +719,27 @@ Dataset Group::write_dataset(std::string_view path, std::span<const std::int64_t
 Dataset Group::write_dataset(std::string_view path, std::span<const std::int32_t> data, const Dims& dims) {
   std::string full = child_path(path);
   Handle ds = create_and_write(*this, path, full, data.data(), data.size(), dims, H5T_STD_I32LE, H5T_NATIVE_INT32);
+  return Dataset(std::move(ds), file_, std::move(full));
+}
+
+Dataset Group::write_dataset(std::string_view path, std::span<const std::int8_t> data) {
+  std::string full = child_path(path);
+  Handle ds = create_and_write(*this, path, full, data.data(), data.size(), {data.size()}, H5T_STD_I8LE, H5T_NATIVE_INT8);
+  return Dataset(std::move(ds), file_, std::move(full));
+}
+
+Dataset Group::write_dataset(std::string_view path, std::span<const std::string> data) {
+  std::string full = child_path(path);
+  Where w{file_name(), full};
+  Handle type = utf8_string_type(w);
+  Handle space = make_space({data.size()}, w);
+  Handle lcpl = intermediate_lcpl(w);
+  std::string p(path);
+  Handle ds = own(H5Dcreate2(handle_.get(), p.c_str(), type.get(), space.get(), lcpl.get(), H5P_DEFAULT, H5P_DEFAULT),
+                  Kind::Dataset, "H5Dcreate2", w);
+  std::vector<const char*> ptrs;
+  for (const std::string& v : data) ptrs.push_back(v.c_str());
+  if (!ptrs.empty()) check(H5Dwrite(ds.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, ptrs.data()), "H5Dwrite", w);
   return Dataset(std::move(ds), file_, std::move(full));
 }
 

@@ -58,6 +58,10 @@ struct Array {
 // Element type stored in the file.
 enum class DType { Float64, Float32, Int64, Int32, Int8 };
 
+// The class of a stored dataset's or attribute's element type, for readers that check a file
+// against its layout before they trust it.
+enum class TypeClass { Integer, Float, String, Other };
+
 namespace detail {
 
 // Owner of one HDF5 identifier (hid_t is int64_t in HDF5 >= 1.10; checked in the .cpp).
@@ -105,6 +109,8 @@ class Object {
   void set_attribute(std::string_view name, double value);
   void set_attribute(std::string_view name, std::int64_t value);
   void set_attribute(std::string_view name, std::span<const double> values);
+  // A 1-D attribute of variable-length UTF-8 strings, one element per item (empty allowed).
+  void set_attribute(std::string_view name, std::span<const std::string> values);
   // Any other integer (int, unsigned, ...) is stored as int64; bool is rejected at compile time.
   template <class I>
     requires std::is_integral_v<I> && (!std::is_same_v<I, bool>) && (!std::is_same_v<I, std::int64_t>)
@@ -117,6 +123,11 @@ class Object {
   double read_double_attribute(std::string_view name) const;  // numeric attributes convert
   std::int64_t read_int64_attribute(std::string_view name) const;
   std::vector<double> read_doubles_attribute(std::string_view name) const;
+  // A string attribute as a list: a 1-D (or scalar) attribute of strings, fixed or variable length.
+  std::vector<std::string> read_strings_attribute(std::string_view name) const;
+  TypeClass attribute_type_class(std::string_view name) const;
+  // The attribute's number of elements and rank (0 for a scalar).
+  Dims attribute_dims(std::string_view name) const;
 
   // The raw hid_t, for the rare call this layer does not wrap. Ownership stays here.
   std::int64_t native_handle() const noexcept { return handle_.get(); }
@@ -136,6 +147,7 @@ class Dataset : public Object {
   Dataset() = default;
 
   Dims dims() const;
+  TypeClass type_class() const;
   // Whether its chunks carry a checksum HDF5 checks on every read: Fletcher32, or deflate
   // (the zlib stream's Adler-32).
   bool checksummed() const;
@@ -144,6 +156,8 @@ class Dataset : public Object {
   Array<std::int32_t> read_int32s() const;
   // Scalar (or single-element) string dataset, variable- or fixed-length.
   std::string read_string() const;
+  // A 1-D dataset of strings, one per element.
+  std::vector<std::string> read_strings() const;
 
   // Write a row-major block of shape `count` at `offset` (both of the dataset's rank): results
   // that arrive piece by piece, into a dataset made by Group::create_filled.
@@ -188,6 +202,10 @@ class Group : public Object {
   Dataset write_dataset(std::string_view path, std::span<const double> data) { return write_dataset(path, data, {data.size()}); }
   Dataset write_dataset(std::string_view path, std::span<const std::int64_t> data) { return write_dataset(path, data, {data.size()}); }
   Dataset write_dataset(std::string_view path, std::span<const std::int32_t> data) { return write_dataset(path, data, {data.size()}); }
+  Dataset write_dataset(std::string_view path, std::span<const std::int8_t> data);
+  // 1-D dataset of variable-length UTF-8 strings (contiguous, unchecksummed: HDF5 cannot
+  // checksum the heap that holds the strings).
+  Dataset write_dataset(std::string_view path, std::span<const std::string> data);
   // Scalar variable-length UTF-8 string dataset, for long texts (e.g. a configuration file).
   Dataset write_string_dataset(std::string_view path, std::string_view text);
   // A chunked dataset of shape `dims` whose unwritten elements read as `fill` (NaN marks

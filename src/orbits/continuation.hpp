@@ -21,8 +21,11 @@
 
 namespace ajx::orbits {
 
-// "omega" (ω_m), "s" (s* of a stuck orbit), or a model parameter: drive_radius,
-// contact_distance, string_length, mass (m1 = m2), bead_mass, ball_mass, drag, gravity.
+// "omega" (ω_m), "s" (s* of a stuck orbit), or a model parameter the table marks
+// (physics/parameter_table.hpp): string_length, bead_mass, ball_mass, drag, μ_s, μ_k, gravity,
+// drive_radius, contact_distance, the clutch's τ_s, τ_k, c_a, mass (m1 = m2). The clutch's
+// torques do not enter a locked orbit, nor does μ_k with stick-slip friction (the cone is μ_s's):
+// along them a branch stands still and only its events move.
 const std::vector<std::string>& continuation_parameters();
 // Throws std::invalid_argument naming the allowed parameters.
 double parameter_value(const OrbitProblem& pb, std::string_view name);

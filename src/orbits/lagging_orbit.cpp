@@ -126,6 +126,8 @@ double tie_drive_torque(const physics::Model& m, const SteadyOrbit& o) { return 
 
 double separation(const SteadyOrbit& a, const SteadyOrbit& b) { return (a.p1 - b.p1).norm() + (a.p2 - b.p2).norm(); }
 
+double lag_motor_speed(const physics::Model& m, double omega_b, double torque) { return omega_m_of(m, omega_b, torque); }
+
 double clutch_torque(const physics::Model& m, double omega_m, double omega_ball) {
   return m.p.tie_kinetic_torque + m.p.tie_damping * (omega_m - omega_ball);
 }

@@ -51,6 +51,10 @@ bool on_branch(const std::vector<Point>& path, const SteadyOrbit& o, double stri
 // The clutch torque τ_k + c_a (ω_m − ω_b) at a lag of rate ω_b [N m].
 double clutch_torque(const physics::Model& m, double omega_m, double omega_ball);
 
+// The motor speed of a lag of rate ω_b passing τ: ω_m = ω_b + (τ − τ_k)/c_a [rad/s]; NaN where no
+// ω_m > ω_b gives τ with the tie slipping forward (τ < τ_k, or c_a = 0).
+double lag_motor_speed(const physics::Model& m, double omega_b, double torque);
+
 struct LagStability {
   Eigen::VectorXcd eigenvalues;  // the nine that remain, largest real part first [1/s]
   double symmetry_eigenvalue = 0;  // the factored-out one, zero up to the differences' error [1/s]

@@ -68,12 +68,14 @@ std::vector<double> parameter_row(const Parameters& p) {
   return row;
 }
 
-std::string parameter_columns() {
-  std::string out;
+std::vector<std::string> parameter_column_names() {
+  std::vector<std::string> out;
   for (const ParameterInfo& info : kParameters)
-    out += fmt::format("{}{}{}", out.empty() ? "" : ",", info.key, info.unit.empty() ? "" : fmt::format(" [{}]", info.unit));
+    out.push_back(fmt::format("{}{}", info.key, info.unit.empty() ? "" : fmt::format(" [{}]", info.unit)));
   return out;
 }
+
+std::string parameter_columns() { return fmt::format("{}", fmt::join(parameter_column_names(), ",")); }
 
 // ---- layers -----------------------------------------------------------------------------
 

@@ -50,9 +50,9 @@ inline constexpr ParameterInfo kParameters[] = {
      "mass of the bottom ball, fixed to the string's end"},
     {"drag", &Parameters::drag, "c_D", "kg/s", 0.0, kUnbounded, false, true, true, true, "",
      "linear air drag, a force −c_D v on each ball"},
-    {"mu_static", &Parameters::mu_static, "μ_s", "", 0.0, kUnbounded, false, true, true, false, "",
+    {"mu_static", &Parameters::mu_static, "μ_s", "", 0.0, kUnbounded, false, true, true, true, "",
      "static friction coefficient between bead and string"},
-    {"mu_kinetic", &Parameters::mu_kinetic, "μ_k", "", 0.0, kUnbounded, false, true, true, false, "μ_k <= μ_s",
+    {"mu_kinetic", &Parameters::mu_kinetic, "μ_k", "", 0.0, kUnbounded, false, true, true, true, "μ_k <= μ_s",
      "kinetic friction coefficient between bead and string"},
     {"gravity", &Parameters::gravity, "g", "m/s^2", 0.0, kUnbounded, false, true, false, true, "",
      "gravitational acceleration"},
@@ -62,13 +62,13 @@ inline constexpr ParameterInfo kParameters[] = {
      "closest approach of the bead to the bottom ball along the string: L2 >= d"},
     {"top_stop", &Parameters::top_stop, "s_min", "m", 0.0, kUnbounded, false, true, false, false, "s_min < l − d",
      "closest approach of the bead to the top along the string: L1 >= s_min (top-stop layer)"},
-    {"tie_static_torque", &Parameters::tie_static_torque, "τ_s", "N m", 0.0, kUnbounded, false, true, true, false, "",
+    {"tie_static_torque", &Parameters::tie_static_torque, "τ_s", "N m", 0.0, kUnbounded, false, true, true, true, "",
      "largest torque the tie holds on the rod without slipping (tie = \"clutch\"; required with it)"},
-    {"tie_kinetic_torque", &Parameters::tie_kinetic_torque, "τ_k", "N m", 0.0, kUnbounded, false, true, true, false,
+    {"tie_kinetic_torque", &Parameters::tie_kinetic_torque, "τ_k", "N m", 0.0, kUnbounded, false, true, true, true,
      "τ_k <= τ_s", "torque the slipping tie passes on (tie = \"clutch\"; required with it)"},
     {"tie_inertia", &Parameters::tie_inertia, "I_a", "kg m^2", 0.0, kUnbounded, true, true, false, false, "",
      "moment of inertia of the tie about the motor axis (tie = \"clutch\")"},
-    {"tie_damping", &Parameters::tie_damping, "c_a", "N m s", 0.0, kUnbounded, false, true, true, false, "",
+    {"tie_damping", &Parameters::tie_damping, "c_a", "N m s", 0.0, kUnbounded, false, true, true, true, "",
      "viscous part of the slipping tie's torque, c_a (ω_m − χ̇) (tie = \"clutch\")"},
     {"couple_torque", &Parameters::couple_torque, "τ_c", "N m", 0.0, kUnbounded, false, true, true, false, "",
      "magnitude of the diagnostic couple between motor and lower segment (pair_couple = \"motor_clutch\")"},
@@ -103,6 +103,8 @@ std::vector<std::string> continuation_parameter_keys();
 std::vector<double> parameter_row(const Parameters& p);
 // "string_length [m],bead_mass [kg],...": the column names of that row, with units.
 std::string parameter_columns();
+// The same, one name per column: "drive_radius [m]", ...
+std::vector<std::string> parameter_column_names();
 
 // ---- layers -----------------------------------------------------------------------------
 

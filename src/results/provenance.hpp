@@ -1,10 +1,11 @@
 // What every file the program writes records about how it was made: the program, its version
-// and git commit (set by CMake at configure time), the command line, the configuration verbatim
+// and git commit (read by CMake when it builds, src/results/source_commit.cmake), the command line, the configuration verbatim
 // with its source and overrides, and the configuration in force as values (/resolved), under a
 // format name and version that readers check.
 #pragma once
 #include <fmt/format.h>
 
+#include <span>
 #include <string>
 
 #include <cstdint>
@@ -21,7 +22,8 @@ namespace ajx::results {
 //   1  (no attribute) before the resolved configuration;
 //   2  /resolved holds every model parameter, layer, integrator setting and the start as
 //      attributes keyed "model.drive_radius", ...; root attribute `format` says "run" or "sweep".
-//   3  (kept for the string lists of the reader's rework, written on another branch)
+//   3  lists of strings (overrides, names, labels, purposes, columns, axes, failures) stored as
+//      1-D string attributes, one element per item, no longer joined; sweeps hold /classes.
 //   4  the motor's work is the motor's with a clutch (tie clutch, pair couple): a run's
 //      /trajectory/motor_work and a sweep's /windows/motor_power are at the rod (W_m), the
 //      string's side moved to string_work, string_power; clutch_loss, clutch_power,
@@ -39,20 +41,24 @@ inline void write_resolved(io::Group& g, const config::CommonConfig& cfg) {
 }
 
 // The format version of a file this program reads, 1 when it has none; a newer one than this
-// program writes is refused, naming both.
+// program writes, or one that is not a positive integer, is refused (newer: naming both).
 inline std::int64_t checked_format_version(const io::File& f, const std::string& path) {
   if (!f.has_attribute("format_version")) return 1;
+  if (f.attribute_type_class("format_version") != io::TypeClass::Integer || f.attribute_dims("format_version").size() > 1)
+    throw std::runtime_error(fmt::format("{}: format_version is not an integer", path));
   const std::int64_t v = f.read_int64_attribute("format_version");
   if (v > kFileFormatVersion)
     throw std::runtime_error(fmt::format("{}: file format version {} is newer than this program reads ({}); "
                                          "use the astrojax that wrote it", path, v, kFileFormatVersion));
+  if (v < 1) throw std::runtime_error(fmt::format("{}: file format version {} is not one (1 to {})", path, v, kFileFormatVersion));
   return v;
 }
 
 // The program's version and the git commit it was built from (set by CMake at configure time,
 // in provenance.cpp only, so that a new commit recompiles one file).
 std::string program_version();
-std::string program_commit();
+std::string program_commit();         // 12 hex digits, or "unknown"
+std::string program_commit_origin();  // where it was read: git, or the source archive
 
 inline void write_provenance(io::File& f, const std::string& command_line, const config::CommonConfig& cfg) {
   f.set_attribute("program", "astrojax-explorer");
@@ -61,7 +67,7 @@ inline void write_provenance(io::File& f, const std::string& command_line, const
   f.set_attribute("command_line", command_line);
   auto config = f.write_string_dataset("config", cfg.source_text);
   config.set_attribute("source", cfg.source_name);
-  config.set_attribute("overrides", fmt::format("{}", fmt::join(cfg.overrides, "\n")));
+  config.set_attribute("overrides", std::span<const std::string>(cfg.overrides));
   io::Group resolved = f.create_group("resolved");
   write_resolved(resolved, cfg);
 }

@@ -1,5 +1,9 @@
 #include "results/reclassify.hpp"
 
+#include <unistd.h>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <iterator>
 #include <span>
 #include <stdexcept>
@@ -9,13 +13,14 @@
 
 namespace ajx::results {
 
-std::vector<ReclassifiedWindow> reclassify_windows(const io::File& f, const sweep::ClassifierSettings& settings) {
-  const auto cls = f.read_int32s("windows/class"), count = f.read_int32s("samples/count");
-  const StoredModels models = read_chain_models(f);
-  const auto t = f.read_doubles("samples/t"), om = f.read_doubles("samples/omega_m"), L1 = f.read_doubles("samples/L1");
-  const auto T1 = f.read_doubles("samples/T1"), T2 = f.read_doubles("samples/T2"), mode = f.read_doubles("samples/mode");
-  const auto r1 = f.read_doubles("samples/r1"), r2 = f.read_doubles("samples/r2");
-  const std::size_t C = cls.rows(), W = cls.cols(), cap = t.dims.at(2);
+std::vector<ReclassifiedWindow> reclassify_windows(const SweepReader& in, const sweep::ClassifierSettings& settings) {
+  const auto& cls = in.classes();
+  const auto& count = in.count();
+  const StoredModels& models = in.models();
+  const auto t = in.samples("t"), om = in.samples("omega_m"), L1 = in.samples("L1");
+  const auto T1 = in.samples("T1"), T2 = in.samples("T2"), mode = in.samples("mode");
+  const auto r1 = in.samples("r1"), r2 = in.samples("r2");
+  const std::size_t C = in.chains(), W = in.windows(), cap = in.samples_per_window();
   std::vector<ReclassifiedWindow> out;
   for (std::size_t c = 0; c < C; ++c) {
     const sweep::OrbitScales scales = sweep::orbit_scales(models.chains[c]);
@@ -44,8 +49,40 @@ std::vector<ReclassifiedWindow> reclassify_windows(const io::File& f, const swee
 
 double row_stat(const WindowRow& row, std::string_view name) {
   for (std::size_t i = 0; i < kNumStats; ++i)
-    if (name == kStats[i][0]) return row.stats[i];
+    if (name == kStats[i].name) return row.stats[i];
   throw std::logic_error("no window statistic named " + std::string(name));
+}
+
+ReclassifySummary reclassify_file(const std::filesystem::path& input, const std::filesystem::path& output,
+                                  const sweep::ClassifierSettings& settings, const std::vector<std::string>& used) {
+  namespace fs = std::filesystem;
+  ReclassifySummary summary;
+  std::vector<ReclassifiedWindow> again;
+  std::size_t C = 0, W = 0, cap = 0;
+  {
+    const SweepReader in(input);  // validated: a damaged input stops here, nothing written
+    again = reclassify_windows(in, settings);
+    C = in.chains(), W = in.windows(), cap = in.samples_per_window();
+  }
+  const fs::path tmp = output.parent_path() / fmt::format(".{}.classify-{}", output.filename().string(), ::getpid());
+  try {
+    fs::copy_file(input, tmp, fs::copy_options::overwrite_existing);
+    SweepFile out(io::File::open_rw(tmp), C, W, cap, 0);
+    for (const ReclassifiedWindow& w : again) {
+      summary.changed += w.row.cls != w.old_class;
+      out.write_rows(w.chain, w.window, std::span<const WindowRow>(&w.row, 1));
+    }
+    io::Group wg = out.file().open_group("windows");
+    wg.set_attribute("classifier_settings", used.empty() ? std::string("defaults") : fmt::format("{}", fmt::join(used, "\n")));
+    out.close();
+    fs::rename(tmp, output);
+  } catch (...) {
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    throw;
+  }
+  summary.windows = again.size();
+  return summary;
 }
 
 }  // namespace ajx::results

@@ -17,8 +17,10 @@
 #include "results/provenance.hpp"
 #include "config/config.hpp"
 #include "physics/parameter_table.hpp"
+#include "physics/state_row.hpp"
 #include "io/hdf5_file.hpp"
 #include "results/sweep_result.hpp"
+#include "sweep/orbit_classes.hpp"
 #include "sweep/orbit_classifier.hpp"
 #include "sweep/plan.hpp"
 #include "sweep/task.hpp"
@@ -38,30 +40,8 @@ struct StoredModels {
   std::vector<physics::Parameters> chains;
   std::vector<std::string> present, lacking;
 };
-inline StoredModels read_chain_models(const io::File& f) {
-  const io::Dataset ds = f.open_dataset("chains/model");
-  const auto model = ds.read_doubles();
-  std::vector<const physics::ParameterInfo*> cols;
-  std::stringstream names(ds.read_string_attribute("columns"));
-  StoredModels out;
-  for (std::string name; std::getline(names, name, ',');) {
-    name = name.substr(0, name.find(" ["));
-    const physics::ParameterInfo* info = physics::find_parameter(name);
-    if (!info) throw std::runtime_error(fmt::format("chains/model: unknown column '{}'", name));
-    cols.push_back(info);
-    out.present.push_back(name);
-  }
-  if (cols.size() != model.cols())
-    throw std::runtime_error(fmt::format("chains/model: {} columns but {} column names", model.cols(), cols.size()));
-  for (const physics::ParameterInfo& info : physics::kParameters)
-    if (std::find(out.present.begin(), out.present.end(), info.key) == out.present.end()) out.lacking.emplace_back(info.key);
-  for (std::size_t c = 0; c < model.rows(); ++c) {
-    physics::Parameters p;
-    for (std::size_t j = 0; j < cols.size(); ++j) p.*cols[j]->field = model(c, j);
-    out.chains.push_back(p);
-  }
-  return out;
-}
+// `columns`: the names of /chains/model's columns ("drive_radius [m]", ...); `model` its rows.
+StoredModels stored_models(const std::vector<std::string>& columns, const io::Array<double>& model);
 
 // /tasks/status of a sweep file, per task.
 enum class TaskStatus : std::int32_t {
@@ -72,20 +52,15 @@ enum class TaskStatus : std::int32_t {
 };
 inline constexpr const char* kTaskStatusNames = "0 never ran,1 ok,2 failed,3 not run (an earlier task of its chain failed)";
 
-inline std::vector<TaskStatus> read_task_statuses(const io::File& f) {
-  std::vector<TaskStatus> out;
-  for (std::int32_t v : f.read_int32s("tasks/status").data) out.push_back(TaskStatus(v));
-  return out;
-}
+inline constexpr std::int32_t kMaxTaskStatus = 3;
 
 // The sweep's file on rank 0, written while the sweep runs: every result dataset is made at
 // the start, filled with "not computed" (NaN, class -1, status 0), and each finished task
 // writes its windows and its final state and flushes. An interrupted sweep keeps all that.
 class SweepFile {
  public:
-  // t, mode, sigma, s_star, impact_loss; y (idx::dim); the tie: slip, sigma, offset, χ, χ̇ (NaN for
-  // a rigid tie); the motor's ledger W_m, W_c (NaN without a clutch).
-  static constexpr std::size_t kStateCols = 5 + physics::idx::dim + 7;
+  // One row of physics/state_row.hpp per task.
+  static constexpr std::size_t kStateCols = physics::kStateCols;
 
   SweepFile(io::File file, std::size_t chains, std::size_t windows, std::size_t cap, std::size_t tasks)
       : f_(std::move(file)), C_(chains), W_(windows), cap_(cap), T_(tasks) {}
@@ -96,26 +71,26 @@ class SweepFile {
     write_format(f_, "sweep");
     auto config = f_.write_string_dataset("config", cfg.source_text);
     config.set_attribute("source", cfg.source_name);
-    config.set_attribute("overrides", joined_overrides(cfg));
+    config.set_attribute("overrides", std::span<const std::string>(cfg.overrides));
     write_resolved_parts(cfg);
+    write_classes();
     write_chains(cfg, plan);
     write_window_layout(plan.setups);
     io::Group wg = f_.open_group("windows");
     const io::Dims dims{C_, W_}, chunk{1, W_};
     auto cls = wg.create_filled("class", dims, io::DType::Int32, -1.0, chunk);
     cls.set_attribute("description", "orbit class; -1 = not computed (the task never ran)");
-    cls.set_attribute("names", "0 fallen,1 locked-circular,2 lagging-circular,3 flower,4 not-settled,5 failed");
     for (const auto& st : kStats) {
-      auto d = wg.create_filled(st[0], dims, io::DType::Float64, kNotComputed, chunk);
-      d.set_attribute("units", st[1]);
-      d.set_attribute("description", st[2]);
+      auto d = wg.create_filled(st.name, dims, io::DType::Float64, kNotComputed, chunk);
+      d.set_attribute("units", st.units);
+      d.set_attribute("description", st.description);
     }
     for (const auto& st : kPowers) {
-      auto d = wg.create_filled(st[0], dims, io::DType::Float64, kNotComputed, chunk);
-      d.set_attribute("units", st[1]);
-      d.set_attribute("description", st[2]);
+      auto d = wg.create_filled(st.name, dims, io::DType::Float64, kNotComputed, chunk);
+      d.set_attribute("units", st.units);
+      d.set_attribute("description", st.description);
     }
-    wg.create_filled("mode_fraction", {C_, W_, 5}, io::DType::Float64, kNotComputed, {1, W_, 5})
+    wg.create_filled("mode_fraction", {C_, W_, kNumModes}, io::DType::Float64, kNotComputed, {1, W_, kNumModes})
         .set_attribute("description", "time fraction in modes 0 sliding, 1 bottom stop, 2 stuck, 3 top stop, 4 slack");
     io::Group sg = f_.create_group("samples");
     sg.set_attribute("sample_rate", cfg.sample_rate);
@@ -148,46 +123,28 @@ class SweepFile {
         .set_attribute("names", kTaskStatusNames);
     tg.create_filled("steps", {T_}, io::DType::Int64, 0.0, {T_});
     tg.create_filled("final_state", {T_, kStateCols}, io::DType::Float64, kNotComputed, {1, kStateCols})
-        .set_attribute("columns", "t, mode, sigma, s_star, impact_loss, then r1, r2, v1, v2, motor_work, drag_loss, "
-                                  "friction_loss, then tie_slip, tie_sigma, tie_offset, chi, chi_dot (NaN for a rigid "
-                                  "tie), rod_work, clutch_loss (NaN without the tie clutch or the pair couple) (SI units)");
+        .set_attribute("columns", std::span<const std::string>(physics::state_column_names()));
     f_.flush();
   }
 
   // An existing file, to resume: it must come from the same configuration.
   void check_same(const config::SweepConfig& cfg) const {
     const io::Dataset config = f_.open_dataset("config");
-    if (config.read_string() != cfg.source_text || config.read_string_attribute("overrides") != joined_overrides(cfg))
+    if (config.read_string() != cfg.source_text || config.read_strings_attribute("overrides") != cfg.overrides)
       throw config::ConfigError(fmt::format(
           "{}: key 'output.path': {} was written by a different sweep file or overrides; resume it with the same "
           "ones, or remove it to start afresh",
           cfg.source_name, f_.disk_path().string()));
   }
 
-  std::vector<TaskStatus> status() const { return read_task_statuses(f_); }
+  std::vector<TaskStatus> status() const {
+    std::vector<TaskStatus> out;
+    for (std::int32_t v : f_.read_int32s("tasks/status").data) out.push_back(TaskStatus(v));
+    return out;
+  }
   physics::State state(std::size_t task) const {
     const auto all = f_.read_doubles("tasks/final_state");
-    const double* st = &all.data[task * kStateCols];
-    physics::State s;
-    s.t = st[0];
-    s.contact.mode = static_cast<physics::Mode>(int(st[1]));
-    s.contact.sigma = int(st[2]);
-    s.contact.s_star = st[3];
-    s.impact_loss = st[4];
-    const double* tie = st + 5 + physics::idx::dim;
-    const bool has_tie = std::isfinite(tie[3]), has_ledger = std::isfinite(tie[5]);
-    s.y.resize(has_tie ? physics::idx::dim_tie : has_ledger ? physics::idx::dim_ledger : physics::idx::dim);
-    for (int k = 0; k < physics::idx::dim; ++k) s.y(k) = st[5 + k];
-    if (has_tie) {
-      s.contact.tie = {tie[0] != 0.0, int(tie[1]), tie[2]};
-      s.y(physics::idx::chi) = tie[3];
-      s.y(physics::idx::chi_dot) = tie[4];
-    }
-    if (has_ledger) {
-      s.y(physics::idx::rod_work) = tie[5];
-      s.y(physics::idx::clutch_loss) = tie[6];
-    }
-    return s;
+    return physics::state_from_row(std::span<const double>(&all.data[task * kStateCols], kStateCols));
   }
 
   void write_not_run(std::size_t task) {
@@ -203,15 +160,7 @@ class SweepFile {
     ds("tasks/status").write_region({task}, {1}, std::span<const std::int32_t>(&st, 1));
     const std::int64_t steps = out.steps;
     ds("tasks/steps").write_region({task}, {1}, std::span<const std::int64_t>(&steps, 1));
-    const physics::State& s = out.final_state;
-    std::vector<double> row{s.t, double(s.contact.mode), double(s.contact.sigma), s.contact.s_star, s.impact_loss};
-    row.insert(row.end(), s.y.data(), s.y.data() + physics::idx::dim);
-    const bool has_tie = physics::has_tie(s.y), has_ledger = physics::has_ledger(s.y);
-    row.insert(row.end(), {double(s.contact.tie.slip), double(s.contact.tie.sigma), s.contact.tie.offset,
-                           has_tie ? s.y(physics::idx::chi) : kNotComputed,
-                           has_tie ? s.y(physics::idx::chi_dot) : kNotComputed,
-                           has_ledger ? s.y(physics::idx::rod_work) : kNotComputed,
-                           has_ledger ? s.y(physics::idx::clutch_loss) : kNotComputed});
+    const std::vector<double> row = physics::state_row(out.final_state);
     ds("tasks/final_state").write_region({task, 0}, {1, kStateCols}, std::span<const double>(row));
     f_.flush();
   }
@@ -219,17 +168,11 @@ class SweepFile {
   // Failures of this run join those of earlier runs of the same sweep (one line each, sorted).
   void finish(std::vector<std::string> failures, const std::function<void(io::Group&)>& provenance) {
     io::Group tg = f_.open_group("tasks");
-    if (tg.has_attribute("failures")) {
-      const std::string old = tg.read_string_attribute("failures");
-      for (std::size_t a = 0, b; a < old.size(); a = b + 1) {
-        b = old.find('\n', a);
-        if (b == std::string::npos) b = old.size();
-        if (b > a) failures.push_back(old.substr(a, b - a));
-      }
-    }
+    if (tg.has_attribute("failures"))
+      for (std::string& old : tg.read_strings_attribute("failures")) failures.push_back(std::move(old));
     std::sort(failures.begin(), failures.end());
     failures.erase(std::unique(failures.begin(), failures.end()), failures.end());
-    tg.set_attribute("failures", fmt::format("{}", fmt::join(failures, "\n")));
+    tg.set_attribute("failures", std::span<const std::string>(failures));
     io::Group prov = f_.require_group("provenance");
     provenance(prov);
     close();
@@ -242,14 +185,29 @@ class SweepFile {
   }
 
  private:
-  static std::string joined_overrides(const config::SweepConfig& cfg) {
-    return fmt::format("{}", fmt::join(cfg.overrides, "\n"));
+  // /classes: the orbit classes' table (sweep/orbit_classes.hpp), indexed by class code.
+  void write_classes() {
+    io::Group g = f_.create_group("classes");
+    g.set_attribute("description", "the orbit classes, indexed by the class code of /windows/class");
+    std::vector<std::string> name, description, colour;
+    std::vector<std::int8_t> circular;
+    for (const sweep::OrbitClassInfo& c : sweep::kOrbitClasses) {
+      name.emplace_back(c.name);
+      description.emplace_back(c.description);
+      colour.emplace_back(c.colour);
+      circular.push_back(c.circular ? 1 : 0);
+    }
+    g.write_dataset("name", std::span<const std::string>(name));
+    g.write_dataset("circular", std::span<const std::int8_t>(circular))
+        .set_attribute("description", "1 for a circular orbit, else 0");
+    g.write_dataset("description", std::span<const std::string>(description));
+    g.write_dataset("colour", std::span<const std::string>(colour)).set_attribute("description", "#rrggbb in every figure");
   }
 
   void write_chains(const config::SweepConfig& cfg, const sweep::SweepPlan& plan) {
     io::Group cg = f_.create_group("chains");
     const std::vector<std::string>& names = plan.axes;
-    cg.set_attribute("axes", fmt::format("{}", fmt::join(names, ",")));
+    cg.set_attribute("axes", std::span<const std::string>(names));
     std::vector<double> values, model;
     for (const auto& g : plan.points) {
       values.insert(values.end(), g.values.begin(), g.values.end());
@@ -261,8 +219,9 @@ class SweepFile {
       cg.write_dataset("grid_values", std::span<const double>(values), io::Dims{C_, names.size()})
           .set_attribute("description", "each chain's value on each grid axis; NaN where its group has no such axis");
     cg.write_dataset("model", std::span<const double>(model), io::Dims{C_, kModelColumns})
-        .set_attribute("columns", physics::parameter_columns());
+        .set_attribute("columns", std::span<const std::string>(physics::parameter_column_names()));
     if (!cfg.parts.empty()) write_groups(cfg, plan);
+    if (cfg.hold) write_holds(cfg, plan);
   }
 
   // The configuration in force as values (provenance.hpp): /resolved for a plain file; for a
@@ -305,16 +264,33 @@ class SweepFile {
     }
     io::Group cg = f_.open_group("chains");
     auto gd = cg.write_dataset("group", std::span<const std::int32_t>(group));
-    gd.set_attribute("names", fmt::format("{}", fmt::join(groups, "\n")));
-    gd.set_attribute("purposes", fmt::format("{}", fmt::join(purposes, "\n")));
+    gd.set_attribute("names", std::span<const std::string>(groups));
+    gd.set_attribute("purposes", std::span<const std::string>(purposes));
     auto vd = cg.write_dataset("variant", std::span<const std::int32_t>(variant));
-    vd.set_attribute("names", fmt::format("{}", fmt::join(variants, "\n")));
-    vd.set_attribute("labels", fmt::format("{}", fmt::join(labels, "\n")));
+    vd.set_attribute("names", std::span<const std::string>(variants));
+    vd.set_attribute("labels", std::span<const std::string>(labels));
     cg.write_dataset("start_seed", std::span<const std::int32_t>(seed))
-        .set_attribute("names", fmt::format("{}", fmt::join(seeds, "\n")));
+        .set_attribute("names", std::span<const std::string>(seeds));
     cg.write_dataset("start_omega", std::span<const double>(omega)).set_attribute("units", "rad/s");
     cg.write_dataset("part", std::span<const std::int32_t>(part_of))
         .set_attribute("description", "the (group, variant) part each chain ran: its configuration is /resolved/<part>");
+  }
+
+  // A hold sweep: which ω_m, seed and perturbation each chain holds.
+  void write_holds(const config::SweepConfig& cfg, const sweep::SweepPlan& plan) {
+    std::vector<double> w;
+    std::vector<std::int32_t> seed, pert;
+    const std::vector<std::string>& seeds = cfg.hold->seeds;
+    for (const sweep::ChainStart& s : plan.starts) {
+      w.push_back(s.omega);
+      seed.push_back(std::int32_t(std::find(seeds.begin(), seeds.end(), s.seed) - seeds.begin()));
+      pert.push_back(s.perturbation);
+    }
+    io::Group cg = f_.open_group("chains");
+    cg.write_dataset("hold_omega", std::span<const double>(w)).set_attribute("units", "rad/s");
+    cg.write_dataset("seed", std::span<const std::int32_t>(seed)).set_attribute("names", std::span<const std::string>(seeds));
+    cg.write_dataset("perturbation", std::span<const std::int32_t>(pert))
+        .set_attribute("description", "0: the seed itself; k >= 1: the seed with velocity kick k");
   }
 
   void write_window_layout(const std::vector<sweep::ChainSetup>& setups) {
@@ -371,7 +347,7 @@ class SweepFile {
     std::vector<double> column(n);
     for (std::size_t k = 0; k < kNumPowers; ++k) {
       for (std::size_t i = 0; i < n; ++i) column[i] = windows[i].powers[k];
-      ds(std::string("windows/") + kPowers[k][0]).write_region({chain, first}, {1, n}, std::span<const double>(column));
+      ds(std::string("windows/") + kPowers[k].name).write_region({chain, first}, {1, n}, std::span<const double>(column));
     }
     ds("samples/count").write_region({chain, first}, {1, n}, std::span<const std::int32_t>(count));
     for (const WindowResult& w : windows)
@@ -388,17 +364,17 @@ class SweepFile {
     if (n == 0) return;
     const io::Dims at{chain, first}, block{1, n};
     std::vector<std::int32_t> cls(n);
-    std::vector<double> column(n), modes(5 * n);
+    std::vector<double> column(n), modes(kNumModes * n);
     for (std::size_t i = 0; i < n; ++i) {
       cls[i] = rows[i].cls;
-      std::copy(rows[i].mode_fraction.begin(), rows[i].mode_fraction.end(), modes.begin() + long(5 * i));
+      std::copy(rows[i].mode_fraction.begin(), rows[i].mode_fraction.end(), modes.begin() + long(kNumModes * i));
     }
     ds("windows/class").write_region(at, block, std::span<const std::int32_t>(cls));
     for (std::size_t k = 0; k < kNumStats; ++k) {
       for (std::size_t i = 0; i < n; ++i) column[i] = rows[i].stats[k];
-      ds(std::string("windows/") + kStats[k][0]).write_region(at, block, std::span<const double>(column));
+      ds(std::string("windows/") + kStats[k].name).write_region(at, block, std::span<const double>(column));
     }
-    ds("windows/mode_fraction").write_region({chain, first, 0}, {1, n, 5}, std::span<const double>(modes));
+    ds("windows/mode_fraction").write_region({chain, first, 0}, {1, n, kNumModes}, std::span<const double>(modes));
   }
 
   io::File& file() { return f_; }

@@ -4,6 +4,7 @@
 #include <sys/statvfs.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -72,6 +73,45 @@ inline void check_sweep_memory(const config::SweepConfig& cfg, const sweep::Swee
                fmt::format("a task of {:.0f} windows of up to {} samples, with a plan of {} chains and {} tasks",
                            per_task, plan.max_samples, plan.chains(), plan.n_tasks),
                task_bytes + plan_bytes, memory_budget(max_memory_mb), max_memory_mb);
+}
+
+// A resume's journal must come from this sweep: its first record is the sweep file and overrides
+// it was started with. One whose first record is damaged cannot be matched, and is refused with
+// that reason rather than taken for another sweep's (a journal killed before its first record was
+// whole holds no result: nothing is lost, and the resume writes it).
+inline void check_journal_identity(const config::SweepConfig& cfg, const std::filesystem::path& journal,
+                                   const io::JournalContents& c) {
+  if (c.records.empty()) return;
+  if (c.first_record_lost)
+    throw config::ConfigError(fmt::format(
+        "{}: key 'output.path': {}: its header record (the sweep file and overrides it was started with, from byte "
+        "{}) is damaged, so its {} intact results cannot be matched to this sweep; start afresh with --force "
+        "(it discards them)",
+        cfg.source_name, journal.string(), c.damage.front().offset, c.records.size()));
+  if (c.records.front().key != kJournalIdentity || c.records.front().payload != journal_identity(cfg))
+    throw config::ConfigError(fmt::format(
+        "{}: key 'output.path': {} was written by a different sweep file or overrides; resume it with the "
+        "same ones, or start afresh with --force",
+        cfg.source_name, journal.string()));
+}
+
+// What a resume lost to damage in its journal, on stderr: each damaged stretch (where, why,
+// how many records), the results kept and discarded (their tasks run again), a damaged magic.
+inline void report_journal_damage(const std::filesystem::path& journal, const io::JournalContents& c) {
+  if (c.damaged_magic)
+    std::fprintf(stderr, "warning: %s: its file header (the first 8 bytes) is damaged; the records behind it are "
+                 "intact and kept\n", journal.c_str());
+  if (c.damage.empty()) return;
+  std::vector<std::string> where;
+  for (const io::JournalDamage& d : c.damage)
+    where.push_back(fmt::format("{} at bytes {}-{}, {} record{}", d.reason, d.offset, d.offset + d.length, d.records,
+                                d.records == 1 ? "" : "s"));
+  // The header record lost with no result after it (killed while writing it) is no result.
+  const std::size_t lost = c.records_lost() - (c.first_record_lost ? 1 : 0);
+  const std::size_t kept = c.records.empty() ? 0 : c.records.size() - 1;
+  std::fprintf(stderr, "warning: %s: %zu results kept, %zu discarded (%s); %s\n", journal.c_str(), kept, lost,
+               fmt::format("{}", fmt::join(where, "; ")).c_str(),
+               lost == 0 ? "nothing to run again" : lost == 1 ? "that task runs again" : "those tasks run again");
 }
 
 // Refuses to start afresh over an interrupted sweep's files: its finished tasks would be lost.

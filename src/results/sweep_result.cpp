@@ -13,10 +13,7 @@ WindowRow window_row(const sweep::OrbitClassification& c) {
   const auto& s = c.stats;
   WindowRow r;
   r.cls = static_cast<std::int32_t>(c.cls);
-  r.stats = {c.confidence,        s.omega_ball,       s.ball[0].omega,    s.ball[1].omega,  s.rotation_number,
-             s.ball[0].rho.mean,  s.ball[0].rho.std,  s.ball[1].rho.mean, s.ball[1].rho.std, s.ball[0].z.mean,
-             s.ball[1].z.mean,    s.L1.mean,          s.L1.std,           s.L1.min,         s.L1.max,
-             s.T1.mean,           s.T2.mean};
+  for (std::size_t k = 0; k < kNumStats; ++k) r.stats[k] = kStats[k].of(c);
   std::copy(std::begin(s.mode_fraction), std::end(s.mode_fraction), r.mode_fraction.begin());
   return r;
 }
@@ -50,7 +47,7 @@ TaskResult make_result(const sweep::ChainSetup& chain, sweep::TaskOutput out, st
     w.count = std::int32_t(std::min(rec.size(), cap));
     w.row = window_row(classes[i]);
     const sweep::WindowPowers p = sweep::window_powers(rec);
-    w.powers = {p.motor, p.drag, p.other, p.energy_rate, p.string, p.clutch};
+    for (std::size_t k = 0; k < kNumPowers; ++k) w.powers[k] = kPowers[k].of(p);
     const auto n = std::size_t(w.count);
     if (n > 0) {
       std::vector<double> mode(rec.mode.begin(), rec.mode.begin() + long(n));

@@ -6,6 +6,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <iterator>
 #include <span>
 #include <vector>
 
@@ -14,40 +15,75 @@
 
 namespace ajx::results {
 
-// The per-window statistics of /windows: name, units, description.
-inline constexpr const char* kStats[][3] = {
-    {"confidence", "1", "confidence of the class, in [0, 1]"},
-    {"omega_ball", "rad/s", "mean ω_ball of the balls with a reliable azimuth"},
-    {"omega_ball_bead", "rad/s", "ω_ball of the bead (NaN when unreliable)"},
-    {"omega_ball_bottom", "rad/s", "ω_ball of the bottom ball (NaN when unreliable)"},
-    {"rotation_number", "1", "ω_ball / mean ω_m"},
-    {"radius_bead_mean", "m", "mean horizontal radius of the bead"},
-    {"radius_bead_std", "m", "its standard deviation"},
-    {"radius_bottom_mean", "m", "mean horizontal radius of the bottom ball"},
-    {"radius_bottom_std", "m", "its standard deviation"},
-    {"height_bead_mean", "m", "mean height of the bead"},
-    {"height_bottom_mean", "m", "mean height of the bottom ball"},
-    {"L1_mean", "m", "mean bead position s = L1"},
-    {"L1_std", "m", "its standard deviation"},
-    {"L1_min", "m", "smallest L1"},
-    {"L1_max", "m", "largest L1"},
-    {"T1_mean", "N", "mean tension above the bead"},
-    {"T2_mean", "N", "mean tension below the bead"},
+// The per-window statistics of /windows, declared once: each is one row (its dataset's name,
+// units and description, and how it is read off the window's classification), from which the
+// writer, window_row, astrojax classify and verify, the reader and the reference page follow.
+// A new statistic is one row here (plus, if new, the field the classifier computes).
+using Classification = sweep::OrbitClassification;
+struct WindowStat {
+  const char* name;
+  const char* units;
+  const char* description;
+  double (*of)(const Classification&);
 };
-inline constexpr std::size_t kNumStats = sizeof(kStats) / sizeof(kStats[0]);
+inline constexpr WindowStat kStats[] = {
+    {"confidence", "1", "confidence of the class, in [0, 1]", [](const Classification& c) { return c.confidence; }},
+    {"omega_ball", "rad/s", "mean ω_ball of the balls with a reliable azimuth",
+     [](const Classification& c) { return c.stats.omega_ball; }},
+    {"omega_ball_bead", "rad/s", "ω_ball of the bead (NaN when unreliable)",
+     [](const Classification& c) { return c.stats.ball[0].omega; }},
+    {"omega_ball_bottom", "rad/s", "ω_ball of the bottom ball (NaN when unreliable)",
+     [](const Classification& c) { return c.stats.ball[1].omega; }},
+    {"rotation_number", "1", "ω_ball / mean ω_m", [](const Classification& c) { return c.stats.rotation_number; }},
+    {"radius_bead_mean", "m", "mean horizontal radius of the bead",
+     [](const Classification& c) { return c.stats.ball[0].rho.mean; }},
+    {"radius_bead_std", "m", "its standard deviation", [](const Classification& c) { return c.stats.ball[0].rho.std; }},
+    {"radius_bottom_mean", "m", "mean horizontal radius of the bottom ball",
+     [](const Classification& c) { return c.stats.ball[1].rho.mean; }},
+    {"radius_bottom_std", "m", "its standard deviation", [](const Classification& c) { return c.stats.ball[1].rho.std; }},
+    {"height_bead_mean", "m", "mean height of the bead", [](const Classification& c) { return c.stats.ball[0].z.mean; }},
+    {"height_bottom_mean", "m", "mean height of the bottom ball",
+     [](const Classification& c) { return c.stats.ball[1].z.mean; }},
+    {"L1_mean", "m", "mean bead position s = L1", [](const Classification& c) { return c.stats.L1.mean; }},
+    {"L1_std", "m", "its standard deviation", [](const Classification& c) { return c.stats.L1.std; }},
+    {"L1_min", "m", "smallest L1", [](const Classification& c) { return c.stats.L1.min; }},
+    {"L1_max", "m", "largest L1", [](const Classification& c) { return c.stats.L1.max; }},
+    {"T1_mean", "N", "mean tension above the bead", [](const Classification& c) { return c.stats.T1.mean; }},
+    {"T2_mean", "N", "mean tension below the bead", [](const Classification& c) { return c.stats.T2.mean; }},
+};
+inline constexpr std::size_t kNumStats = std::size(kStats);
+
 // The window's energy account (sweep::window_powers), also in /windows; not the classifier's,
-// so `astrojax classify` leaves them as the integration wrote them.
-inline constexpr const char* kPowers[][3] = {
-    {"motor_power", "W", "mean power the motor does at its rod over the window, <τ_rod ω_m> (format 4; format 2 held "
-                         "string_power here); = string_power + clutch_power + the tie's d(½ I_a χ̇²)/dt"},
-    {"drag_power", "W", "mean power drag takes"},
-    {"friction_impact_power", "W", "mean power friction and impacts take"},
-    {"energy_rate", "W", "dE/dt over the window: about 0 for an orbit the motor sustains, negative for a decaying transient"},
-    {"string_power", "W", "mean power the top passes into the string (= motor_power for a rigid tie) = drag_power + "
-                          "friction_impact_power + energy_rate"},
-    {"clutch_power", "W", "mean power the tie clutch dissipates, <τ_c (ω_m − χ̇)> (0 for a rigid tie)"},
+// so `astrojax classify` leaves them as the integration wrote them. One row each, as kStats.
+struct WindowPower {
+  const char* name;
+  const char* units;
+  const char* description;
+  double (*of)(const sweep::WindowPowers&);
+  std::int64_t since = 2;  // the first file format that always holds it (format 1 may lack the account)
 };
-inline constexpr std::size_t kNumPowers = sizeof(kPowers) / sizeof(kPowers[0]);
+inline constexpr WindowPower kPowers[] = {
+    {"motor_power", "W",
+     "mean power the motor does at its rod over the window, <τ_rod ω_m> (format 4; formats 1-3 held string_power "
+     "here); = string_power + clutch_power + the tie's d(½ I_a χ̇²)/dt",
+     [](const sweep::WindowPowers& p) { return p.motor; }},
+    {"drag_power", "W", "mean power drag takes", [](const sweep::WindowPowers& p) { return p.drag; }},
+    {"friction_impact_power", "W", "mean power friction and impacts take",
+     [](const sweep::WindowPowers& p) { return p.other; }},
+    {"energy_rate", "W",
+     "dE/dt over the window: about 0 for an orbit the motor sustains, negative for a decaying transient",
+     [](const sweep::WindowPowers& p) { return p.energy_rate; }},
+    {"string_power", "W",
+     "mean power the top passes into the string (= motor_power for a rigid tie) = drag_power + "
+     "friction_impact_power + energy_rate",
+     [](const sweep::WindowPowers& p) { return p.string; }, 4},
+    {"clutch_power", "W", "mean power the tie clutch dissipates, <τ_c (ω_m − χ̇)> (0 for a rigid tie)",
+     [](const sweep::WindowPowers& p) { return p.clutch; }, 4},
+};
+inline constexpr std::size_t kNumPowers = std::size(kPowers);
+
+// The per-window mode fractions, /windows/mode_fraction's last axis (physics::Mode's order).
+inline constexpr std::size_t kNumModes = 5;
 
 // The sample datasets of /samples, in chunk order: six scalars, then r1 and r2 (3 per sample).
 inline constexpr const char* kSampleColumns[] = {"t", "omega_m", "L1", "T1", "T2", "mode", "r1", "r2"};
@@ -64,7 +100,7 @@ inline constexpr int kSampleFormatVersion = 2;
 struct WindowRow {
   std::int32_t cls = -1;
   std::array<double, kNumStats> stats{};
-  std::array<double, 5> mode_fraction{};
+  std::array<double, kNumModes> mode_fraction{};
 };
 WindowRow window_row(const sweep::OrbitClassification& c);
 

@@ -6,7 +6,6 @@
 namespace ajx::sweep {
 
 namespace {
-bool circular(OrbitClass c) { return c == OrbitClass::LockedCircular || c == OrbitClass::LaggingCircular; }
 
 // Least-squares slope of y over x, NaN with fewer than two points or no spread in x.
 double slope(const std::vector<double>& x, const std::vector<double>& y) {

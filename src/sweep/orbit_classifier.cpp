@@ -485,25 +485,6 @@ void decide(const OrbitStats& st, const OrbitScales& sc, const ClassifierSetting
 
 }  // namespace
 
-std::string_view to_string(OrbitClass c) {
-  switch (c) {
-    case OrbitClass::Fallen: return "fallen";
-    case OrbitClass::LockedCircular: return "locked-circular";
-    case OrbitClass::LaggingCircular: return "lagging-circular";
-    case OrbitClass::Flower: return "flower";
-    case OrbitClass::NotSettled: return "not-settled";
-    case OrbitClass::Failed: return "failed";
-  }
-  return "unknown";
-}
-
-std::optional<OrbitClass> parse_orbit_class(std::string_view name) {
-  for (OrbitClass c : {OrbitClass::Fallen, OrbitClass::LockedCircular, OrbitClass::LaggingCircular,
-                       OrbitClass::Flower, OrbitClass::NotSettled, OrbitClass::Failed})
-    if (to_string(c) == name) return c;
-  return std::nullopt;
-}
-
 double OrbitScales::pendulum_rate() const { return std::sqrt(gravity / string_length); }
 
 OrbitScales orbit_scales(const physics::Parameters& p) {

@@ -10,17 +10,14 @@
 #include <vector>
 #include <string_view>
 
+#include "sweep/orbit_classes.hpp"
+
 namespace ajx::physics {
 struct Parameters;
 }
 
 namespace ajx::sweep {
 
-enum class OrbitClass { Fallen, LockedCircular, LaggingCircular, Flower, NotSettled, Failed };
-
-// "fallen", "locked-circular", "lagging-circular", "flower", "not-settled", "failed".
-std::string_view to_string(OrbitClass c);
-std::optional<OrbitClass> parse_orbit_class(std::string_view name);
 
 // The samples of one window, borrowed (no copies). N samples at a fixed rate; r1 and r2 are
 // row-major N×3 (x0, y0, z0, x1, ...). T1, T2 and mode may be empty: their statistics are

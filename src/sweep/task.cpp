@@ -2,8 +2,10 @@
 
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "physics/energy.hpp"
+#include "physics/state_row.hpp"
 #include "physics/tie.hpp"
 #include "sweep/codec.hpp"
 
@@ -98,30 +100,12 @@ std::vector<OrbitClassification> classify_windows(const ChainSetup& chain, const
 }
 
 namespace {
-void put_state(ByteWriter& w, const physics::State& s) {
-  w.put(s.t);
-  w.put(static_cast<std::int32_t>(s.contact.mode));
-  w.put(static_cast<std::int32_t>(s.contact.sigma));
-  w.put(s.contact.s_star);
-  w.put(s.impact_loss);
-  w.put(static_cast<std::int32_t>(s.contact.tie.slip));
-  w.put(static_cast<std::int32_t>(s.contact.tie.sigma));
-  w.put(s.contact.tie.offset);
-  w.put_vector(std::vector<double>(s.y.data(), s.y.data() + s.y.size()));
-}
+// The state travels as its row (physics/state_row.hpp), bit for bit.
+void put_state(ByteWriter& w, const physics::State& s) { w.put_vector(physics::state_row(s)); }
 physics::State get_state(ByteReader& r) {
-  physics::State s;
-  s.t = r.get<double>();
-  s.contact.mode = static_cast<physics::Mode>(r.get<std::int32_t>());
-  s.contact.sigma = r.get<std::int32_t>();
-  s.contact.s_star = r.get<double>();
-  s.impact_loss = r.get<double>();
-  s.contact.tie.slip = r.get<std::int32_t>() != 0;
-  s.contact.tie.sigma = r.get<std::int32_t>();
-  s.contact.tie.offset = r.get<double>();
-  const auto y = r.get_vector<double>();
-  s.y = numerics::Vec::Map(y.data(), Eigen::Index(y.size()));
-  return s;
+  const auto row = r.get_vector<double>();
+  if (row.size() != physics::kStateCols) throw std::runtime_error("state: wrong number of columns");
+  return physics::state_from_row(row);
 }
 }  // namespace
 

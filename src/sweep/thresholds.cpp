@@ -26,7 +26,6 @@ double paper_value(Threshold t) {
 }
 
 namespace {
-bool circular(OrbitClass c) { return c == OrbitClass::LockedCircular || c == OrbitClass::LaggingCircular; }
 Bracket bracket(const ClassedWindow& a, const ClassedWindow& b) {
   return {a.omega_mean(), b.omega_mean(), a.index, b.index};
 }

@@ -1,0 +1,151 @@
+#!/usr/bin/python3
+"""The thresholds over a second parameter: the curves of `astrojax orbits CONFIG --map PARAM`.
+
+One panel per threshold, ω_m against the parameter PARAM:
+- ω1, the end of the locked orbit: the curves where the stuck bead starts to slide up
+  (cone_up, solid) and the locked orbit's fold (dash-dotted);
+- ω_fall: the curve where the stuck bead starts to slide down (cone_down);
+- ω2 (tie clutch only): the lag's Hopf point, where the lagging orbit turns into a flower.
+A curve is black where its orbit is the threshold's (the locked orbit stable and held by
+friction; the lag held), grey where it is not (the curve exists, but no locked orbit ends
+there). ◇ marks a codimension-2 point, where two curves meet (e.g. the fold meets the cone).
+The paper's measured value is a dashed line; the model's own PARAM (the file's) a dotted
+vertical line, and where the paper gives PARAM (l, m, c_D, μ) its apparatus is marked too
+(for l and m also Section 3.3's second point, 0.662 m and 0.1 kg).
+
+--brackets CSV overlays a sweep's brackets (columns symbol, p, before, after; symbol one of
+omega_1, omega_fall, omega_2; before and after in rad/s): each a grey bar from before to after
+at its p, so that the sweep and the continuation are read together.
+
+Run with Debian's interpreter:
+    build/astrojax orbits sweeps/orbits_map.toml --map drive_radius --range 0.005 0.03 -o out/map_R.h5
+    /usr/bin/python3 analysis/plot_map.py out/map_R.h5 -o out/map_R.png
+"""
+import csv
+
+import numpy as np
+
+from astrojax_analysis import (BRACKET_SHADE, PAPER_LINE, Curves, add_figure_args, fail, legend, new_figure,
+                               panel_grid, panels, parser, pyplot, run, runs, save)
+
+PI = np.pi
+# The paper's measured thresholds [π rad/s] and the curves that predict each.
+PANELS = [
+    ("omega_1", "ω1: the locked orbit is lost", 4.80, ("cone_up", "fold")),
+    ("omega_fall", "ω_fall: the stuck bead slides down", 3.24, ("cone_down",)),
+    ("omega_2", "ω2: the lag turns into a flower", 15.00, ("hopf",)),
+]
+KIND_STYLE = {"cone_up": "-", "cone_down": "-", "fold": "-.", "hopf": "-"}
+# Where the paper gives the parameter: its apparatus, and Section 3.3's second point.
+PAPER_APPARATUS = {
+    "string_length": [(0.826, "paper's l"), (0.662, "§3.3: l = 0.662 m")],
+    "mass": [(0.018, "paper's m"), (0.1, "§3.3: m = 0.1 kg")],
+    "bead_mass": [(0.018, "paper's m1"), (0.1, "§3.3: m1 = 0.1 kg")],
+    "ball_mass": [(0.018, "paper's m2"), (0.1, "§3.3: m2 = 0.1 kg")],
+    "drag": [(1.7245e-3, "paper's c_D")],
+    "mu_static": [(0.25676, "paper's μ_s")],
+    "mu_kinetic": [(0.17176, "paper's μ_k")],
+}
+
+
+def threshold_mask(c, kind):
+    """Points where the curve is the threshold: the locked orbit stable and held (hopf: held)."""
+    held = c["admissible"] > 0
+    return held if kind == "hopf" else held & (c["unstable"] == 0)
+
+
+
+def draw_curves(ax, curves, kinds):
+    """The curves of the given kinds: black where they are the threshold, grey where not."""
+    drawn = False
+    for cid in curves.curve_ids(kinds):
+        c = curves.curve(cid)
+        kind = Curves.KINDS[int(c["kind"][0])]
+        for i, j, on in runs(threshold_mask(c, kind)):
+            sl = slice(i, min(j + 2, len(c["p"])))  # one point of overlap: a continuous line
+            ax.plot(c["p"][sl], c["omega_m"][sl] / PI, ls=KIND_STYLE[kind], color="k" if on else "0.6",
+                    lw=1.6 if on else 1.0)
+        drawn = True
+    m = np.isin(curves.codim2["kind"], [k for k, v in Curves.KINDS.items() if v in kinds])
+    ax.plot(curves.codim2["p"][m], curves.codim2["omega_m"][m] / PI, "D", mfc="white", mec="k", ms=5, zorder=5)
+    return drawn
+
+
+def draw_brackets(ax, p, before, after):
+    """A sweep's brackets: grey bars from before to after [rad/s] at each p."""
+    p, before, after = (np.asarray(v, dtype=float) for v in (p, before, after))
+    ax.vlines(p, before / PI, after / PI, color=BRACKET_SHADE, lw=4, zorder=1)
+
+
+def read_brackets(path):
+    """{symbol: (p, before, after)} from a CSV with columns symbol, p, before, after."""
+    out = {}
+    try:
+        with open(path, newline="") as f:
+            rows = list(csv.DictReader(f))
+    except OSError as e:
+        fail(f"--brackets {path}: {e}")
+    for n, r in enumerate(rows, start=2):
+        try:
+            out.setdefault(r["symbol"], ([], [], []))
+            for lst, key in zip(out[r["symbol"]], ("p", "before", "after")):
+                lst.append(float(r[key]))
+        except (KeyError, TypeError, ValueError):
+            fail(f"--brackets {path}: line {n}: expected columns symbol, p, before, after (numbers)")
+    return out
+
+
+def main(argv=None):
+    ap = parser(__doc__)
+    ap.add_argument("input", help="HDF5 file of `astrojax orbits CONFIG --map PARAM -o FILE`")
+    ap.add_argument("--brackets", help="a sweep's brackets to overlay: CSV with symbol, p, before, after")
+    add_figure_args(ap, "4 in per panel × 4.2 in")
+    args = ap.parse_args(argv)
+    curves = Curves(args.input)
+    brackets = read_brackets(args.brackets) if args.brackets else {}
+    panels_drawn = [pn for pn in PANELS if curves.curve_ids(pn[3]) or pn[0] in brackets]
+    if not panels_drawn:
+        fail(f"{args.input}: no curves in /curves/points")
+    rows, cols = panel_grid(len(panels_drawn))
+    fig = new_figure(args, (4.0 * cols, 3.6 * rows + 0.6))
+    axes, leg = panels(fig, rows, cols, n_legend=6)
+    param = curves.parameter
+    symbol = curves.parameter_symbol or param
+    unit = curves.parameter_unit
+    model_value = curves.resolved.get(f"model.{param}", curves.resolved.get("model.bead_mass") if param == "mass" else None)
+    for ax, (sym, title, paper, kinds) in zip(axes.ravel(), panels_drawn):
+        draw_curves(ax, curves, kinds)
+        if sym in brackets:
+            draw_brackets(ax, *brackets[sym])
+        ax.axhline(paper, **PAPER_LINE)
+        ax.text(1.0, paper, f" paper {paper:.2f}π", transform=ax.get_yaxis_transform(), fontsize=7, va="center",
+                ha="left", clip_on=False)
+        if model_value is not None and param != "s":
+            ax.axvline(model_value, color="k", ls=":", lw=0.8)
+        for v, label in PAPER_APPARATUS.get(param, []):
+            ax.axvline(v, color="0.4", ls=(0, (1, 3)), lw=0.8)
+            ax.text(v, 0.99, f" {label}", transform=ax.get_xaxis_transform(), fontsize=6.5, rotation=90, va="top")
+        ax.set_title(title, fontsize=9)
+        ax.set_xlabel(f"{symbol} [{unit}]" if unit else symbol)
+        ax.set_ylabel("ω_m [π rad/s]")
+        ax.grid(alpha=0.3)
+    for ax in axes.ravel()[len(panels_drawn):]:
+        ax.set_visible(False)
+    plt = pyplot()
+    s_values = sorted(set(np.round(curves.points["s"], 4)))
+    handles = [plt.Line2D([], [], color="k", lw=1.6, label="cone exit (cone_up, cone_down), lag's Hopf point"),
+               plt.Line2D([], [], color="k", lw=1.6, ls="-.", label="fold of the locked orbit"),
+               plt.Line2D([], [], color="0.6", lw=1.0, label="orbit there unstable or not held: no threshold"),
+               plt.Line2D([], [], marker="D", mfc="white", mec="k", ls="", label="codim-2: two curves meet"),
+               plt.Line2D([], [], **PAPER_LINE, label="the paper's measured value"),
+               plt.Line2D([], [], color="k", ls=":", lw=0.8, label=f"this model's {symbol}")]
+    if brackets:
+        handles.append(plt.Line2D([], [], color=BRACKET_SHADE, lw=4, label="sweep bracket"))
+    legend(leg, handles)
+    fig.suptitle(f"Thresholds over {symbol}, bead stuck at s = {', '.join(f'{s:g}' for s in s_values)} m "
+                 f"(continuation, astrojax orbits --map {param})", fontsize=9)
+    save(fig, args)
+
+
+if __name__ == "__main__":
+    run(main)

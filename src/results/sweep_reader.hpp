@@ -1,0 +1,134 @@
+// The one reader of sweep files (layout: docs/reference/file-format.md; the writer is
+// sweep_file.hpp). Opening validates the whole file before anyone uses a value of it: the
+// format version (1 to kFileFormatVersion, an integer), every dataset of the layout present
+// with its rank, shape and type class, every chunk read once (so a Fletcher32 or deflate
+// checksum that fails shows here), no NaN or Inf where the writer never stores one, class
+// codes, sample counts, statuses and indices into names in range. Anything wrong throws
+// SweepFileError naming the file, the dataset and, where it is one element, its index.
+// Every command that reads a sweep file (thresholds, classify, verify, orbits --compare) reads
+// it through this class; formats 1 and 2 (strings joined by newlines or commas) still read.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "config/config.hpp"
+#include "io/hdf5_file.hpp"
+#include "physics/parameter_table.hpp"
+#include "physics/state.hpp"
+#include "results/sweep_file.hpp"
+
+namespace ajx::results {
+
+// A sweep file that is damaged or not one: what() is "<file>: /<dataset>: <problem>" (the
+// dataset left out when the problem is the whole file).
+class SweepFileError : public std::runtime_error {
+ public:
+  SweepFileError(std::string file, std::string dataset, const std::string& problem);
+  const std::string& file() const noexcept { return file_; }
+  const std::string& dataset() const noexcept { return dataset_; }  // "windows/class", "" for the file
+  const std::string& problem() const noexcept { return problem_; }  // what() without file and dataset
+
+ private:
+  std::string file_, dataset_, problem_;
+};
+
+// Arrays as read: dims and row-major elements.
+template <class T>
+using Array = io::Array<T>;
+
+// Names by index (groups, variants, seeds) and the text beside each (purpose, label).
+struct NameList {
+  std::vector<std::string> names, texts;
+  std::vector<std::int32_t> of_chain;  // each chain's index into names
+};
+
+class SweepReader {
+ public:
+  // Opens read-only and validates; throws SweepFileError.
+  explicit SweepReader(const std::filesystem::path& path);
+
+  const std::string& path() const { return path_; }
+  std::int64_t format_version() const { return version_; }
+  std::size_t chains() const { return C_; }
+  std::size_t windows() const { return W_; }              // per chain, the longest chain's
+  std::size_t samples_per_window() const { return cap_; }  // stored at most
+  std::size_t tasks() const { return T_; }
+
+  // /config: the sweep file verbatim, its name and the --set overrides; parsed again.
+  const std::string& config_text() const { return config_text_; }
+  const std::string& config_source() const { return config_source_; }
+  const std::vector<std::string>& overrides() const { return overrides_; }
+  config::SweepConfig config() const;  // throws SweepFileError naming /config
+
+  const StoredModels& models() const { return models_; }
+  const std::vector<std::string>& axes() const { return axes_; }
+  const Array<double>& grid_values() const { return grid_; }  // chains × axes; empty without axes
+  bool grouped() const { return grouped_; }
+  const NameList& groups() const { return groups_; }      // texts: purposes
+  const NameList& variants() const { return variants_; }  // texts: labels
+  const NameList& start_seeds() const { return start_seeds_; }
+
+  // /windows: chains × windows.
+  const Array<std::int32_t>& classes() const { return cls_; }
+  const Array<std::int32_t>& direction() const { return dir_; }
+  const Array<double>& omega_m_begin() const { return wb_; }
+  const Array<double>& omega_m_end() const { return we_; }
+  // A statistic of kStats or kPowers by name; throws std::logic_error for another name.
+  const Array<double>& stat(std::string_view name) const;
+  const Array<double>& mode_fraction() const { return modes_; }
+  // The classifier settings the windows were classified with ("name=value" lines), empty for
+  // the defaults.
+  const std::vector<std::string>& classifier_settings() const { return classifier_settings_; }
+
+  // /samples: counts (chains × windows) and a column (chains × windows × cap [× 3]), read from
+  // the file when asked (it was validated on open).
+  const Array<std::int32_t>& count() const { return count_; }
+  Array<double> samples(std::string_view column) const;
+
+  // /tasks
+  const std::vector<TaskStatus>& status() const { return status_; }
+  physics::State final_state(std::size_t task) const;
+  const std::vector<std::string>& failures() const { return failures_; }
+
+  const io::File& file() const { return f_; }
+
+ private:
+  [[noreturn]] void fail(std::string_view dataset, const std::string& problem) const;
+  io::Dataset dataset(std::string_view name, std::size_t rank, io::TypeClass type) const;
+  Array<double> doubles(std::string_view name, const io::Dims& dims) const;
+  Array<std::int32_t> ints(std::string_view name, const io::Dims& dims) const;
+  std::vector<std::string> strings(std::string_view object, std::string_view attr, char joined_by) const;
+  void read_version();
+  void read_config();
+  void read_chains();
+  void read_groups();
+  void read_windows();
+  void read_samples();
+  void read_tasks();
+  void read_classes() const;
+
+  std::string path_;
+  io::File f_;
+  std::int64_t version_ = 1;
+  std::size_t C_ = 0, W_ = 0, cap_ = 0, T_ = 0;
+  std::string config_text_, config_source_;
+  std::vector<std::string> overrides_, axes_, classifier_settings_, failures_;
+  StoredModels models_;
+  Array<double> grid_;
+  bool grouped_ = false;
+  NameList groups_, variants_, start_seeds_;
+  Array<std::int32_t> cls_, dir_, count_;
+  Array<double> wb_, we_, modes_;
+  std::map<std::string, Array<double>, std::less<>> stats_;
+  std::vector<TaskStatus> status_;
+  Array<double> final_states_;
+};
+
+}  // namespace ajx::results
