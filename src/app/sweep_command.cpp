@@ -227,7 +227,7 @@ struct SweepOutput {
     }
     status[id] = out.ok ? results::TaskStatus::Ok : results::TaskStatus::Failed;
     if (!out.ok) failures.push_back(fmt::format("task {} (chain {}, part {}): {}", id, chain, id - first_task[chain], out.failure));
-    file->write_task(id, chain, result);  // written and flushed at once
+    file->write_task(id, chain, result);  // written (flushed at most every second: the journal has it)
     skipped += out.skipped;
     return out.simulated;  // [s]
   }

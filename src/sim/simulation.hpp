@@ -57,10 +57,10 @@ struct RunOptions {
   // elsewhere would cost the dense output and an evaluate for nothing.
   std::vector<std::pair<double, double>> sample_spans;
   // Held, unmeasured stretches [begin, end), sorted and disjoint, that end as soon as their
-  // orbit is a fixed point of the frame turning with the top, to within settle_tolerance × l
+  // orbit is a fixed point or a periodic orbit of the frame turning with the top, to within settle_tolerance × l
   // (sim/settle_watch.hpp); empty: every stretch runs its full length.
   std::vector<std::pair<double, double>> settle_spans;
-  double settle_tolerance = 1e-3;  // ε, relative to the string length l
+  double settle_tolerance = 1e-4;  // ε, relative to the string length l
 };
 
 // One sample of the trajectory with the quantities derived from it.
