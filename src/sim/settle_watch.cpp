@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 
 #include "physics/rotating_axes.hpp"
 
@@ -96,7 +94,7 @@ bool SettleWatch::observe(const numerics::StepView& step) {
   const Vec6 x = in_top_frame(t, yend_);
   lo_ = lo_.cwiseMin(x);
   hi_ = hi_.cwiseMax(x);
-  if (section_axis_ >= 0 && !std::getenv("AJX_NO_PERIODIC")) {  // g = x_i − c changed sign: a crossing of the section
+  if (section_axis_ >= 0) {  // g = x_i − c changed sign: a crossing of the section
     const double g_begin = section_g_;
     section_g_ = x(section_axis_) - section_level_;
     if ((g_begin < 0.0) != (section_g_ < 0.0) && crossed(step, g_begin)) {
@@ -160,7 +158,6 @@ void SettleWatch::jump() {
   for (int k = 0; k < 5; ++k)
     if (kWorks[k] < s.y.size()) s.y(kWorks[k]) += rate_[k] * dt;
   s.impact_loss += rate_[5] * dt;
-  if (std::getenv("AJX_SETTLE_DEBUG")) std::fprintf(stderr, "fixed jump at t=%.3f to %.3f\n", s.t, end);
   s.t = end;
   ctx_.sum.skipped += dt;
   ++ctx_.sum.settle_stops;
@@ -237,9 +234,6 @@ void SettleWatch::jump_periods() {
   s.t += dt;
   ctx_.sum.skipped += dt;
   ++ctx_.sum.settle_stops;
-  if (std::getenv("AJX_SETTLE_DEBUG"))
-    std::fprintf(stderr, "periodic jump at t=%.3f: k=%d T=%.6f turn=%.6f n=%.0f D=%.3g axis=%d level=%.4f\n", s.t - dt,
-                 per.crossings, per.T, per.turn, n, per.distance, section_axis_, section_level_);
   ++span_;  // the rest of this stretch is integrated without the watch
   restart(-std::numeric_limits<double>::infinity());
 }
