@@ -76,7 +76,7 @@ SweepPlan make_plan(const std::vector<PlanPart>& parts) {
 }
 
 physics::State SweepPlan::start_state(std::size_t c) const {
-  const physics::MotorSchedule schedule(setups[c].protocol.schedule);
+  const physics::MotorSchedule schedule = setups[c].motor();
   return seed_state(setups[c].model, schedule, starts[c].seed, starts[c].omega, starts[c].perturbation, starts[c].kick);
 }
 

@@ -11,16 +11,23 @@
 
 namespace ajx::sweep {
 
+void add_settle_spans(const ChainSetup& chain, const TaskSpan& span, sim::RunOptions& run) {
+  for (int i = 0; i < span.num_windows; ++i) {
+    const Window& win = chain.protocol.windows[std::size_t(span.first_window + i)];
+    if (chain.settle_tolerance > 0.0 && win.t_begin > win.t_settle) run.settle_spans.emplace_back(win.t_settle, win.t_begin);
+  }
+  run.settle_tolerance = chain.settle_tolerance;
+}
+
 TaskOutput run_task(const ChainSetup& chain, const TaskSpan& span, physics::State start) {
-  const physics::MotorSchedule schedule(chain.protocol.schedule);
+  const physics::MotorSchedule schedule = chain.motor();
   sim::RunOptions run = chain.run;
   run.run_statistics = false;  // the windows are measured from the samples
   for (int i = 0; i < span.num_windows; ++i) {  // and only the windows' samples are stored
     const Window& win = chain.protocol.windows[std::size_t(span.first_window + i)];
     run.sample_spans.emplace_back(win.t_begin, win.t_end);
-    if (chain.settle_tolerance > 0.0 && win.t_begin > win.t_settle) run.settle_spans.emplace_back(win.t_settle, win.t_begin);
   }
-  run.settle_tolerance = chain.settle_tolerance;
+  add_settle_spans(chain, span, run);
   sim::Simulation simulation(chain.model, schedule, run);
   TaskOutput out;
   const auto& windows = chain.protocol.windows;

@@ -23,6 +23,8 @@ struct ChainSetup {
   // ε of the windows that stop once their orbit is known (sim/settle_watch.hpp), relative to
   // l; 0: every settle runs its full length.
   double settle_tolerance = 0.0;
+  // The chain's motor: its protocol's schedule on the circle of the model's R.
+  physics::MotorSchedule motor() const { return physics::MotorSchedule(model.p.drive_radius, protocol.schedule); }
 };
 
 // The samples of one window, row-major: r1 and r2 are N×3.
@@ -71,6 +73,9 @@ struct TaskOutput {
 };
 
 TaskOutput run_task(const ChainSetup& chain, const TaskSpan& span, physics::State start);
+// The held stretches before the span's windows that end once their orbit is known, as run_task
+// integrates them (so that a re-run of the task, e.g. astrojax replay, integrates the same way).
+void add_settle_spans(const ChainSetup& chain, const TaskSpan& span, sim::RunOptions& run);
 
 // The class of every window a task recorded. A window the failed integration did not finish
 // is classified as failed.
