@@ -167,6 +167,8 @@ SweepReader::SweepReader(const std::filesystem::path& path) : path_(path.string(
     read_tasks();
     step = "classes";
     read_classes();
+    step = "brackets";
+    read_brackets();
   } catch (const io::Hdf5Error& e) {
     fail(step, fmt::format("cannot be read (the file is damaged): {}", e.what()));
   }

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "physics/model.hpp"
+#include "sweep/bisection.hpp"
 #include "sweep/protocol.hpp"
 
 namespace ajx::sweep {
@@ -56,6 +57,7 @@ struct SweepSpec {
   double early_stop_tolerance = 1e-4;
   std::vector<GridAxis> grid;
   std::optional<HoldSpec> hold;
+  std::optional<BisectSpec> bisect;    // [bisect]: a threshold by bisection, instead of the protocol
 };
 
 // One chain of a sweep: its parameters and protocol.
