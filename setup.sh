@@ -71,10 +71,10 @@ web() {
 }
 
 demo() {
-  # The main job: sweeps/paper.toml on the MPI farm (one master, the other ranks workers), the
-  # four thresholds of both model variants with their verdicts, the hysteresis diagram and the
-  # orbit pictures. Open MPI's mpirun refuses to run as root; there the same sweep runs as one
-  # process (the master computes every task: the same file).
+  # The main job: sweeps/paper.toml on the MPI farm (every rank integrates, rank 0 also hands
+  # out and writes), the four thresholds of both model variants with their verdicts, the
+  # hysteresis diagram and the orbit pictures. Open MPI's mpirun refuses to run as root; there
+  # the same sweep runs as one process with a thread per core (the same file).
   mkdir -p out
   local ranks; ranks=$(( $(nproc) < 2 ? 2 : $(nproc) ))
   local start=$SECONDS
@@ -89,9 +89,9 @@ demo() {
     resume=(--force)
   fi
   if [ "$(id -u)" -eq 0 ]; then
-    echo "note: running as root, where mpirun refuses; running the sweep as one process instead"
+    echo "note: running as root, where mpirun refuses; running the sweep as one process on $ranks threads instead"
     echo "      (as a normal user this is: mpirun -n $ranks $BUILD_DIR/astrojax sweep sweeps/paper.toml)"
-    "$BUILD_DIR"/astrojax sweep sweeps/paper.toml -o out/paper.h5 "${resume[@]}"
+    "$BUILD_DIR"/astrojax sweep sweeps/paper.toml -o out/paper.h5 --threads "$ranks" "${resume[@]}"
   else
     mpirun -n "$ranks" "$BUILD_DIR"/astrojax sweep sweeps/paper.toml -o out/paper.h5 "${resume[@]}"
   fi

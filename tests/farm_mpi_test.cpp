@@ -257,13 +257,15 @@ void test_basic() {
   CHECK(sum.total == static_cast<std::int64_t>(total) && sum.done == sum.total && sum.failed == 0 && sum.not_run == 0 &&
         sum.unstarted == 0);
   CHECK(sum.ranks == g_size);
-  CHECK(sum.tasks_per_rank[0] == 0 && sum.busy_seconds[0] == 0.0);  // the master computes nothing
+  // Rank 0's thread (FarmOptions::threads = 1, the default) computes beside the master.
+  CHECK(sum.tasks_per_rank[0] > 0 && sum.busy_seconds[0] > 0.0);
   CHECK(std::accumulate(sum.tasks_per_rank.begin(), sum.tasks_per_rank.end(), std::int64_t{0}) == sum.total);
   for (int w = 1; w < g_size; ++w) CHECK(sum.busy_seconds[static_cast<std::size_t>(w)] > 0.0);
-  CHECK(sum.bytes_sent > total * (40 + sizeof(Input)) && sum.bytes_received > total * sizeof(Output));
+  const std::size_t sent_away = total - static_cast<std::size_t>(sum.tasks_per_rank[0]);  // rank 0's ran in process
+  CHECK(sum.bytes_sent > sent_away * (40 + sizeof(Input)) && sum.bytes_received > sent_away * sizeof(Output));
   CHECK(sum.tasks_per_second > 0 && sum.wall_seconds > 0);
   bool ranks_ok = true;
-  for (const auto& [id, r] : col.results) ranks_ok = ranks_ok && r.rank >= 1 && r.rank < g_size && r.wall_seconds >= 0;
+  for (const auto& [id, r] : col.results) ranks_ok = ranks_ok && r.rank >= 0 && r.rank < g_size && r.wall_seconds >= 0;
   CHECK(ranks_ok);
   g_full = col.results;
 
@@ -278,8 +280,22 @@ void test_basic() {
   g_ran.clear();
   std::printf("basic: %lld tasks in %.3f s on %d ranks (%.0f tasks/s, busy", static_cast<long long>(sum.done),
               sum.wall_seconds, g_size, sum.tasks_per_second);
-  for (int w = 1; w < g_size; ++w) std::printf(" %.3f", sum.busy_seconds[static_cast<std::size_t>(w)]);
+  for (int w = 0; w < g_size; ++w) std::printf(" %.3f", sum.busy_seconds[static_cast<std::size_t>(w)]);
   std::printf(" s)\n");
+}
+
+void test_master_alone() {
+  // FarmOptions::threads = 0: rank 0 only hands out and delivers; the same results as test_basic.
+  Collector col;
+  FarmOptions opt;
+  opt.threads = 0;
+  opt.on_result = col.callback();
+  const FarmSummary sum = run_farm(g_rank == 0 ? make_chains(g_basic_spec) : std::vector<Chain>{}, work, opt);
+  const auto ran = gather_ran();
+  CHECK(sum.status == FarmStatus::Completed);
+  if (g_rank != 0) return;
+  CHECK(sum.tasks_per_rank[0] == 0 && sum.busy_seconds[0] == 0.0);  // the master computes nothing
+  CHECK(same_results(col.results, g_full) && each_once(ran) && ran.size() == g_full.size());
 }
 
 void test_lowest_chain_first() {
@@ -290,6 +306,7 @@ void test_lowest_chain_first() {
   s.length = 4;
   Collector col;
   FarmOptions opt;
+  opt.threads = 0;  // rank 1 the only worker
   opt.on_result = col.callback();
   run_farm(g_rank == 0 ? make_chains(s) : std::vector<Chain>{}, work, opt);
   gather_ran();
@@ -368,6 +385,7 @@ void test_stop() {
   s.raise_sig = SIGTERM;
   Collector col;
   FarmOptions opt;
+  opt.threads = 0;  // the SIGTERM must be raised on a worker rank, which ignores it
   opt.stop = &stop;
   opt.on_result = [&, cb = col.callback()](const TaskResult& r) {
     cb(r);
@@ -486,6 +504,7 @@ void test_large_payloads() {
   s.carry_pad = 1 << 20;
   Collector col;
   FarmOptions opt;
+  opt.threads = 0;  // every task through MPI
   opt.on_result = col.callback();
   const auto chains = g_rank == 0 ? make_chains(s) : std::vector<Chain>{};
   const FarmSummary sum = run_farm(chains, work, opt);
@@ -515,7 +534,7 @@ void test_progress() {
   for (std::size_t i = 0; i < seen.size(); ++i) {
     const Progress& p = seen[i];
     ok = ok && p.total == 60 && p.done <= 60 && p.failed == 0 && p.not_run == 0 && p.in_flight >= 0 &&
-         p.in_flight <= g_size - 1;
+         p.in_flight <= g_size;  // the worker ranks and rank 0's thread
     if (i > 0) ok = ok && p.done >= seen[i - 1].done && p.elapsed_seconds - seen[i - 1].elapsed_seconds >= 0.029;
   }
   CHECK(ok);
@@ -556,6 +575,7 @@ int main(int argc, char** argv) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::pair<const char*, void (*)()> tests[] = {
       {"basic", test_basic},
+      {"master_alone", test_master_alone},
       {"lowest_chain_first", test_lowest_chain_first},
       {"failure", test_failure},
       {"resume", test_resume},

@@ -260,6 +260,75 @@ TEST(Farm, StopRequestInterruptsAndTheRestResumes) {
   EXPECT_EQ(all, expected_outputs(chains));
 }
 
+// FarmOptions::threads on one rank: that many threads integrate at once, each task runs once in
+// its chain's order, and the outputs are the serial ones; a stop request leaves only what was
+// in flight, and the rest resumes to the same outputs.
+TEST(Farm, ThreadsOnOneRankRunAtOnceWithTheSameOutputs) {
+  std::atomic<int> running{0}, most{0}, calls{0};
+  const WorkFunction threaded = [&](const Task& t, const Bytes& carry) {
+    const int now = ++running;
+    for (int m = most.load(); now > m && !most.compare_exchange_weak(m, now);) {
+    }
+    ++calls;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    --running;
+    return work(t, carry);  // with g_effects off: it only hashes (g_ran is not for threads)
+  };
+  const auto chains = make_chains(8, 4);
+  const auto want = expected_outputs(chains);
+  g_effects = false;
+  FarmOptions opt;
+  opt.threads = 3;
+  std::map<std::int64_t, Bytes> got;
+  std::map<std::int64_t, std::int64_t> last;  // per chain: the last index delivered
+  bool in_order = true;
+  opt.on_result = [&](const TaskResult& r) {
+    EXPECT_TRUE(r.ok) << r.error;
+    got[r.task_id] = r.output;
+    auto [it, fresh] = last.emplace(r.chain, r.index);
+    if (!fresh) in_order = in_order && r.index == it->second + 1, it->second = r.index;
+  };
+  const FarmSummary s = run_farm(chains, threaded, opt);
+  EXPECT_EQ(s.status, FarmStatus::Completed);
+  EXPECT_EQ(got, want);
+  EXPECT_TRUE(in_order);
+  EXPECT_EQ(calls.load(), 32);
+  EXPECT_EQ(most.load(), 3);  // 8 chains ready, 3 threads: all three busy at once
+  EXPECT_EQ(s.tasks_per_rank, std::vector<std::int64_t>{32});
+  EXPECT_GT(s.busy_seconds[0], 2.5 * 32 * 0.005 / 3);  // summed over the threads
+
+  // Stop after 5 results: at most the 2 others in flight are delivered; the rest resumes.
+  std::atomic<bool> stop{false};
+  FarmOptions o2;
+  o2.threads = 3;
+  o2.stop = &stop;
+  std::map<std::int64_t, TaskResult> first;
+  o2.on_result = [&](const TaskResult& r) {
+    first.emplace(r.task_id, r);
+    if (first.size() == 5) stop = true;
+  };
+  const FarmSummary s2 = run_farm(chains, threaded, o2);
+  EXPECT_EQ(s2.status, FarmStatus::Interrupted);
+  EXPECT_GE(first.size(), 5u);
+  EXPECT_LE(first.size(), 7u);
+  std::vector<Chain> rest;
+  for (Chain ch : chains) {
+    std::size_t k = 0;
+    while (k < ch.tasks.size() && first.count(ch.tasks[k].id)) ++k;
+    if (k > 0) ch.carry = first.at(ch.tasks[k - 1].id).carry;
+    ch.tasks.erase(ch.tasks.begin(), ch.tasks.begin() + static_cast<std::ptrdiff_t>(k));
+    rest.push_back(std::move(ch));
+  }
+  std::map<std::int64_t, Bytes> all;
+  for (const auto& [id, r] : first) all[id] = r.output;
+  FarmOptions o3;
+  o3.threads = 2;
+  o3.on_result = [&](const TaskResult& r) { EXPECT_TRUE(all.emplace(r.task_id, r.output).second) << r.task_id; };
+  EXPECT_EQ(run_farm(rest, threaded, o3).status, FarmStatus::Completed);
+  g_effects = true;
+  EXPECT_EQ(all, want);
+}
+
 TEST(Farm, StopAlreadyRequestedRunsNothing) {
   std::atomic<bool> stop{true};
   FarmOptions opt;

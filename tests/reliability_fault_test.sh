@@ -183,7 +183,8 @@ check "stopped worker: the file is complete and equals the uninterrupted one" "[
 # A worker waiting for work does not spin: one chain in one long task (RK4 at 5 µs: about 15 s
 # of CPU, interrupted after 4), so one worker works and the other waits; their CPU over 3 s,
 # both ranks still running at its end.
-start_mpi idle.h5 0 --set "grid.drive_radius=[0.01]" --set protocol.windows_per_task=1000 --set integrator.step=5e-6
+# --threads 0: the one task goes to a worker rank, not to rank 0's own thread.
+start_mpi idle.h5 0 --set "grid.drive_radius=[0.01]" --set protocol.windows_per_task=1000 --set integrator.step=5e-6 --threads 0
 sleep 1
 a1=$(ticks "$rank1"); a2=$(ticks "$rank2")
 sleep 3

@@ -36,7 +36,9 @@ int main(int argc, char** argv) {
     o.output.assign(std::size_t(payload), std::byte{1});
     return o;
   };
-  const ajx::parallel::FarmSummary s = ajx::parallel::run_farm(std::move(cs), work);
+  ajx::parallel::FarmOptions opt;
+  opt.threads = 0;  // the master's messages alone: rank 0's own worker thread would take tasks without any
+  const ajx::parallel::FarmSummary s = ajx::parallel::run_farm(std::move(cs), work, opt);
   if (mpi.is_master())
     std::printf("ranks %d  tasks %lld  payload %ld B  wall %.3f s  %.0f tasks/s  %.0f B/task to workers  "
                 "%.0f B/task to the master\n",

@@ -1,6 +1,6 @@
 """Parallel efficiency of a sweep: measured (1 vs 2 workers) and projected to 64, 512, 4096 ranks.
 
-Usage: project.py PAPER_1RANK.h5 QUICK_1WORKER.h5 QUICK_2WORKERS.h5 THROUGHPUT.txt
+Usage: project.py PAPER_1RANK.h5 QUICK_1WORKER.h5 QUICK_2WORKERS.h5 THROUGHPUT.txt [HOLD_1RANK.h5]
 
 The model (docs/cluster/index.md, "Scale"). A sweep has C chains of K tasks; a task of g windows
 integrates for tau = g * tau_w on a worker. The master spends s = g * m_w + 1/mu on each task:
@@ -9,7 +9,11 @@ receive it and hand out the next (the farm's message throughput mu with a task's
 A worker waits for its next task while the master handles its result, so a chain advances one
 task per tau + s, and W workers run at most C chains at once:
     T(W) = max(ceil(C / W) * K * (tau + s),  C * K * s)
-the second term when the master is saturated. Efficiency E = C * K * tau / (W * T(W)).
+the second term when the master is saturated. Efficiency E = C * K * tau / (R * T(W)) on R ranks.
+Every rank integrates (rank 0 in a thread beside the master's loop, FarmOptions::threads), so
+W = R - u: the master's own work, a share u = C K s / T of its core, is taken from rank 0's
+worker (solved for u by iteration). HOLD_1RANK.h5, a hold-mode sweep on one rank (one short
+task per chain, as a basin or map sweep has), gives the projection for 10^4 such chains.
 """
 import math
 import re
@@ -55,13 +59,18 @@ def main():
     mu = max(rates.values())  # the master's best message rate with sweep-sized outputs
     print(f"master message throughput with sweep-sized outputs: {', '.join(f'{r} ranks {v:.0f}/s' for r, v in sorted(rates.items()))}")
 
-    def efficiency(C, W, g, m=None):
+    def farm(C, R, K, tau, s):
+        """E on R ranks, every rank integrating, the master's share u taken from rank 0's worker."""
+        u = 0.0
+        for _ in range(50):
+            W = R - u
+            T = max(math.ceil(C / W) * K * (tau + s), C * K * s)
+            u = min(1.0, C * K * s / T)
+        return C * K * tau / (R * T)
+
+    def efficiency(C, R, g, m=None):
         m = m_w if m is None else m
-        K = math.ceil(windows_per_chain / g)
-        tau = g * tau_w
-        s = g * m + 1.0 / mu
-        T = max(math.ceil(C / W) * K * (tau + s), C * K * s)
-        return C * K * tau / (W * T)
+        return farm(C, R, math.ceil(windows_per_chain / g), g * tau_w, g * m + 1.0 / mu)
 
     gs = [1, 2, 5, 10, 20, 50, int(windows_per_chain)]
     for C in (1024, 4096):
@@ -69,24 +78,36 @@ def main():
               f"= {C} chains; efficiency by windows per task g")
         print("  ranks  " + "  ".join(f"g={g:<4d}" for g in gs) + "   smallest g with E >= 0.9")
         for R in (64, 512, 4096):
-            W = R - 1
-            es = [efficiency(C, W, g) for g in gs]
-            ok = [g for g in range(1, int(windows_per_chain) + 1) if efficiency(C, W, g) >= 0.9]
+            es = [efficiency(C, R, g) for g in gs]
+            ok = [g for g in range(1, int(windows_per_chain) + 1) if efficiency(C, R, g) >= 0.9]
             print(f"  {R:5d}  " + "  ".join(f"{x:6.2f}" for x in es) + f"   {ok[0] if ok else 'none'}")
         print(f"  (at most {C} workers can be busy: {C} chains)")
         for R in (64, 512, 4096):
             # The master's cost per window that would give E >= 0.9 with whole chains as tasks.
             g = int(windows_per_chain)
             lo, hi = 0.0, m_w
-            if efficiency(C, R - 1, g, 0.0) < 0.9:
+            if efficiency(C, R, g, 0.0) < 0.9:
                 print(f"  {R} ranks: below 0.9 even with a master that costs nothing per window "
                       f"(messages alone: {1e3 / mu:.2f} ms per task; a chain integrates in {g * tau_w:.2f} s)")
                 continue
             for _ in range(60):
                 mid = 0.5 * (lo + hi)
-                lo, hi = (mid, hi) if efficiency(C, R - 1, g, mid) >= 0.9 else (lo, mid)
+                lo, hi = (mid, hi) if efficiency(C, R, g, mid) >= 0.9 else (lo, mid)
             print(f"  {R} ranks: E >= 0.9 needs the master's cost per window below {lo * 1e6:.1f} us "
                   f"(now {m_w * 1e3:.2f} ms), with one task per chain")
+
+    if len(sys.argv) > 5:
+        # 10^4 short chains of one task each (a basin or map sweep in the hold mode).
+        h = prov(sys.argv[5])
+        tau_h = h["work"] / h["tasks"]
+        m_h = h["master"] / h["tasks"]
+        s_h = m_h + 1.0 / mu
+        print(f"\nhold mode on 1 rank ({sys.argv[5]}): {h['tasks']} chains of one task, integration "
+              f"{tau_h * 1e3:.1f} ms and master {m_h * 1e3:.3f} ms per task (+ {1e3 / mu:.3f} ms of messages)")
+        print("projection: 10^4 such chains; efficiency by ranks (master saturates at "
+              f"{(tau_h + s_h) / s_h:.0f} busy workers)")
+        for R in (2, 8, 16, 64, 512):
+            print(f"  {R:5d} ranks: E = {farm(10_000, R, 1, tau_h, s_h):.2f}")
 
 
 if __name__ == "__main__":

@@ -42,6 +42,7 @@ struct SweepArgs {
   double task_timeout = 0;  // [s] a task not back within it runs elsewhere, its rank given up; 0: automatic
   double min_task_timeout = 60;  // [s] the least automatic bound (20 times the slowest finished task)
   double max_memory = 0;  // [MB] memory budget of one rank; 0: half the machine's
+  int threads = 1;  // threads of rank 0 that integrate (parallel::FarmOptions::threads)
   std::string command_line;
 };
 // Collective: every rank of MPI_COMM_WORLD calls it (rank 0 is the master).

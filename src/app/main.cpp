@@ -92,6 +92,12 @@ int main(int argc, char** argv) {
                         "Memory one rank may plan for [MB]; a sweep whose tasks or plan need more is refused before it "
                         "starts (default: half the machine's memory)")
       ->check(CLI::NonNegativeNumber);
+  sweep_cmd->add_option("--threads", sweep.threads,
+                        "Threads of rank 0 that integrate tasks beside the master: with mpirun, 1 (default: every rank "
+                        "computes) or 0 (rank 0 only hands out and writes); in one process (as root, or without MPI), "
+                        "the number of cores to use, e.g. --threads 2. The file does not depend on it")
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str();
   sweep_cmd->add_option("--min-task-timeout", sweep.min_task_timeout,
                         "The least automatic task bound [s] (see --task-timeout)")
       ->check(CLI::Range(0.1, 1e7))

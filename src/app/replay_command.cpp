@@ -176,6 +176,7 @@ int replay_command(const ReplayArgs& args) {
   const physics::MotorSchedule schedule = setup.motor();
   sim::RunOptions run = setup.run;
   run.run_statistics = false;
+  sweep::add_settle_spans(setup, s.plan.spans[c][s.task], run);  // settled as the sweep settled it
   run.sample_spans = {{t_from, s.info.t_end + 0.5 / args.sample_rate}};
   results::Trajectory traj;
   physics::State state = s.start;

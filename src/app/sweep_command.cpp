@@ -134,6 +134,7 @@ struct SweepOutput {
   io::JournalContents replay;
   std::vector<results::TaskStatus> status;  // per task
   std::vector<std::string> failures;
+  double skipped = 0.0;  // simulated seconds of settling not integrated, the orbit known [s]
   std::map<std::size_t, std::vector<std::byte>> probe_carry;  // per finished bisection probe: the next one's carry
 
   SweepOutput(const SweepArgs& a, const config::SweepConfig& c, const sweep::SweepPlan& p)
@@ -230,7 +231,8 @@ struct SweepOutput {
     if (result.probe) probe_carry[id] = result.probe->carry;
     status[id] = out.ok ? results::TaskStatus::Ok : results::TaskStatus::Failed;
     if (!out.ok) failures.push_back(fmt::format("task {} (chain {}, part {}): {}", id, chain, id - first_task[chain], out.failure));
-    file->write_task(id, chain, result);  // written and flushed at once
+    file->write_task(id, chain, result);  // written (flushed at most every second: the journal has it)
+    skipped += out.skipped;
     return out.simulated;  // [s]
   }
 
@@ -360,6 +362,7 @@ parallel::FarmOptions farm_options(const SweepArgs& args, SweepOutput& output, S
   fo.task_timeout = args.task_timeout;
   fo.timeout_factor = kTaskTimeoutFactor;  // without --task-timeout: a task this many times the slowest is hung
   fo.min_task_timeout = args.min_task_timeout;
+  fo.threads = args.threads;
   return fo;
 }
 
@@ -373,6 +376,7 @@ results::SweepRunRecord run_record(const SweepArgs& args, int ranks, const std::
                             std::string(parallel::to_string(fs.status)), fs.tasks_per_second, fs.bytes_sent,
                             fs.bytes_received, 0.0, fs.result_seconds};
   for (double b : fs.busy_seconds) r.work_seconds += b;
+  r.threads = args.threads;
   return r;
 }
 
@@ -384,7 +388,9 @@ int report_sweep(const SweepArgs& args, SweepOutput& output, const parallel::Far
   const std::vector<results::TaskStatus>& status = output.status;
   const std::filesystem::path &final_path = output.final_path, &part_path = output.part_path;
   std::sort(failures.begin(), failures.end());
-  output.file->finish(failures, run_record(args, ranks, started, wall, fs));
+  results::SweepRunRecord record = run_record(args, ranks, started, wall, fs);
+  record.settle_seconds_skipped = output.skipped;  // [s] of every run of the sweep (resumes included)
+  output.file->finish(failures, record);
   const bool complete = std::none_of(status.begin(), status.end(), [](results::TaskStatus v) { return v == results::TaskStatus::NeverRan; });
   if (complete) {
     std::filesystem::rename(part_path, final_path);
@@ -394,11 +400,14 @@ int report_sweep(const SweepArgs& args, SweepOutput& output, const parallel::Far
     output.journal.reset();
   }
 
-  std::printf("%s  %zu chains, %zu tasks (%lld failed, %lld not run, %lld never started), %.0f of %.0f simulated s "
+  // The settling the early stop skipped (sim/settle_watch.hpp), when there was any.
+  const std::string skipped =
+      output.skipped > 0 ? fmt::format(" ({:.0f} s of settling skipped, the orbit known)", output.skipped) : "";
+  std::printf("%s  %zu chains, %zu tasks (%lld failed, %lld not run, %lld never started), %.0f of %.0f simulated s%s "
               "in %.1f s wall on %d ranks -> %s\n",
               !complete ? "INTERRUPTED" : failures.empty() ? "ok" : "FAILED", output.plan.setups.size(),
               output.plan.n_tasks, (long long)fs.failed, (long long)fs.not_run, (long long)fs.unstarted, sim.done,
-              sim.total, wall, ranks, complete ? final_path.c_str() : part_path.c_str());
+              sim.total, skipped.c_str(), wall, ranks, complete ? final_path.c_str() : part_path.c_str());
   for (const auto& fl : failures) std::printf("  failed: %s\n", fl.c_str());
   if (!complete)
     std::printf("the finished tasks are in %s; continue with the same command and --resume\n", part_path.c_str());

@@ -483,6 +483,13 @@ std::vector<double> value_list(const toml::node& n, const std::string& key, std:
   return out;
 }
 
+// [protocol] or [hold]: early_stop and its tolerance ε (sim/settle_watch.hpp), at most the
+// classifier's tightest drift tolerance (L1_drift_tol = 0.01): a larger ε could move a class.
+void read_early_stop(Reader& r, SweepConfig& c) {
+  c.early_stop = r.boolean("early_stop", c.early_stop);
+  c.early_stop_tolerance = r.number("early_stop_tolerance", c.early_stop_tolerance, 0.0, 0.01, true);
+}
+
 std::vector<sweep::Segment> parse_protocol(const toml::table& root, std::string_view file, SweepConfig& c) {
   const toml::table& pt = subtable(root, "protocol", file);
   Reader r(pt, "protocol", file);
@@ -490,6 +497,7 @@ std::vector<sweep::Segment> parse_protocol(const toml::table& root, std::string_
   c.start_seed = r.word("start_seed", "hanging", {"hanging", "circular_high", "locked_orbit"});
   c.windows_per_task = int(r.count("windows_per_task", 10, 1.0, 1e6));
   c.sample_rate = r.number("sample_rate", 100.0, 0.0, 1e5, true);
+  read_early_stop(r, c);
   const toml::array* arr = pt.get_as<toml::array>("segment");
   r.known("segment");  // its content is checked below
   if (!arr || arr->empty())
@@ -663,6 +671,7 @@ void read_sweep_tables(const toml::table& root, SweepConfig& c, double chains_be
     h.perturbations = int(r.count("perturbations", 0, 0.0, 1000.0));
     h.perturbation = r.number("perturbation", h.perturbation, 0.0, 10.0, true);
     c.sample_rate = r.number("sample_rate", 100.0, 0.0, 1e5, true);
+    read_early_stop(r, c);
     r.reject_unknown();
     c.windows_per_task = 1;
     c.hold = h;

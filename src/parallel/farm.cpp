@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <chrono>
 #include <climits>
+#include <condition_variable>
 #include <cstdio>
 #include <cstring>
 #include <deque>
 #include <exception>
+#include <mutex>
 #include <optional>
 #include <set>
 #include <span>
@@ -200,6 +202,76 @@ TaskResult execute(const WorkFunction& work, const Task& task, const Bytes& carr
   r.wall_seconds = seconds_since(t0);
   return r;
 }
+
+// Threads on rank 0 that run tasks beside the master (FarmOptions::threads). The master gives
+// each a task as it gives one to a worker rank and collects the results between its messages.
+// They call no MPI: the library is initialised MPI_THREAD_FUNNELED.
+class LocalWorkers {
+ public:
+  LocalWorkers(int n, const WorkFunction& work) : work_(work), jobs_(static_cast<std::size_t>(n)) {
+    for (int i = 0; i < n; ++i) threads_.emplace_back([this, i] { loop(static_cast<std::size_t>(i)); });
+  }
+  ~LocalWorkers() {
+    {
+      const std::lock_guard<std::mutex> lock(m_);
+      quit_ = true;
+    }
+    work_ready_.notify_all();
+    for (std::thread& t : threads_) t.join();  // a task under way is finished first
+  }
+  LocalWorkers(const LocalWorkers&) = delete;
+  LocalWorkers& operator=(const LocalWorkers&) = delete;
+
+  int size() const { return static_cast<int>(jobs_.size()); }
+  void give(std::size_t i, const Task& task, const Bytes& carry) {
+    {
+      const std::lock_guard<std::mutex> lock(m_);
+      jobs_[i] = Job{task, carry};
+    }
+    work_ready_.notify_all();
+  }
+  // A finished task (its thread's index and result), if one is waiting.
+  std::optional<std::pair<std::size_t, TaskResult>> take() {
+    const std::lock_guard<std::mutex> lock(m_);
+    if (done_.empty()) return std::nullopt;
+    auto r = std::move(done_.front());
+    done_.pop_front();
+    return r;
+  }
+  // Waits until a result is waiting or `limit` has passed.
+  void wait(std::chrono::microseconds limit) {
+    std::unique_lock<std::mutex> lock(m_);
+    result_ready_.wait_for(lock, limit, [this] { return !done_.empty(); });
+  }
+
+ private:
+  struct Job {
+    Task task;
+    Bytes carry;
+  };
+  void loop(std::size_t i) {
+    std::unique_lock<std::mutex> lock(m_);
+    while (true) {
+      work_ready_.wait(lock, [&] { return quit_ || jobs_[i].has_value(); });
+      if (quit_) return;
+      Job job = std::move(*jobs_[i]);
+      jobs_[i].reset();
+      lock.unlock();
+      TaskResult r = execute(work_, job.task, job.carry, 0);
+      lock.lock();
+      done_.emplace_back(i, std::move(r));
+      result_ready_.notify_one();
+    }
+  }
+
+  const WorkFunction& work_;
+  std::mutex m_;
+  std::condition_variable work_ready_, result_ready_;
+  std::vector<std::optional<Job>> jobs_;  // per thread: its task, until it starts it
+  std::deque<std::pair<std::size_t, TaskResult>> done_;
+  bool quit_ = false;
+  std::vector<std::thread> threads_;  // last: started once the members they use exist
+};
 
 // ---------------------------------------------------------------------------------------------
 // The master's bookkeeping, shared by the in-process (1 rank) and the distributed drivers:
@@ -406,21 +478,24 @@ double task_bound(const FarmOptions& o, double slowest_task) {
 }
 
 // The master's record of the workers: what each holds and since when, and which are given up.
+// Workers 1 .. ranks-1 are ranks, ranks .. ranks+threads-1 the master's threads (LocalWorkers).
 struct Workers {
+  int ranks = 1;
   std::vector<std::optional<std::size_t>> assigned;  // chain per worker
   std::vector<Clock::time_point> handed;             // when each worker got its task
   std::vector<bool> lost;                            // past the task bound, given up
   int n_lost = 0;
-  explicit Workers(int size)
-      : assigned(static_cast<std::size_t>(size)), handed(static_cast<std::size_t>(size)),
-        lost(static_cast<std::size_t>(size), false) {}
+  Workers(int size, int threads)
+      : ranks(size), assigned(static_cast<std::size_t>(size + threads)),
+        handed(static_cast<std::size_t>(size + threads)), lost(static_cast<std::size_t>(size + threads), false) {}
+  bool local(int w) const { return w >= ranks; }
 };
 
 // Tasks in flight past the bound: their workers given up, the tasks handed out again (or, after
 // max_attempts timeouts, delivered as failed).
 void give_up_late(const FarmOptions& options, double bound, Workers& ws, std::vector<int>& attempts,
                   Scheduler& sched) {
-  for (std::size_t w = 1; w < ws.assigned.size(); ++w) {
+  for (std::size_t w = 1; w < static_cast<std::size_t>(ws.ranks); ++w) {  // a thread of rank 0 cannot be given up
     if (!ws.assigned[w] || seconds_since(ws.handed[w]) <= bound) continue;
     const std::size_t c = *ws.assigned[w];
     ws.assigned[w].reset();
@@ -450,13 +525,20 @@ void give_up_late(const FarmOptions& options, double bound, Workers& ws, std::ve
 }
 
 // Ready tasks to idle workers, in the order the workers asked; returns the bytes sent.
-std::uint64_t hand_out(const FarmComm& comm, std::deque<int>& idle, Scheduler& sched, Workers& ws) {
+std::uint64_t hand_out(const FarmComm& comm, std::deque<int>& idle, Scheduler& sched, Workers& ws,
+                       LocalWorkers& local) {
   std::uint64_t sent = 0;
   while (!idle.empty() && sched.has_ready()) {
     const int w = idle.front();
     idle.pop_front();
     const std::size_t c = sched.take();
     const Task& t = sched.task(c);
+    ws.assigned[static_cast<std::size_t>(w)] = c;
+    ws.handed[static_cast<std::size_t>(w)] = Clock::now();
+    if (ws.local(w)) {
+      local.give(static_cast<std::size_t>(w - ws.ranks), t, sched.carry(c));
+      continue;
+    }
     Header h;
     h.task_id = t.id;
     h.chain = t.chain;
@@ -464,8 +546,6 @@ std::uint64_t hand_out(const FarmComm& comm, std::deque<int>& idle, Scheduler& s
     const Bytes msg = pack(h, t.input, sched.carry(c));
     comm.send(msg, w, kTagTask);
     sent += msg.size();
-    ws.assigned[static_cast<std::size_t>(w)] = c;
-    ws.handed[static_cast<std::size_t>(w)] = Clock::now();
   }
   return sent;
 }
@@ -486,25 +566,62 @@ TaskResult result_of(const Message& m) {
   return r;
 }
 
-FarmSummary run_master(const FarmComm& comm, int size, std::vector<Chain> chains, const FarmOptions& options,
-                       Clock::time_point start) {
+// The end of the master's loop: every worker rank told to stop, the summary with the lost ranks
+// and the bytes sent (rethrows the error that stopped the farm, if any).
+FarmSummary wind_up(const FarmComm& comm, int size, const Scheduler& sched, const Workers& ws, std::uint64_t sent) {
+  FarmSummary s = sched.summary(size);
+  Header stop;
+  stop.code = static_cast<std::int32_t>(s.status);
+  const Bytes msg = pack(stop);
+  for (int w = 1; w < size; ++w) {
+    comm.send(msg, w, kTagStop);
+    sent += msg.size();
+  }
+  sched.rethrow_if_failed();
+  for (int w = 1; w < size; ++w)
+    if (ws.lost[static_cast<std::size_t>(w)]) s.lost_ranks.push_back(w);
+  s.bytes_sent = sent;
+  return s;
+}
+
+// The master's loop: ready tasks to idle workers (ranks and its own threads), their results
+// delivered, the task bound watched, until nothing is left or a stop winds it down.
+FarmSummary run_master(const FarmComm& comm, int size, std::vector<Chain> chains, const WorkFunction& work,
+                       const FarmOptions& options, Clock::time_point start) {
   Scheduler sched(std::move(chains), options, start);
-  const int workers = size - 1;
+  LocalWorkers local(std::max(0, options.threads), work);
+  const int workers = size - 1 + local.size();
   std::vector<double> busy(static_cast<std::size_t>(size), 0.0);
   std::vector<std::int64_t> ran(static_cast<std::size_t>(size), 0);
-  Workers ws(size);
+  Workers ws(size, local.size());
   std::deque<int> idle;  // workers waiting for a task, in the order they asked
+  for (int i = 0; i < local.size(); ++i) idle.push_back(size + i);
   std::vector<int> attempts(sched.chains(), 0);  // per chain: timeouts of its task in flight
   double slowest = 0;  // the longest task finished so far [s]
   Clock::time_point last_timeout_check = start;
   std::uint64_t sent = 0, received = 0;
   bool stopping = false;
   Backoff backoff;
+  // Worker w's result for the chain it holds; w is idle again.
+  const auto finished = [&](int w, TaskResult&& r) {
+    std::optional<std::size_t>& slot = ws.assigned[static_cast<std::size_t>(w)];
+    if (!slot || r.task_id != sched.task(*slot).id)
+      throw std::runtime_error("farm: rank " + std::to_string(r.rank) + " returned task " + std::to_string(r.task_id) +
+                               ", which it was not given");
+    const std::size_t c = *slot;
+    slot.reset();
+    busy[static_cast<std::size_t>(r.rank)] += r.wall_seconds;
+    ++ran[static_cast<std::size_t>(r.rank)];
+    slowest = std::max(slowest, r.wall_seconds);
+    attempts[c] = 0;
+    sched.finish(c, std::move(r));
+    idle.push_back(w);
+  };
 
   while (true) {
     // A stop request or an error: no new task; results in flight still come back.
     if (!stopping && (stop_requested(options) || sched.failed())) stopping = true;
-    if (!stopping) sent += hand_out(comm, idle, sched, ws);
+    if (!stopping) sent += hand_out(comm, idle, sched, ws, local);
     // Done when every worker is waiting (so none has a message still on its way) and there is
     // nothing more to hand out.
     // Lost workers never ask again: with none left, what is still ready never starts.
@@ -517,10 +634,19 @@ FarmSummary run_master(const FarmComm& comm, int size, std::vector<Chain> chains
       give_up_late(options, bound, ws, attempts, sched);
       last_timeout_check = Clock::now();
     }
+    if (auto done = local.take()) {
+      finished(size + static_cast<int>(done->first), std::move(done->second));
+      backoff.reset();
+      sched.tick();
+      continue;
+    }
     const std::optional<MPI_Status> st = comm.iprobe();
     if (!st) {
       sched.tick();
-      backoff.wait();
+      if (size == 1)
+        local.wait(std::chrono::milliseconds(1));  // only threads: their results wake the master
+      else
+        backoff.wait();
       continue;
     }
     backoff.reset();
@@ -531,41 +657,21 @@ FarmSummary run_master(const FarmComm& comm, int size, std::vector<Chain> chains
       // The late result of a task handed out again (or reported failed): dropped; the rank works again.
       ws.lost[static_cast<std::size_t>(w)] = false;
       --ws.n_lost;
+      idle.push_back(w);
     } else if (m.tag == kTagResult) {
-      std::optional<std::size_t>& slot = ws.assigned[static_cast<std::size_t>(w)];
-      if (!slot || m.header.task_id != sched.task(*slot).id)
-        throw std::runtime_error("farm: rank " + std::to_string(w) + " returned task " +
-                                 std::to_string(m.header.task_id) + ", which it was not given");
-      const std::size_t c = *slot;
-      slot.reset();
-      TaskResult r = result_of(m);
-      busy[static_cast<std::size_t>(w)] += r.wall_seconds;
-      ++ran[static_cast<std::size_t>(w)];
-      slowest = std::max(slowest, r.wall_seconds);
-      attempts[c] = 0;
-      sched.finish(c, std::move(r));
-    } else if (m.tag != kTagHello) {
+      finished(w, result_of(m));
+    } else if (m.tag == kTagHello) {
+      idle.push_back(w);
+    } else {
       throw std::runtime_error("farm: unexpected message tag " + std::to_string(m.tag) + " from rank " +
                                std::to_string(w));
     }
-    idle.push_back(w);
     sched.tick();
   }
 
-  FarmSummary s = sched.summary(size);
-  Header stop;
-  stop.code = static_cast<std::int32_t>(s.status);
-  const Bytes msg = pack(stop);
-  for (int w = 1; w < size; ++w) {
-    comm.send(msg, w, kTagStop);
-    sent += msg.size();
-  }
-  sched.rethrow_if_failed();
-  for (int w = 1; w < size; ++w)
-    if (ws.lost[static_cast<std::size_t>(w)]) s.lost_ranks.push_back(w);
+  FarmSummary s = wind_up(comm, size, sched, ws, sent);
   s.busy_seconds = std::move(busy);
   s.tasks_per_rank = std::move(ran);
-  s.bytes_sent = sent;
   s.bytes_received = received;
   return s;
 }
@@ -612,10 +718,10 @@ FarmSummary run_farm(std::vector<Chain> chains, const WorkFunction& work, const 
   const int rank = comm_rank(comm.get());
   const int size = comm_size(comm.get());
   FarmSummary s;
-  if (size == 1)
+  if (size == 1 && options.threads <= 1)
     s = run_in_process(std::move(chains), work, options, start);
   else if (rank == 0)
-    s = run_master(comm, size, std::move(chains), options, start);
+    s = run_master(comm, size, std::move(chains), work, options, start);
   else
     s = run_worker(comm, rank, size, work);
   s.wall_seconds = seconds_since(start);

@@ -10,8 +10,10 @@
 //
 // Rank 0 is the master. It owns the queue and hands ready tasks to workers that ask for work
 // (pull model), preferring the ready task of the lowest chain id, and delivers every result
-// to on_result in completion order. With >= 2 ranks the master computes nothing; with 1 rank
-// it runs every task itself, with the same callbacks and results.
+// to on_result in completion order. Its workers are the other ranks and FarmOptions::threads
+// threads of its own, which run tasks beside the master's loop (so that with N ranks on N
+// cores, N processes integrate); with 1 rank and 1 thread it runs every task itself, with the
+// same callbacks and results.
 //
 // All ranks of the communicator must call run_farm together (it duplicates the communicator,
 // so farm messages never mix with the caller's). Only rank 0's chains and callbacks are used.
@@ -115,6 +117,11 @@ struct FarmOptions {
   double timeout_factor = 0.0;
   double min_task_timeout = 60.0;
   int max_attempts = 3;
+  // Threads on rank 0 that run tasks beside the master, as its workers (they call no MPI; the
+  // work function must then be safe to call from several threads). With >= 2 ranks: 1 (rank 0
+  // computes like a worker while the master waits between messages) or 0 (the master alone).
+  // With 1 rank: 1, the master runs every task itself; more, that many threads run them.
+  int threads = 1;
 };
 
 // Complete on rank 0. On worker ranks only status, ranks, wall_seconds and this rank's

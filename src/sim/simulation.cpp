@@ -7,6 +7,7 @@
 #include "sim/mode_switches.hpp"
 #include "sim/run_context.hpp"
 #include "sim/sampling.hpp"
+#include "sim/settle_watch.hpp"
 #include "sim/step.hpp"
 #include "sim/violation_watches.hpp"
 
@@ -48,7 +49,8 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
   // s.y is rotated into the integrator's axes here and back at the end.
   if (ctx.axes.rotating) physics::rotate_about_z(s.y, -ctx.axes.angle(s.t));
   Sampler sampler(ctx, t_end, sample_dt, on_sample, sample_origin);
-  const auto observe = [&](const numerics::StepView& step) { return sampler.observe(step); };
+  SettleWatch settle(ctx);
+  const auto observe = [&](const numerics::StepView& step) { return sampler.observe(step) && settle.observe(step); };
   const auto post_step = [&](double t, Vec& y) {
     watches.follow(t, y);
     return project_after_step(ctx, t, y);
@@ -77,6 +79,12 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
         switches.resolve_now();  // a new segment: ä jumps with ω̇, so the cones are checked again
         continue;
       }
+      if (r.status == numerics::IntegrateStatus::Stopped && settle.pending()) {
+        settle.jump();  // the orbit is known: on to the settle span's end
+        switches.resolve_now();
+        continue;
+      }
+      settle.cancel();  // an event cut the step that recognised the orbit: not a fixed point
       if (r.status != numerics::IntegrateStatus::Event) {
         sum.failure = fmt::format("integration failed at t = {:.6f} s: {}", s.t, numerics::to_string(r.status));
         break;

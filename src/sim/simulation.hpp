@@ -56,6 +56,11 @@ struct RunOptions {
   // (empty: every grid time). A sweep task keeps the samples of its windows only; each sample
   // elsewhere would cost the dense output and an evaluate for nothing.
   std::vector<std::pair<double, double>> sample_spans;
+  // Held, unmeasured stretches [begin, end), sorted and disjoint, that end as soon as their
+  // orbit is a fixed point or a periodic orbit of the frame turning with the top, to within settle_tolerance × l
+  // (sim/settle_watch.hpp); empty: every stretch runs its full length.
+  std::vector<std::pair<double, double>> settle_spans;
+  double settle_tolerance = 1e-4;  // ε, relative to the string length l
 };
 
 // One sample of the trajectory with the quantities derived from it.
@@ -98,6 +103,8 @@ struct RunSummary {
   double omega_ball = 0.0;         // mean dθ/dt of the two balls over the last window [rad/s]
   double min_tension = 0.0;        // smallest of T1, T2 seen at samples [N]
   double min_friction_power = 0.0; // smallest (T1 - T2) ṡ seen at samples [W]
+  double skipped = 0.0;            // simulated seconds of settle spans not integrated [s]
+  long settle_stops = 0;           // settle spans ended early
   bool ok() const { return failure.empty(); }
 };
 

@@ -49,6 +49,12 @@ struct SweepSpec {
   std::string start_seed = "hanging";  // the state at t = 0: a seed of sweep/seeds.hpp at start_omega
   int windows_per_task = 10;           // granularity of the farm's tasks
   double sample_rate = 100.0;          // samples per second stored for every window [1/s]
+  // Settling that stops once its orbit is a fixed point or a periodic orbit of the frame turning
+  // with the top, to within early_stop_tolerance × l (sim/settle_watch.hpp).
+  bool early_stop = true;
+  // ε: a hundredth of the classifier's tightest drift tolerance, L1_drift_tol (a tenth moved the
+  // main job's ω2: docs/reports/early-stop-and-every-core.md).
+  double early_stop_tolerance = 1e-4;
   std::vector<GridAxis> grid;
   std::optional<HoldSpec> hold;
   std::optional<BisectSpec> bisect;    // [bisect]: a threshold by bisection, instead of the protocol

@@ -91,6 +91,7 @@ SweepPlan make_plan(const std::vector<PlanPart>& parts) {
     c.protocol = compile(plan.points[i].protocol, plan.starts[i].omega);
     c.run = part.run;
     c.sample_rate = part.spec.sample_rate;
+    c.settle_tolerance = part.spec.early_stop ? part.spec.early_stop_tolerance : 0.0;
     plan.spans.push_back(split(c.protocol, part.spec.windows_per_task));
     plan.first_task.push_back(plan.n_tasks);
     plan.n_tasks += plan.spans.back().size();

@@ -73,10 +73,11 @@ CompiledProtocol compile(const std::vector<Segment>& segments, double omega_star
       for (int i = 0; i < st.num; ++i) {
         const double level = st.num == 1 ? st.from : st.from + (st.to - st.from) * i / (st.num - 1);
         b.ramp_to(level, st.step_rate);
+        const double t_settle = b.t;
         b.hold(st.settle);
         const double t0 = b.t;
         b.hold(st.measure);
-        b.out.windows.push_back({t0, b.t, level, level, int(k), st.num > 1 ? dir : 0});
+        b.out.windows.push_back({t0, b.t, level, level, int(k), st.num > 1 ? dir : 0, t_settle});
       }
     }
   }

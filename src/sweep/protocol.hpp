@@ -41,6 +41,7 @@ struct Window {
   double omega_begin, omega_end;  // ω_m at its ends [rad/s]
   int segment;                  // index of the protocol segment it belongs to
   int direction;                // +1 ω_m rising, -1 falling (ramps and staircases), 0 one held level
+  double t_settle = t_begin;    // start of the held, unmeasured stretch before it (t_begin: none) [s]
 };
 
 // One piece of a chain for the farm: consecutive windows, integrated from t_begin to t_end.

@@ -11,6 +11,14 @@
 
 namespace ajx::sweep {
 
+void add_settle_spans(const ChainSetup& chain, const TaskSpan& span, sim::RunOptions& run) {
+  for (int i = 0; i < span.num_windows; ++i) {
+    const Window& win = chain.protocol.windows[std::size_t(span.first_window + i)];
+    if (chain.settle_tolerance > 0.0 && win.t_begin > win.t_settle) run.settle_spans.emplace_back(win.t_settle, win.t_begin);
+  }
+  run.settle_tolerance = chain.settle_tolerance;
+}
+
 TaskOutput run_task(const ChainSetup& chain, const TaskSpan& span, physics::State start) {
   const physics::MotorSchedule schedule = chain.motor();
   sim::RunOptions run = chain.run;
@@ -19,6 +27,7 @@ TaskOutput run_task(const ChainSetup& chain, const TaskSpan& span, physics::Stat
     const Window& win = chain.protocol.windows[std::size_t(span.first_window + i)];
     run.sample_spans.emplace_back(win.t_begin, win.t_end);
   }
+  add_settle_spans(chain, span, run);
   sim::Simulation simulation(chain.model, schedule, run);
   TaskOutput out;
   const auto& windows = chain.protocol.windows;
@@ -58,6 +67,7 @@ TaskOutput run_task(const ChainSetup& chain, const TaskSpan& span, physics::Stat
   out.sticks = r.sticks;
   out.slack_phases = r.slack_phases;
   out.simulated = r.t_end - span.t_begin;
+  out.skipped = r.skipped;
   return out;
 }
 
@@ -124,6 +134,7 @@ std::vector<std::byte> encode(const TaskOutput& o) {
   put_state(w, o.final_state);
   for (long v : {o.steps, o.rhs_evals, o.impacts, o.sticks, o.slack_phases}) w.put<std::int64_t>(v);
   w.put(o.simulated);
+  w.put(o.skipped);
   w.put<std::uint64_t>(o.windows.size());
   for (const WindowRecord& rec : o.windows) {
     w.put<std::int32_t>(rec.index);
@@ -143,6 +154,7 @@ TaskOutput decode_output(const std::vector<std::byte>& bytes) {
   o.final_state = get_state(r);
   for (long* v : {&o.steps, &o.rhs_evals, &o.impacts, &o.sticks, &o.slack_phases}) *v = long(r.get<std::int64_t>());
   o.simulated = r.get<double>();
+  o.skipped = r.get<double>();
   o.windows.resize(r.get<std::uint64_t>());
   for (WindowRecord& rec : o.windows) {
     rec.index = r.get<std::int32_t>();

@@ -20,6 +20,9 @@ struct ChainSetup {
   CompiledProtocol protocol;
   sim::RunOptions run;
   double sample_rate = 200.0;  // samples per second inside windows [1/s]
+  // ε of the windows that stop once their orbit is known (sim/settle_watch.hpp), relative to
+  // l; 0: every settle runs its full length.
+  double settle_tolerance = 0.0;
   // The chain's motor: its protocol's schedule on the circle of the model's R.
   physics::MotorSchedule motor() const { return physics::MotorSchedule(model.p.drive_radius, protocol.schedule); }
 };
@@ -65,10 +68,14 @@ struct TaskOutput {
   physics::State final_state;    // the carry for the next task (the last good state on failure)
   std::vector<WindowRecord> windows;
   long steps = 0, rhs_evals = 0, impacts = 0, sticks = 0, slack_phases = 0;
-  double simulated = 0.0;        // seconds of physics integrated [s]
+  double simulated = 0.0;        // seconds of the chain's schedule covered [s]
+  double skipped = 0.0;          // ... of which settling not integrated, its orbit known [s]
 };
 
 TaskOutput run_task(const ChainSetup& chain, const TaskSpan& span, physics::State start);
+// The held stretches before the span's windows that end once their orbit is known, as run_task
+// integrates them (so that a re-run of the task, e.g. astrojax replay, integrates the same way).
+void add_settle_spans(const ChainSetup& chain, const TaskSpan& span, sim::RunOptions& run);
 
 // The class of every window a task recorded. A window the failed integration did not finish
 // is classified as failed.

@@ -1,0 +1,241 @@
+#include "sim/settle_watch.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "physics/rotating_axes.hpp"
+
+namespace ajx::sim {
+
+namespace idx = physics::idx;
+
+SettleWatch::SettleWatch(RunContext& ctx)
+    : ctx_(ctx), recurrence_(ctx.opt.settle_tolerance * ctx.model.p.string_length, kBlock) {
+  restart(-std::numeric_limits<double>::infinity());
+}
+
+// Ω: ω_m for the top on the rod (held tie or none), χ̇ for a slipping tie.
+double SettleWatch::top_rate(double t, const numerics::Vec& y) const {
+  if (physics::has_tie(y) && ctx_.s.contact.tie.slip) return y(idx::chi_dot);
+  double phi, w, wd;
+  ctx_.schedule.phase(t, phi, w, wd);
+  return w;
+}
+
+// ψ in the integrator's axes: χ (the tie's azimuth, in the lab) or φ, less the axes' own angle.
+double SettleWatch::top_azimuth(double t, const numerics::Vec& y) const {
+  double psi;
+  if (physics::has_tie(y)) {
+    psi = y(idx::chi);
+  } else {
+    double w, wd;
+    ctx_.schedule.phase(t, psi, w, wd);
+  }
+  return psi - ctx_.axes.angle(t);
+}
+
+SettleWatch::Vec6 SettleWatch::in_top_frame(double t, const numerics::Vec& y) const {
+  const double psi = top_azimuth(t, y);
+  const double c = std::cos(psi), s = std::sin(psi);
+  Vec6 x;
+  for (int b = 0; b < 2; ++b) {
+    const int k = b == 0 ? idx::r1 : idx::r2;
+    x(3 * b) = c * y(k) + s * y(k + 1);
+    x(3 * b + 1) = -s * y(k) + c * y(k + 1);
+    x(3 * b + 2) = y(k + 2);
+  }
+  return x;
+}
+
+// The work integrals of y that a jump carries on: the string's, drag's and friction's, and
+// where a clutch is modelled the motor's and the clutch's (physics/state.hpp).
+constexpr int kWorks[] = {idx::motor_work, idx::drag_loss, idx::friction_loss, idx::rod_work, idx::clutch_loss};
+
+SettleWatch::Record SettleWatch::record(double t, const numerics::Vec& y) const {
+  Record r{t, {}};
+  for (int k = 0; k < 5; ++k) r.works[std::size_t(k)] = kWorks[k] < y.size() ? y(kWorks[k]) : 0.0;
+  r.works[5] = ctx_.s.impact_loss;
+  return r;
+}
+
+void SettleWatch::restart(double t) {
+  block_end_ = t + kBlock;
+  blocks_ = 0;
+  pending_ = false;
+  mode_ = ctx_.s.contact.mode;
+  tie_slip_ = ctx_.s.contact.tie.slip;
+  recurrence_.clear();
+  section_axis_ = -1;
+  period_.reset();
+}
+
+void SettleWatch::open_block(double t, const numerics::Vec& y) {
+  lo_ = hi_ = in_top_frame(t, y);
+  block_start_ = record(t, y);
+  block_end_ = t + kBlock;
+}
+
+bool SettleWatch::observe(const numerics::StepView& step) {
+  const auto& spans = ctx_.opt.settle_spans;
+  const double t = step.t1();
+  while (span_ < spans.size() && t >= spans[span_].second) {
+    ++span_;
+    restart(-std::numeric_limits<double>::infinity());
+  }
+  if (span_ == spans.size() || t < spans[span_].first) return true;
+  if (yend_.size() == 0) yend_.resize(ctx_.s.y.size());
+  step.end(yend_);
+  // The first step in the span, or a switch of the bead's mode or of the tie: blocks anew.
+  if (!std::isfinite(block_end_) || ctx_.s.contact.mode != mode_ || ctx_.s.contact.tie.slip != tie_slip_) {
+    restart(t);
+    open_block(t, yend_);
+    return true;
+  }
+  const Vec6 x = in_top_frame(t, yend_);
+  lo_ = lo_.cwiseMin(x);
+  hi_ = hi_.cwiseMax(x);
+  if (section_axis_ >= 0) {  // g = x_i − c changed sign: a crossing of the section
+    const double g_begin = section_g_;
+    section_g_ = x(section_axis_) - section_level_;
+    if ((g_begin < 0.0) != (section_g_ < 0.0) && crossed(step, g_begin)) {
+      pending_ = true;
+      return false;
+    }
+  }
+  if (t < block_end_) return true;
+  if (recognised(t) && spans[span_].second - t > kBlock) {
+    pending_ = true;
+    return false;
+  }
+  if (section_axis_ < 0) choose_section(x);
+  open_block(t, yend_);
+  return true;
+}
+
+// The section x_i = c: the coordinate that swung most over the block just closed, through the
+// middle of its swing (every orbit that is not a fixed point crosses it twice a period). None
+// while the block's swing is below ε l: the fixed-point test covers that.
+void SettleWatch::choose_section(const Vec6& x) {
+  Vec6::Index i;
+  const double swing = (hi_ - lo_).maxCoeff(&i);
+  if (!(swing > ctx_.opt.settle_tolerance * ctx_.model.p.string_length)) return;
+  section_axis_ = int(i);
+  section_level_ = 0.5 * (hi_(i) + lo_(i));
+  section_g_ = x(i) - section_level_;
+}
+
+// D = a_j + s_j q/(1 − q), q = s_j/s_{j−1} < 1, a_j ≤ a_{j−1}: at most ε l.
+bool SettleWatch::recognised(double t) {
+  const Vec6 centre = 0.5 * (lo_ + hi_);
+  const double spread = 0.5 * (hi_ - lo_).norm();
+  const double shift = blocks_ > 0 ? (centre - centre_).norm() : 0.0;
+  bool known = false;
+  if (blocks_ >= 2 && spread <= spread_prev_ && shift < shift_prev_) {
+    const double q = shift / shift_prev_;
+    known = spread + shift * q / (1.0 - q) <= ctx_.opt.settle_tolerance * ctx_.model.p.string_length;
+  }
+  ++blocks_;
+  centre_ = centre;
+  spread_prev_ = spread;
+  shift_prev_ = shift;
+  if (known) {
+    const Record now = record(t, yend_);
+    const double len = t - block_start_.t;
+    for (std::size_t k = 0; k < 6; ++k) rate_[k] = (now.works[k] - block_start_.works[k]) / len;
+  }
+  return known;
+}
+
+void SettleWatch::jump() {
+  if (period_) return jump_periods();
+  pending_ = false;
+  State& s = ctx_.s;
+  const double end = ctx_.opt.settle_spans[span_].second, dt = end - s.t;
+  const double Omega = top_rate(s.t, s.y);
+  // The lab state turns by Ω Δ; the integrator's axes turn by their own angle meanwhile.
+  physics::rotate_about_z(s.y, Omega * dt - (ctx_.axes.angle(end) - ctx_.axes.angle(s.t)));
+  if (physics::has_tie(s.y)) s.y(idx::chi) += Omega * dt;  // the held tie keeps χ − φ
+  for (int k = 0; k < 5; ++k)
+    if (kWorks[k] < s.y.size()) s.y(kWorks[k]) += rate_[k] * dt;
+  s.impact_loss += rate_[5] * dt;
+  s.t = end;
+  ctx_.sum.skipped += dt;
+  ++ctx_.sum.settle_stops;
+  ++span_;
+  restart(-std::numeric_limits<double>::infinity());
+}
+
+// The section point at t (the state in the turning frame as lengths, section_recurrence.hpp).
+SectionPoint SettleWatch::section_point(double t, const numerics::Vec& y, int direction) const {
+  const physics::Parameters& p = ctx_.model.p;
+  const double omega0 = std::sqrt(p.gravity / p.string_length);  // ω0 = √(g/l)
+  const double psi = top_azimuth(t, y), c = std::cos(psi), s = std::sin(psi);
+  const bool tie = physics::has_tie(y);
+  SectionPoint pt;
+  pt.t = t;
+  pt.psi = psi + ctx_.axes.angle(t);
+  pt.direction = direction;
+  pt.p.resize(tie ? 13 : 12);
+  for (int b = 0; b < 4; ++b) {  // r1, r2, v1 / ω0, v2 / ω0 turned by −ψ
+    const int k = 3 * b;
+    const double f = b < 2 ? 1.0 : 1.0 / omega0;
+    pt.p(k) = f * (c * y(k) + s * y(k + 1));
+    pt.p(k + 1) = f * (-s * y(k) + c * y(k + 1));
+    pt.p(k + 2) = f * y(k + 2);
+  }
+  if (tie) pt.p(12) = p.drive_radius * y(idx::chi_dot) / omega0;  // the tie's speed R χ̇ / ω0
+  const Record r = record(t, y);
+  pt.works = r.works;
+  return pt;
+}
+
+// The crossing located in the step by regula falsi (Illinois) on g(t) = x_i(t) − c of its
+// interpolant, to the integrator's event precision; the recurrence is tested there.
+bool SettleWatch::crossed(const numerics::StepView& step, double g_begin) {
+  double a = step.t0(), b = step.t1(), ga = g_begin, gb = section_g_;
+  numerics::Vec y(yend_.size());
+  int side = 0;
+  for (int it = 0; it < 60 && b - a > 1e-13 * std::max(1.0, std::abs(b)); ++it) {
+    const double t = (a * gb - b * ga) / (gb - ga);
+    step.at(t, y);
+    const double g = in_top_frame(t, y)(section_axis_) - section_level_;
+    if ((g < 0.0) == (ga < 0.0)) {
+      a = t, ga = g;
+      if (side == -1) gb *= 0.5;
+      side = -1;
+    } else {
+      b = t, gb = g;
+      if (side == 1) ga *= 0.5;
+      side = 1;
+    }
+  }
+  const double tc = 0.5 * (a + b);
+  step.at(tc, y);
+  const double end = ctx_.opt.settle_spans[span_].second;
+  period_ = recurrence_.add(section_point(tc, y, g_begin < 0.0 ? 1 : -1), end - step.t1());
+  // Worth a stop: at least a block of the stretch skipped.
+  if (period_ && std::floor((end - step.t1()) / period_->T) * period_->T < kBlock) period_.reset();
+  return period_.has_value();
+}
+
+// n whole periods: the lab state turned by n Δψ, the integrals advanced by n times their
+// increase over a period; the rest of the stretch is integrated.
+void SettleWatch::jump_periods() {
+  pending_ = false;
+  State& s = ctx_.s;
+  const Period per = *period_;
+  const double end = ctx_.opt.settle_spans[span_].second;
+  const double n = std::floor((end - s.t) / per.T), dt = n * per.T;
+  physics::rotate_about_z(s.y, n * per.turn - (ctx_.axes.angle(s.t + dt) - ctx_.axes.angle(s.t)));
+  if (physics::has_tie(s.y)) s.y(idx::chi) += n * per.turn;
+  for (int k = 0; k < 5; ++k)
+    if (kWorks[k] < s.y.size()) s.y(kWorks[k]) += n * per.works[std::size_t(k)];
+  s.impact_loss += n * per.works[5];
+  s.t += dt;
+  ctx_.sum.skipped += dt;
+  ++ctx_.sum.settle_stops;
+  ++span_;  // the rest of this stretch is integrated without the watch
+  restart(-std::numeric_limits<double>::infinity());
+}
+
+}  // namespace ajx::sim
