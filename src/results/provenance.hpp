@@ -28,7 +28,9 @@ namespace ajx::results {
 //      /trajectory/motor_work and a sweep's /windows/motor_power are at the rod (W_m), the
 //      string's side moved to string_work, string_power; clutch_loss, clutch_power,
 //      /trajectory/chi and tie_energy new; /trajectory/phi is the motor's phase.
-inline constexpr std::int64_t kFileFormatVersion = 4;
+//   5  a sweep with basin chains holds /basins (results/basin_file.hpp); nothing else changed,
+//      so a format-5 file without basins reads as format 4 did.
+inline constexpr std::int64_t kFileFormatVersion = 5;
 
 inline void write_format(io::File& f, std::string_view kind) {
   f.set_attribute("format", kind);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "physics/model.hpp"
+#include "sweep/basin.hpp"
 #include "sweep/protocol.hpp"
 
 namespace ajx::sweep {
@@ -50,6 +51,7 @@ struct SweepSpec {
   double sample_rate = 100.0;          // samples per second stored for every window [1/s]
   std::vector<GridAxis> grid;
   std::optional<HoldSpec> hold;
+  std::optional<BasinSpec> basin;  // basin sampling (sweep/basin.hpp); replaces the protocol when present
 };
 
 // One chain of a sweep: its parameters and protocol.
