@@ -42,7 +42,8 @@ def draw_bands(ax, sweep, table):
         f = np.nan_to_num(table["fraction"][:, j])
         k = seen.get(cls, 0)
         seen[cls] = k + 1
-        poly = ax.fill_between(x, bottom, bottom + f, step=None, color=colours.get(cls, "#777777"), alpha=0.85,
+        # A step per level (each level is its own set of starts, nothing lies between levels).
+        poly = ax.fill_between(x, bottom, bottom + f, step="mid", color=colours.get(cls, "#777777"), alpha=0.85,
                                hatch=HATCHES[k % len(HATCHES)], edgecolor="white", lw=0.0, label=label)
         handles.append(poly)
         top = bottom + f
@@ -85,10 +86,11 @@ def draw_up(ax, sweep, part):
 
 def paper_lines(ax, label=False):
     for name in ("omega_rise", "omega_fall"):
-        ax.axvline(PAPER[name], zorder=1, **ajx.PAPER_LINE)
+        ax.axvline(PAPER[name], zorder=5, **ajx.PAPER_LINE)
         if label:
-            ax.text(PAPER[name], 1.0, f" paper {ajx.THRESHOLD_SYMBOLS[name]} {PAPER[name]:.2f}π", rotation=90,
-                    transform=ax.get_xaxis_transform(), fontsize=6, va="top", ha="right")
+            ax.text(PAPER[name], 0.97, f"paper {ajx.THRESHOLD_SYMBOLS[name]} = {PAPER[name]:.2f}π ", rotation=90,
+                    transform=ax.get_xaxis_transform(), fontsize=6, va="top", ha="right", zorder=6,
+                    bbox={"boxstyle": "square,pad=0.1", "fc": "white", "ec": "none", "alpha": 0.8})
 
 
 def print_table(sweep):
@@ -128,7 +130,7 @@ def main(argv=None):
         ajx.fail("give -o FILE for the figure, or --table")
     paper = ajx.Sweep(args.paper) if args.paper else None
     plt = ajx.pyplot()
-    fig, axes = plt.subplots(2, len(parts), figsize=(4.6 * len(parts) + 0.6, 6.2), squeeze=False,
+    fig, axes = plt.subplots(2, len(parts), figsize=(4.2 * len(parts) + 0.6, 6.2), squeeze=False,
                              gridspec_kw={"height_ratios": [2.2, 1.0]}, sharex="col")
     for col, part in enumerate(parts):
         _, group, variant = part_title(sweep, part)
@@ -138,17 +140,17 @@ def main(argv=None):
         rows = draw_seeded(ax, sweep, paper, variant) if paper else 0
         ax.set_ylim(0, 1.0 + (0.06 * rows + 0.04 if rows else 0.0))
         ax.set_yticks([0, 0.25, 0.5, 0.75, 1.0])
-        paper_lines(ax, label=True)
+        paper_lines(ax)
         n = int(t["samples"].max())
         ax.set_title(f"{ajx.for_figure(group, 20)} starts ({t['family']}), {ajx.for_figure(variant, 20)}: N = {n} per level",
                      fontsize=8)
         if col == 0:
             ax.set_ylabel("fraction of starts")
-        ax.legend(handles=handles, fontsize=6, loc="lower left", framealpha=0.9)
+        ax.legend(handles=handles, fontsize=6, loc="lower right", framealpha=0.9)
         draw_up(axes[1, col], sweep, part)
-        paper_lines(axes[1, col])
+        paper_lines(axes[1, col], label=True)
         if col == 0:
-            axes[1, col].legend(fontsize=6, loc="upper left")
+            axes[1, col].legend(fontsize=6, loc="center right")
     lo = min(bs.up_probability(sweep, p)[0].min() for p in parts) / PI
     hi = max(bs.up_probability(sweep, p)[0].max() for p in parts) / PI
     for ax in axes.flat:

@@ -4,8 +4,11 @@ along ω_m (as Attractors.jl's continuation matches attractors by distance), and
 starts ending on each with its 95 % Wilson interval.
 
 Two orbits of one class are told apart by their features, each scaled to a number of order
-one: the rotation number ω_ball/ω_m (1 for a locked orbit; a lagging one's falls as ω_m grows
-while its ω_ball stays), the balls' mean radii ρ1/l, ρ2/l and the bead's place s/l = L1/l. At
+one: ln(ω_ball / 1 rad/s), the balls' mean radii ρ1/l, ρ2/l and the bead's place s/l = L1/l.
+The logarithm because ω_ball moves along ω_m in proportion for a locked orbit (ω_ball = ω_m, so
+by ln(ω_k+1/ω_k) between levels: 0.23 from 4.13π to 5.2π, less above) while a lagging one keeps
+it nearly constant; an undefined ω_ball (the balls near the axis, or turning backwards) counts
+as 0. At
 one level the samples of one class whose scaled features lie within the level's match_tolerance
 of each other (single linkage) are one attractor; from one level to the next, each attractor is
 given the label of the nearest attractor of the same class at the previous level within the
@@ -23,16 +26,17 @@ NOT_ORBITS = ("not-settled", "failed")
 UNSPLIT = NOT_ORBITS + ("fallen",)  # one attractor per level, whatever their features
 
 
-def scaled_features(features, omega_m, string_length):
-    """(rotation number, ρ1/l, ρ2/l, s/l) of samples: features as /basins/features (ω_ball,
-    radius_bead_mean, radius_bottom_mean, L1_mean), omega_m their level's ω_m [rad/s]."""
+def scaled_features(features, string_length):
+    """(ln ω_ball, ρ1/l, ρ2/l, s/l) of samples, features as /basins/features (ω_ball [rad/s],
+    radius_bead_mean, radius_bottom_mean, L1_mean [m])."""
     f = np.asarray(features, dtype=float)
     out = np.empty_like(f)
     with np.errstate(invalid="ignore", divide="ignore"):
-        out[:, 0] = f[:, 0] / np.asarray(omega_m, dtype=float)
+        out[:, 0] = np.log(f[:, 0])
     out[:, 1:] = f[:, 1:] / string_length
-    # An undefined feature (ω_ball of balls on the axis) counts as 0: the orbit is told apart by the others.
-    return np.nan_to_num(out, nan=0.0)
+    # An undefined feature (ω_ball of balls on the axis or turning backwards) counts as 0: the
+    # orbit is told apart by the others.
+    return np.nan_to_num(out, nan=0.0, neginf=0.0)
 
 
 def clusters(points, tolerance):
@@ -108,7 +112,7 @@ def basin_table(sweep, part):
     per_level, members = [], []
     for r in rows:
         idx = np.flatnonzero((b["level"] == r) & (b["class"] >= 0))
-        x = scaled_features(b["features"][idx], lv["omega_m"][r], length)
+        x = scaled_features(b["features"][idx], length)
         atts, mem = [], []
         for code in np.unique(b["class"][idx]):
             of = np.flatnonzero(b["class"][idx] == code)
