@@ -103,6 +103,15 @@ def print_table(sweep):
             cells = [f"{t['fraction'][i, j]:.3f} [{t['lower'][i, j]:.3f}, {t['upper'][i, j]:.3f}]"
                      for j in range(len(t["labels"]))]
             print(f"{w / PI:10.3f}  {t['done'][i]:4d}  " + "  ".join(cells))
+        print("attractor: its levels [π rad/s], starts, mean ω_ball [π rad/s], ρ1, ρ2, s [m]")
+        b = sweep.basins
+        for j, lab in enumerate(t["labels"]):
+            m = t["sample_label"] == j
+            levels = np.unique(np.round(b["levels"]["omega_m"][b["level"][m]] / PI, 3))
+            with np.errstate(invalid="ignore"):
+                f = np.nanmean(b["features"][m], axis=0) if m.any() else np.full(4, np.nan)
+            print(f"  {lab}: {', '.join(f'{v:g}' for v in levels)}; {int(m.sum())} starts; "
+                  f"ω_ball {f[0] / PI:.2f}π, ρ1 {f[1]:.3f}, ρ2 {f[2]:.3f}, s {f[3]:.3f}")
         w, p, lo, hi = bs.up_probability(sweep, part)
         print("omega_m/pi  P(up) [95% CI]")
         for i in range(len(w)):
