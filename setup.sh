@@ -7,7 +7,8 @@
 #   ./setup.sh docs        install, build the program and the live page, build the documentation site offline
 #                          (build/site, the live page in build/site/live/)
 #   ./setup.sh web         install emscripten, build the live page: the engine in WebAssembly (build/web/index.html)
-#   ./setup.sh test-browser  the native-versus-WebAssembly comparison and the page in headless Chromium (ctest -L browser)
+#   ./setup.sh test-browser  the browser and video tests (ctest -L browser): the live page against the native engine,
+#                          the sweep report in headless Chromium, the animations' frames with ffprobe
 #   ./setup.sh test-long   install, build, run the long physics validations (ctest -L long)
 #   ./setup.sh install | build
 #   ./setup.sh peers       also install Boost and SUNDIALS, build astrojax_peers and astrojax_matched (benchmarks only)
@@ -22,7 +23,8 @@ PACKAGES=(build-essential cmake pkg-config libeigen3-dev libopenmpi-dev openmpi-
           python3-venv python3-setuptools python3-wheel  # pip install -e analysis (docs/guide/analysis)
           zlib1g-dev libdeflate-dev clang libclang-rt-14-dev
           procps   # pgrep, for the fault tests
-          git)     # the commit --version and every file's provenance name (src/results/source_commit.cmake)
+          git      # the commit --version and every file's provenance name (src/results/source_commit.cmake)
+          ffmpeg python3-plotly)  # analysis/animate.py encodes with ffmpeg; analysis/report.py inlines plotly.js
 # Only for the work-precision comparison with peer solvers (./setup.sh peers); the product
 # never needs them.
 PEER_PACKAGES=(libboost-dev libsundials-dev)
@@ -97,12 +99,16 @@ demo() {
   "$PYTHON" analysis/plot_hysteresis.py out/paper.h5 --thresholds out/paper_thresholds.csv -o out/paper_hysteresis.png
   "$PYTHON" analysis/plot_orbits.py out/paper.h5 --group up --variant clutch --direction up \
     --classes locked-circular,lagging-circular,flower --top -o out/paper_orbits.png
+  "$PYTHON" analysis/report.py out/paper.h5 --thresholds out/paper_thresholds.csv --astrojax "$BUILD_DIR"/astrojax \
+    --force -o out/paper.html
   echo
   echo "the main job took $(( SECONDS - start )) s after the build; it wrote:"
   echo "  out/paper.h5                the sweep: every window's class, ω_ball and samples (HDF5)"
   echo "  out/paper_thresholds.md     ω_rise, ω_fall, ω1, ω2 per model variant, brackets and verdicts"
   echo "  out/paper_hysteresis.png    ω_ball against ω_m, one panel per model variant"
   echo "  out/paper_orbits.png        a locked, a lagging and a flower orbit from the top"
+  echo "  out/paper.html              the interactive report: hover a point for its class and reason, click it"
+  echo "                              for its orbit; opens offline: file://$PWD/out/paper.html"
 }
 
 case "${1:-}" in
@@ -121,5 +127,5 @@ case "${1:-}" in
          cmake --build "$BUILD_DIR" -j"$(nproc)" --target astrojax astrojax_peers astrojax_matched ;;
   test-long) install; build; (cd "$BUILD_DIR" && ctest -L long --output-on-failure) ;;
   test-cluster) PACKAGES+=("${CLUSTER_PACKAGES[@]}"); install; build; (cd "$BUILD_DIR" && ctest -L cluster --output-on-failure) ;;
-  *) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 2 ;;
+  *) sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; exit 2 ;;
 esac

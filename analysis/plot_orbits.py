@@ -31,6 +31,8 @@ import numpy as np
 import astrojax_analysis as ajx
 
 PI = ajx.PI
+# The balls' colours: Tol's wine and indigo, apart from every orbit class's colour.
+BEAD, BALL = "#882255", "#332288"
 VIEWS = ("top, lab frame", "side, lab frame", "top, turning with the motor", "side, turning with the motor")
 
 
@@ -102,14 +104,24 @@ def sweep_orbits(args):
         wb = sweep.stats["omega_ball"][c, k]
         arrow = {1: "▲", -1: "▼", 0: "●"}[int(sweep.direction[c, k])]
         if args.top:
-            title = (f"{ajx.for_figure(sweep.class_name(c, k))}\nω_m = {sweep.omega_mean[c, k] / PI:.2f}π {arrow}, ω_ball = " +
-                     (f"{wb / PI:.2f}π rad/s" if np.isfinite(wb) else "undefined"))
+            title = (f"{ajx.for_figure(sweep.class_name(c, k))}\n$\\omega_m$ = {sweep.omega_mean[c, k] / PI:.2f}π {arrow}, "
+                     r"$\omega_{ball}$ = " + (f"{wb / PI:.2f}π rad/s" if np.isfinite(wb) else "undefined"))
         else:
             title = (f"{ajx.for_figure(sweep.chain_label(c), 200)}, window {k}: "
                      f"ω_m {sweep.omega_mean[c, k] / PI:.2f}π {arrow}, "
                      f"{ajx.for_figure(sweep.class_name(c, k))}, ω_ball " + (f"{wb / PI:.2f}π rad/s" if np.isfinite(wb) else "undefined"))
         out.append((title, s, R))
+    args.subject = orbit_subject(sweep, [c for c, _ in chosen])
+    args.arrows = sorted({int(sweep.direction[c, k]) for c, k in chosen})
     return out
+
+
+def orbit_subject(sweep, chains):
+    """What the orbits are of: the model variant and group with its parameters, 'R = .., d = ..'."""
+    c = chains[0]
+    who = (f"{ajx.for_figure(sweep.variant_label(c))}, chain group '{ajx.for_figure(sweep.group_name(c), 40)}'; "
+           if sweep.is_grouped else (f"{ajx.for_figure(sweep.grid_label(c))}; " if sweep.grid_label(c) else ""))
+    return who + sweep.parameter_title(c)
 
 
 def run_orbits(args):
@@ -176,15 +188,18 @@ def top_views(args, orbits):
     from matplotlib.lines import Line2D
     cm = 100.0
     n = len(orbits)
-    handles = [Line2D([], [], color="#0072B2", marker="o", ms=4, label="bead (● last position)"),
-               Line2D([], [], color="#D55E00", marker="o", ms=4, label="bottom ball"),
-               Line2D([], [], color="k", ls="--", lw=0.6, label="drive circle (radius R)")]
+    handles = [Line2D([], [], color=BEAD, marker="o", ms=4, label="bead (● last position)"),
+               Line2D([], [], color=BALL, marker="o", ms=4, label="bottom ball (● last position)"),
+               Line2D([], [], color="k", ls="--", lw=0.6, label="drive circle (radius R)"),
+               Line2D([], [], color="k", marker="x", ls="", ms=4, label="motor axis")]
+    words = {1: r"▲ $\omega_m$ rising", -1: r"▼ $\omega_m$ falling", 0: r"● $\omega_m$ held"}
+    handles += [Line2D([], [], ls="", label=words[d]) for d in getattr(args, "arrows", [])]
     fig = ajx.new_figure(args, (3.6 * n, 4.6))
     axes, leg = ajx.panels(fig, 1, n, len(handles))
     axes = axes[0]
     lim = max(max(np.abs(s[k][:, :2]).max() for k in ("r1", "r2")) for _, s, _ in orbits) * cm * 1.08
     for ax, (title, s, R) in zip(axes, orbits):
-        for name, colour in (("r1", "#0072B2"), ("r2", "#D55E00")):
+        for name, colour in (("r1", BEAD), ("r2", BALL)):
             ax.plot(s[name][:, 0] * cm, s[name][:, 1] * cm, lw=0.7, color=colour)
             ax.plot(s[name][-1, 0] * cm, s[name][-1, 1] * cm, "o", ms=4, color=colour)
         a = np.linspace(0, 2 * PI, 100)
@@ -198,7 +213,9 @@ def top_views(args, orbits):
         ax.tick_params(labelsize=7)
         ax.set_title(title, fontsize=8.5)
     ajx.legend(leg, handles)
-    fig.suptitle("Top view in the lab frame over one measured window", fontsize=10)
+    subject = getattr(args, "subject", "")
+    fig.suptitle("Top view in the lab frame over one measured window" + (f"\n{subject}" if subject else ""),
+                 fontsize=10)
     ajx.save(fig, args)
 
 

@@ -58,9 +58,9 @@ Lengths lengths(const TopKinematics& top, const Vec3& r1, const Vec3& r2) {
 
 TEST(AstrojaxSystem, HangingAtRestIsStatic) {
   Model m = test_model(Friction::Kinetic);
-  const MotorSchedule sched({{0.0, 0.0, 1.0}});
+  const MotorSchedule sched(m.p.drive_radius, {{0.0, 0.0, 1.0}});
   const State s = ajx::sim::hanging_at_rest(m, sched);
-  const Dynamics d = evaluate(m, sched.top(m.p.drive_radius, 0.0), s.contact, s.y);
+  const Dynamics d = evaluate(m, sched.top(0.0), s.contact, s.y);
   const double g = m.p.gravity, m1 = m.p.bead_mass, m2 = m.p.ball_mass;
   EXPECT_NEAR(d.T1, (m1 + m2) * g, 1e-14);
   // A straight string has no friction: T2 = T1, and the bottom ball carries the bead's weight.
@@ -76,10 +76,10 @@ class ConstraintAcceleration : public ::testing::TestWithParam<std::tuple<Mode, 
 TEST_P(ConstraintAcceleration, TensionsKeepTheStringLengthsAtSecondOrder) {
   const auto [mode, fr, law] = GetParam();
   const Model m = test_model(fr, law);
-  const MotorSchedule sched({{3.0, 40.0, 2.0}});  // a ramp: ω̇ = 18.5 rad/s²
+  const MotorSchedule sched(m.p.drive_radius, {{3.0, 40.0, 2.0}});  // a ramp: ω̇ = 18.5 rad/s²
   std::mt19937 rng(7);
   const double t = 1.3, h = 5e-4;
-  const TopKinematics top = sched.top(m.p.drive_radius, t);
+  const TopKinematics top = sched.top(t);
   for (int trial = 0; trial < 20; ++trial) {
     const Vec y = random_state(m, mode, top, rng);
     // σ = sgn ṡ while sliding; s* = L1 while stuck.
@@ -90,7 +90,7 @@ TEST_P(ConstraintAcceleration, TensionsKeepTheStringLengthsAtSecondOrder) {
     const Vec3 r1 = y.segment<3>(idx::r1), r2 = y.segment<3>(idx::r2);
     const Vec3 v1 = y.segment<3>(idx::v1), v2 = y.segment<3>(idx::v2);
     const auto at = [&](double dt) {
-      return lengths(sched.top(m.p.drive_radius, t + dt), r1 + v1 * dt + 0.5 * d.acc1 * dt * dt,
+      return lengths(sched.top(t + dt), r1 + v1 * dt + 0.5 * d.acc1 * dt * dt,
                      r2 + v2 * dt + 0.5 * d.acc2 * dt * dt);
     };
     // Second differences at h and h/2, Richardson-combined: the O(h²) term cancels and what is
@@ -151,11 +151,11 @@ TEST(AstrojaxSystem, RotatingTheSceneAboutTheAxisRotatesTheMotion) {
   // the motor phase by α gives the rotated accelerations and the same tensions.
   const Model m = test_model(Friction::Kinetic);
   const double alpha = 0.7;
-  const MotorSchedule s0({{10.0, 20.0, 1.0}}, 0.0), s1({{10.0, 20.0, 1.0}}, alpha);
+  const MotorSchedule s0(m.p.drive_radius, {{10.0, 20.0, 1.0}}, 0.0), s1(m.p.drive_radius, {{10.0, 20.0, 1.0}}, alpha);
   const Eigen::Matrix3d Q = Eigen::AngleAxisd(alpha, Vec3::UnitZ()).toRotationMatrix();
   std::mt19937 rng(3);
   for (Mode mode : {Mode::Sliding, Mode::BottomStop, Mode::Stuck}) {
-    const TopKinematics top0 = s0.top(m.p.drive_radius, 0.4), top1 = s1.top(m.p.drive_radius, 0.4);
+    const TopKinematics top0 = s0.top(0.4), top1 = s1.top(0.4);
     ASSERT_LT((top1.a - Q * top0.a).norm(), 1e-15);
     const Vec y0 = random_state(m, mode, top0, rng);
     Vec y1 = y0;
@@ -173,8 +173,8 @@ TEST(AstrojaxSystem, PlasticImpactRemovesTheApproachVelocityAndAccountsEnergy) {
   // Landing on the bottom stop: after the impulse L̇1 = L̇2 = 0, and
   // ΔKE = -dissipated + impulsive motor work exactly.
   const Model m = test_model(Friction::Kinetic);
-  const MotorSchedule sched({{20.0, 20.0, 1.0}});
-  const TopKinematics top = sched.top(m.p.drive_radius, 0.2);
+  const MotorSchedule sched(m.p.drive_radius, {{20.0, 20.0, 1.0}});
+  const TopKinematics top = sched.top(0.2);
   std::mt19937 rng(11);
   Vec y = random_state(m, Mode::BottomStop, top, rng);
   y.segment<3>(idx::v2) += Vec3(0.3, -0.2, 0.5);  // an approach velocity off the new constraints

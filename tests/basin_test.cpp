@@ -69,8 +69,8 @@ TEST(BasinDraws, HangingFamilyInsideItsRangesAndOnTheString) {
   b.swing = 0.6;
   const double w = 30.0;
   const sweep::CompiledProtocol p = sweep::basin_protocol(b, w, 3, 0);
-  const physics::MotorSchedule schedule(p.schedule);
-  const physics::Vec3 a = schedule.top(m.p.drive_radius, 0.0).a;
+  const physics::MotorSchedule schedule(m.p.drive_radius, p.schedule);
+  const physics::Vec3 a = schedule.top(0.0).a;
   double s_min = 1.0, s_max = 0.0;
   for (int n = 0; n < 500; ++n) {
     const physics::State s = sweep::basin_start(m, schedule, b, w, 3, n);
@@ -94,9 +94,9 @@ TEST(BasinDraws, CloudKeepsTheOrbitsSegmentsAndStaysWithinEpsilon) {
   b.orbit = "circular_high";
   b.epsilon = 0.01;
   const double w = 4.0 * std::numbers::pi;
-  const physics::MotorSchedule schedule(sweep::basin_protocol(b, w, 0, 0).schedule);
+  const physics::MotorSchedule schedule(m.p.drive_radius, sweep::basin_protocol(b, w, 0, 0).schedule);
   const physics::State o = sweep::basin_orbit(m, schedule, b, w);
-  const physics::Vec3 a = schedule.top(m.p.drive_radius, 0.0).a;
+  const physics::Vec3 a = schedule.top(0.0).a;
   const double L1 = (o.r1() - a).norm();
   for (int n = 0; n < 200; ++n) {
     const physics::State s = sweep::basin_start(m, schedule, b, w, 0, n, &o);
@@ -143,7 +143,7 @@ TEST(BasinDraws, ReproducibleFromTheChainsIdentityAlone) {
   b.family = sweep::BasinFamily::Hanging;
   b.s_lo = 0.3;
   b.s_hi = 0.7;
-  const physics::MotorSchedule schedule(sweep::basin_protocol(b, 20.0, 1, 7).schedule);
+  const physics::MotorSchedule schedule(m.p.drive_radius, sweep::basin_protocol(b, 20.0, 1, 7).schedule);
   const physics::State x = sweep::basin_start(m, schedule, b, 20.0, 1, 7);
   // Drawn again after other draws: the same bits.
   for (int n = 0; n < 20; ++n) (void)sweep::basin_start(m, schedule, b, 20.0, 1, n);

@@ -93,7 +93,7 @@ TEST(ContactModel, StuckOrbitInsideTheConeStaysStuck) {
   ASSERT_LT(test::steady_residual(m.p, s, m.p.string_length - s, w, o.x).norm(), 1e-12);
   ASSERT_LT(o.mu_edge, m.p.mu_static);
   ASSERT_GT(o.mu_edge, m.p.mu_kinetic);
-  const MotorSchedule sched({{w, w, T}});
+  const MotorSchedule sched(m.p.drive_radius, {{w, w, T}});
   State st = start_on(m, sched, o, w);
   sim::Simulation simulation(m, sched, opts(1e-12));
   double worst_s = 0.0, dev5 = 0.0, dev10 = 0.0;
@@ -124,7 +124,7 @@ TEST(ContactModel, JustOutsideTheConeTheBeadSlipsTheWayTheViolatedBoundSays) {
     ASSERT_LT(test::steady_residual(m.p, s, m.p.string_length - s, w, o.x).norm(), 1e-12);
     m.p.mu_static = 0.95 * o.mu_edge;
     m.p.mu_kinetic = 0.5 * m.p.mu_static;
-    const MotorSchedule sched({{w, w, 0.2}});
+    const MotorSchedule sched(m.p.drive_radius, {{w, w, 0.2}});
     State st = start_on(m, sched, o, w);
     sim::Simulation simulation(m, sched, opts());
     int first_sigma = 0;
@@ -134,7 +134,7 @@ TEST(ContactModel, JustOutsideTheConeTheBeadSlipsTheWayTheViolatedBoundSays) {
     ASSERT_TRUE(r.ok()) << r.failure;
     const int expected = o.ratio < 1.0 ? -1 : +1;  // T1 < κ_lo T2: up; T1 > κ_hi T2: down
     EXPECT_EQ(first_sigma, expected) << "ω = " << w / pi << "π, T1/T2 = " << o.ratio;
-    const double L1 = (Vec3(st.y.segment<3>(idx::r1)) - sched.top(m.p.drive_radius, st.t).a).norm();
+    const double L1 = (Vec3(st.y.segment<3>(idx::r1)) - sched.top(st.t).a).norm();
     EXPECT_EQ(L1 > s, expected > 0) << "L1 = " << L1;
     EXPECT_GT(std::abs(L1 - s), 1e-6);
   }
@@ -147,7 +147,7 @@ TEST(ContactModel, PlasticLandingOnTheBottomStop) {
   Model m = fixed_top();
   const double l = m.p.string_length, d = m.p.contact_distance, g = m.p.gravity, L20 = 0.3;
   const double t_land = std::sqrt(2 * (L20 - d) / g);
-  const MotorSchedule sched({{0.0, 0.0, 1.0}});
+  const MotorSchedule sched(m.p.drive_radius, {{0.0, 0.0, 1.0}});
   for (const double dt : {-1e-6, 1e-6}) {
     State st = sim::explicit_state(m, sched, Vec3(0, 0, -(l - L20)), Vec3(0, 0, -l), Vec3::Zero(), Vec3::Zero(),
                                    Mode::Sliding);
@@ -175,7 +175,7 @@ TEST(ContactModel, SlackPhaseEndsInAReTautImpact) {
   Model m = fixed_top();
   const double l = m.p.string_length, d = m.p.contact_distance, g = m.p.gravity, delta = 0.005;
   const double t_taut = std::sqrt(2 * delta / g);
-  const MotorSchedule sched({{0.0, 0.0, 1.0}});
+  const MotorSchedule sched(m.p.drive_radius, {{0.0, 0.0, 1.0}});
   const Vec3 r1(0, 0, -(l - d - delta)), r2(0, 0, -(l - delta));
   for (const double dt : {-1e-6, 1e-3}) {
     State st = sim::explicit_state(m, sched, r1, r2, Vec3::Zero(), Vec3::Zero(), Mode::Slack);
@@ -201,7 +201,7 @@ TEST(ContactModel, BouncingWithRestitutionEndsWithoutAnEventStorm) {
   Model m = fixed_top();
   m.layers.restitution = 0.5;
   const double l = m.p.string_length, d = m.p.contact_distance;
-  const MotorSchedule sched({{0.0, 0.0, 2.0}});
+  const MotorSchedule sched(m.p.drive_radius, {{0.0, 0.0, 2.0}});
   State st = sim::explicit_state(m, sched, Vec3(0, 0, -(l - d - 0.01)), Vec3(0, 0, -(l - 0.01)), Vec3::Zero(),
                                  Vec3::Zero(), Mode::Slack);
   const sim::RunSummary r = run_to(m, sched, st, 2.0);
@@ -223,7 +223,7 @@ TEST(ContactModel, StickSlipHoldsWhereTheRegularisedTwinCreeps) {
   const StuckOrbit o = stuck_orbit(m.p, w, s);
   m.p.mu_kinetic = 1.2 * o.mu_edge;
   m.p.mu_static = std::max(m.p.mu_static, 1.3 * o.mu_edge);
-  const MotorSchedule sched({{w, w, T}});
+  const MotorSchedule sched(m.p.drive_radius, {{w, w, T}});
   const auto creep = [&](Friction f, double eps, long& steps) {
     Model mm = m;
     mm.layers.friction = f;
@@ -234,7 +234,7 @@ TEST(ContactModel, StickSlipHoldsWhereTheRegularisedTwinCreeps) {
     const sim::RunSummary r = simulation.run(st, T, 0.0);
     EXPECT_TRUE(r.ok()) << r.failure;
     steps = r.steps;
-    return std::abs((Vec3(st.y.segment<3>(idx::r1)) - sched.top(mm.p.drive_radius, st.t).a).norm() - s);
+    return std::abs((Vec3(st.y.segment<3>(idx::r1)) - sched.top(st.t).a).norm() - s);
   };
   long steps_event = 0;
   const double c_event = creep(Friction::StickSlip, 0.0, steps_event);
@@ -266,7 +266,7 @@ TEST(ContactModel, StribeckHoldsATableOneOrbitByCreepingThatShrinksWithEps) {
   ASSERT_GT(o.mu_edge, m.p.mu_kinetic);
   ASSERT_LT(o.mu_edge, m.p.mu_static);
   ASSERT_LT(o.ratio, 1.0);
-  const MotorSchedule sched({{w, w, T}});
+  const MotorSchedule sched(m.p.drive_radius, {{w, w, T}});
   // The mean ṡ over [t0, T] (after the settling into creep, which takes ~ m ε / (T2 ψ μ'(0)) ≪ t0)
   // and the largest departure of L1 from s* over the run.
   const auto run = [&](Friction f, double eps, double& drift) {
@@ -328,7 +328,7 @@ TEST(ContactModel, OmittedLayersReportTheirViolatedAssumptions) {
   {
     Model m = paper_model();
     m.layers.friction = Friction::Kinetic;
-    const MotorSchedule sched({{2 * pi, 2 * pi, 10.0}, {2 * pi, 14 * pi, 75.4}, {14 * pi, 14 * pi, 5.0}});
+    const MotorSchedule sched(m.p.drive_radius, {{2 * pi, 2 * pi, 10.0}, {2 * pi, 14 * pi, 75.4}, {14 * pi, 14 * pi, 5.0}});
     State st = sim::hanging_at_rest(m, sched);
     sim::Simulation simulation(m, sched, opts(1e-10));
     const sim::RunSummary r = simulation.run(st, sched.duration(), 0.0);
@@ -350,7 +350,7 @@ TEST(ContactModel, OmittedLayersReportTheirViolatedAssumptions) {
     m.p.drag = 0.0;
     m.layers.slack = false;
     const double l = m.p.string_length, d = m.p.contact_distance;
-    const MotorSchedule sched({{0.0, 0.0, 0.5}});
+    const MotorSchedule sched(m.p.drive_radius, {{0.0, 0.0, 0.5}});
     const Vec3 up = Vec3(0.05, 0, 1).normalized();
     State st = sim::explicit_state(m, sched, (l - d) * up, l * up, Vec3::Zero(), Vec3::Zero(), Mode::BottomStop);
     const sim::RunSummary r = run_to(m, sched, st, 0.5, 1e-10);
@@ -366,7 +366,7 @@ TEST(ContactModel, OmittedLayersReportTheirViolatedAssumptions) {
 
 TEST(ContactModel, TheSameRunTwiceIsBitIdentical) {
   Model m = paper_model();
-  const MotorSchedule sched({{0.0, 14 * pi, 60.0}, {14 * pi, 3 * pi, 30.0}});
+  const MotorSchedule sched(m.p.drive_radius, {{0.0, 14 * pi, 60.0}, {14 * pi, 3 * pi, 30.0}});
   std::vector<double> a, b;
   for (auto* out : {&a, &b}) {
     State st = sim::hanging_at_rest(m, sched);
@@ -389,7 +389,7 @@ TEST(ContactModel, EventBoundAndChatterResolutionNeverHang) {
   // and energy-consistent.
   Model m = paper_model();
   m.p.drive_radius = 0.06;
-  const MotorSchedule sched({{2 * pi, 2 * pi, 10.0}, {2 * pi, 14 * pi, 75.4}});
+  const MotorSchedule sched(m.p.drive_radius, {{2 * pi, 2 * pi, 10.0}, {2 * pi, 14 * pi, 75.4}});
   {
     State st = sim::hanging_at_rest(m, sched);
     sim::RunOptions o = opts(1e-10);
@@ -426,7 +426,7 @@ TEST(ContactModel, PlasticLandingOnTheTopStop) {
   Model m = fixed_top();
   const double l = m.p.string_length, g = m.p.gravity, smin = m.p.top_stop, h = 0.2, v0 = 2.5;
   const double v = std::sqrt(v0 * v0 - 2 * g * h), t_land = (v0 - v) / g;
-  const MotorSchedule sched({{0.0, 0.0, 1.0}});
+  const MotorSchedule sched(m.p.drive_radius, {{0.0, 0.0, 1.0}});
   for (const double dt : {-1e-6, 1e-6}) {
     State st = sim::explicit_state(m, sched, Vec3(0, 0, -(smin + h)), Vec3(0, 0, -l), Vec3(0, 0, v0), Vec3::Zero(),
                                    Mode::Sliding);
@@ -454,7 +454,7 @@ TEST(ContactModel, WithoutTheBottomStopTheCrossingIsReportedAndTheSingularityRef
   m.layers.bottom_stop = false;
   const double l = m.p.string_length, d = m.p.contact_distance, g = m.p.gravity, L20 = 0.3;
   const double t_cross = std::sqrt(2 * (L20 - d) / g);
-  const MotorSchedule sched({{0.0, 0.0, 1.0}});
+  const MotorSchedule sched(m.p.drive_radius, {{0.0, 0.0, 1.0}});
   State st = sim::explicit_state(m, sched, Vec3(0, 0, -(l - L20)), Vec3(0, 0, -l), Vec3::Zero(), Vec3::Zero(),
                                  Mode::Sliding);
   const sim::RunSummary r = run_to(m, sched, st, 1.0);

@@ -10,8 +10,9 @@
 using namespace ajx::physics;
 
 namespace {
+constexpr double kR = 0.012;  // R [m]
 MotorSchedule test_schedule() {
-  return MotorSchedule({{5.0, 5.0, 2.0}, {5.0, 30.0, 3.0}, {30.0, 12.0, 1.5}});
+  return MotorSchedule(kR, {{5.0, 5.0, 2.0}, {5.0, 30.0, 3.0}, {30.0, 12.0, 1.5}});
 }
 }  // namespace
 
@@ -45,11 +46,12 @@ TEST(Drive, PhaseIsContinuousAtBreakpoints) {
 
 TEST(Drive, VelocityAndAccelerationAreDerivativesOfPosition) {
   const MotorSchedule s = test_schedule();
-  const double R = 0.012;
+  const double R = s.radius();
+  EXPECT_EQ(R, kR);  // the schedule carries its R
   const double h = 1e-4;
   for (double t : {1.0, 3.3, 4.1, 5.9}) {  // inside segments, away from breakpoints
-    const TopKinematics k = s.top(R, t);
-    const Vec3 ap = s.top(R, t + h).a, am = s.top(R, t - h).a, a0 = k.a;
+    const TopKinematics k = s.top(t);
+    const Vec3 ap = s.top(t + h).a, am = s.top(t - h).a, a0 = k.a;
     const Vec3 v_fd = (ap - am) / (2 * h);
     const Vec3 acc_fd = (ap - 2 * a0 + am) / (h * h);
     // Truncation of the central differences: |a'''| h²/6 and |a''''| h²/12, with
@@ -68,7 +70,9 @@ TEST(Drive, VelocityAndAccelerationAreDerivativesOfPosition) {
 }
 
 TEST(Drive, RejectsEmptyOrNonPositiveSegments) {
-  EXPECT_THROW(MotorSchedule(std::vector<DriveSegment>{}), std::invalid_argument);
-  EXPECT_THROW(MotorSchedule({{1.0, 2.0, 0.0}}), std::invalid_argument);
-  EXPECT_THROW(MotorSchedule({{1.0, 2.0, -1.0}}), std::invalid_argument);
+  EXPECT_THROW(MotorSchedule(kR, std::vector<DriveSegment>{}), std::invalid_argument);
+  EXPECT_THROW(MotorSchedule(kR, {{1.0, 2.0, 0.0}}), std::invalid_argument);
+  EXPECT_THROW(MotorSchedule(kR, {{1.0, 2.0, -1.0}}), std::invalid_argument);
+  EXPECT_THROW(MotorSchedule(-kR, {{1.0, 2.0, 1.0}}), std::invalid_argument);  // R < 0
+  EXPECT_THROW(MotorSchedule(std::nan(""), {{1.0, 2.0, 1.0}}), std::invalid_argument);
 }

@@ -60,7 +60,7 @@ struct Reach {
   double first_t = 0.0, first_L1 = 0.0, first_L2 = 0.0;
   void check(double t, const physics::Vec3& r1, const physics::Vec3& r2) {
     const double l = model.p.string_length;
-    const double L1 = (r1 - schedule.top(model.p.drive_radius, t).a).norm(), L2 = (r2 - r1).norm();
+    const double L1 = (r1 - schedule.top(t).a).norm(), L2 = (r2 - r1).norm();
     if (L1 <= l + kReachTol && L2 <= l + kReachTol) return;
     if (out++ == 0) first_t = t, first_L1 = L1, first_L2 = L2;
   }
@@ -83,7 +83,7 @@ TEST(GrazingSlack, EverySampleOfTheChainLiesWithinReachOfTheString) {
   const sweep::SweepPlan plan = chain11_plan();
   ASSERT_EQ(plan.chains(), 1u);
   const sweep::ChainSetup& c = plan.setups[0];
-  const physics::MotorSchedule schedule(c.protocol.schedule);
+  const physics::MotorSchedule schedule = c.motor();
   sim::Simulation sim(c.model, schedule, c.run);
   physics::State s = plan.start_state(0);
   Reach reach{c.model, schedule};
@@ -105,7 +105,7 @@ TEST(GrazingSlack, EverySampleOfTheChainLiesWithinReachOfTheString) {
 TEST(GrazingSlack, TheMeasuredWindowStartsOnTheString) {
   const sweep::SweepPlan plan = chain11_plan();
   const sweep::ChainSetup& c = plan.setups[0];
-  const physics::MotorSchedule schedule(c.protocol.schedule);
+  const physics::MotorSchedule schedule = c.motor();
   physics::State carry = plan.start_state(0);
   Reach reach{c.model, schedule};
   std::size_t samples = 0;

@@ -53,7 +53,7 @@ void expect_same(const bench::Scene& s, const physics::Contact& c) {
     case physics::Mode::TopStop: order = {G::SlipDown, G::Slacken}; break;
     case physics::Mode::Slack: break;
   }
-  const physics::TopKinematics top = physics::top_in_rotating_axes(s.schedule, s.model.p.drive_radius, t);
+  const physics::TopKinematics top = physics::top_in_rotating_axes(s.schedule, t);
   double hg[8];
   ASSERT_EQ(hand::guards(h, bench::hand_contact(c), t, y.data(), hg), int(order.size()));
   for (std::size_t i = 0; i < order.size(); ++i) {
@@ -97,7 +97,7 @@ TEST(HandModel, ProjectionLandsOnTheConstraints) {
   y(physics::idx::v2 + 2) += 1e-4;
   const physics::Contact c = s.initial.contact;
   hand::project(h, bench::hand_contact(c), s.initial.t, y.data(), 1e-12);
-  const physics::TopKinematics top = physics::top_in_rotating_axes(s.schedule, s.model.p.drive_radius, s.initial.t);
+  const physics::TopKinematics top = physics::top_in_rotating_axes(s.schedule, s.initial.t);
   const physics::Drift d = physics::constraint_drift(s.model, c, top, y);
   EXPECT_LT(d.position, 1e-14);
   EXPECT_LT(d.velocity, 1e-13);

@@ -37,7 +37,7 @@ sweep::ChainSetup chain_at(const physics::Model& m, double omega) {
 physics::State conical_state(const physics::Model& m, double w, const test::Vec8& x) {
   const physics::Vec3 z = physics::Vec3::UnitZ();
   const physics::Vec3 p1 = x.segment<3>(0), p2 = x.segment<3>(3);
-  const physics::MotorSchedule sched({{w, w, 1.0}});
+  const physics::MotorSchedule sched(m.p.drive_radius, {{w, w, 1.0}});
   return sim::explicit_state(m, sched, p1, p2, w * z.cross(p1), w * z.cross(p2), physics::Mode::BottomStop);
 }
 
@@ -51,7 +51,7 @@ TEST(HoldVerdict, HeldChainFollowsTheScheduleThenHolds) {
   chain.protocol = sweep::compile(segs);
   const double t_cut = 7.0;  // ω_m = 3.5 rad/s there
   const sweep::ChainSetup held = sweep::held_chain(chain, t_cut, 3, 4.0);
-  const physics::MotorSchedule s0(chain.protocol.schedule), s1(held.protocol.schedule);
+  const physics::MotorSchedule s0 = chain.motor(), s1 = held.motor();
   for (double t = 0.0; t <= t_cut; t += 0.5) {
     double p0, w0, d0, p1, w1, d1;
     s0.phase(t, p0, w0, d0);

@@ -2,6 +2,7 @@
 # What a resume makes of a damaged journal, and of an output another sweep is writing:
 # - a flipped byte inside a result: that one result discarded and said so (bytes, reason,
 #   count), every other kept, its task run again; the file equals an uninterrupted run's;
+#   verify on the .part words the journal's damage in the same sentence;
 # - a record header damaged (its length): the same, the next record found by its magic and CRC;
 # - a flipped byte in the file's magic: reported as a damaged header, every result kept;
 # - a flipped byte in the header record (the sweep's identity): refused as such, exit 2, the
@@ -40,6 +41,9 @@ check "the sweep has more tasks than the 20 an interrupted run leaves ($tasks)" 
 interrupted mid.h5
 read -r at len < <(record mid.h5.journal 10)
 flip mid.h5.journal $((at + 24 + len / 2))
+"$bin" verify mid.h5.part > mid.verify 2>&1
+check "flipped byte in a result: verify words the damage as the resume does ($(grep journal mid.verify))" \
+  "grep -q 'mid.h5.journal: 19 results kept, 1 discarded (checksum mismatch at bytes $at-$((at + 24 + len)), 1 record); that task runs again' mid.verify"
 "$bin" sweep "${sweep[@]}" -o mid.h5 --resume > mid.out 2>&1
 check "flipped byte in a result: resume exit 0" "[ $? -eq 0 ]"
 check "flipped byte in a result: 19 kept, 1 discarded, where and why ($(grep warning mid.out))" \

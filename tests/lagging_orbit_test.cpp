@@ -102,7 +102,7 @@ TEST(LaggingOrbit, AboveItsHopfPointAPerturbationGrowsAtThePredictedRate) {
   ASSERT_GT(L->st.frequency, 1.0);
   EXPECT_GT(L->torque, hopf->at.torque);
 
-  const physics::MotorSchedule sched({{omega_m, omega_m, 40.0}});
+  const physics::MotorSchedule sched(m.p.drive_radius, {{omega_m, omega_m, 40.0}});
   const SteadyOrbit& o = L->orbit;
   const physics::Vec3 W(0, 0, o.omega);
   // Sideways, across the lower link (L2 changes at second order only).

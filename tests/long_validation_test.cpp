@@ -22,7 +22,7 @@ TEST_P(PaperProtocol, EnergyBalanceAndDriftHoldOver600s) {
   Model m;
   m.p.drive_radius = 0.01;
   m.layers.friction_law = law;
-  const MotorSchedule sched({{0.0, 14.5 * pi, 250.0}, {14.5 * pi, 3.0 * pi, 200.0}, {3.0 * pi, 16.0 * pi, 150.0}});
+  const MotorSchedule sched(m.p.drive_radius, {{0.0, 14.5 * pi, 250.0}, {14.5 * pi, 3.0 * pi, 200.0}, {3.0 * pi, 16.0 * pi, 150.0}});
   State s = sim::hanging_at_rest(m, sched);
   sim::RunOptions o;
   o.method = method;

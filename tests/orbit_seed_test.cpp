@@ -25,7 +25,7 @@ TEST(OrbitSeed, LockedOrbitSeedAt6PiIsStableHeldAndStaysPut) {
   EXPECT_TRUE(seed->stable && seed->orbit.admissible);
   EXPECT_LT(seed->orbit.s, m.p.string_length - m.p.contact_distance);  // the bead off the ball
   // Through the sweep's seed function, on a schedule whose phase at t = 0 is not zero.
-  const physics::MotorSchedule sched({{w, w, 30.0}}, 0.7);
+  const physics::MotorSchedule sched(m.p.drive_radius, {{w, w, 30.0}}, 0.7);
   physics::State s = sweep::seed_state(m, sched, "locked_orbit", w, 0, 0.0);
   EXPECT_EQ(s.contact.mode, physics::Mode::Stuck);
   EXPECT_NEAR(s.contact.s_star, seed->orbit.s, 1e-12);
@@ -39,7 +39,7 @@ TEST(OrbitSeed, LockedOrbitSeedAt6PiIsStableHeldAndStaysPut) {
   EXPECT_EQ(s.contact.mode, physics::Mode::Stuck);
   // In the co-rotating frame the pair has not moved: a stable equilibrium started on it
   // departs only by the integration error (rtol 1e-11 over ~380 radians of motor phase).
-  const physics::TopKinematics top = sched.top(m.p.drive_radius, s.t);
+  const physics::TopKinematics top = sched.top(s.t);
   const orbits::Vec12 z = orbits::frame_state(s.y, top.phi, w);
   const double moved = (z.head<3>() - seed->orbit.p1).norm() + (z.segment<3>(3) - seed->orbit.p2).norm();
   EXPECT_LT(moved, 1e-7);
@@ -69,7 +69,7 @@ TEST(OrbitSeed, RampDownFromTheSeedSlipsWhereItsBranchLeavesTheCone) {
   ASSERT_GT(exit, w1);
   std::vector<double> miss;
   for (double rate : {0.1, 0.025}) {
-    const physics::MotorSchedule sched({{w0, w0, 1.0}, {w0, w1, (w0 - w1) / rate}});
+    const physics::MotorSchedule sched(m.p.drive_radius, {{w0, w0, 1.0}, {w0, w1, (w0 - w1) / rate}});
     physics::State s = sweep::seed_state(m, sched, "locked_orbit", w0, 0, 0.0);
     sim::RunOptions opt;
     opt.method = "dop853";

@@ -36,7 +36,7 @@ sim::RunOptions tight() {
 // the given times, measured in the co-rotating frame.
 std::vector<double> departure(const physics::Model& m, const OrbitProblem& pb, const Vec9& X, const Vec12& dz0,
                               const std::vector<double>& times, physics::Mode* final_mode = nullptr) {
-  const physics::MotorSchedule sched({{pb.omega, pb.omega, times.back() + 1.0}});
+  const physics::MotorSchedule sched(m.p.drive_radius, {{pb.omega, pb.omega, times.back() + 1.0}});
   const Vec12 z0 = frame_coordinates(X) + dz0;
   const numerics::Vec y = lab_state(z0, pb.omega);
   const physics::Contact c = holding_contact(m, pb.closure, X(8));

@@ -134,7 +134,7 @@ namespace {
 
 // The rise's ramp in short: hanging at rest, ω_m 0 → 45 rad/s over 40 s, R = 2 cm, full model.
 sim::RunSummary spin_up(const Model& m, numerics::Vec* y_end = nullptr, double* couple_work = nullptr) {
-  const MotorSchedule sched({{0.0, 45.0, 40.0}});
+  const MotorSchedule sched(m.p.drive_radius, {{0.0, 45.0, 40.0}});
   State s = sim::hanging_at_rest(m, sched);
   sim::RunOptions o;
   o.method = "dopri5";

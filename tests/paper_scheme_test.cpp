@@ -80,7 +80,7 @@ physics::Model smooth_model(double drag) {
   return m;
 }
 const physics::MotorSchedule& hold_48pi() {
-  static const physics::MotorSchedule s({{4.8 * pi, 4.8 * pi, 2.0}});
+  static const physics::MotorSchedule s(smooth_model(0.0).p.drive_radius, {{4.8 * pi, 4.8 * pi, 2.0}});
   return s;
 }
 physics::State smooth_start(const physics::Model& m) {

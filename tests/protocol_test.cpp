@@ -24,7 +24,7 @@ std::vector<Segment> paper_like() {
 
 TEST(Protocol, WindowsAgreeWithTheSchedule) {
   const CompiledProtocol p = compile(paper_like());
-  const ajx::physics::MotorSchedule sched(p.schedule);
+  const ajx::physics::MotorSchedule sched(0.01, p.schedule);  // R: only the phase is read
   EXPECT_NEAR(sched.duration(), p.duration, 1e-9);
   // Ramp durations: (14π + 12π + 15π)/0.2.
   EXPECT_NEAR(p.duration, 41 * pi / 0.2, 1e-9);
@@ -48,7 +48,7 @@ TEST(Protocol, StepsHoldWhereTheyMeasure) {
   Segment s{Segment::Kind::Steps, {}, {10.0, 20.0, 6, 30.0, 10.0, 1.0}};
   const CompiledProtocol p = compile({s}, 10.0);
   ASSERT_EQ(p.windows.size(), 6u);
-  const ajx::physics::MotorSchedule sched(p.schedule);
+  const ajx::physics::MotorSchedule sched(0.01, p.schedule);  // R: only the phase is read
   for (int i = 0; i < 6; ++i) {
     const Window& w = p.windows[std::size_t(i)];
     EXPECT_DOUBLE_EQ(w.omega_begin, 10.0 + 2.0 * i);

@@ -35,7 +35,7 @@ TEST(Refine, RampIsTheSweepsUpToTheBracketThenSlower) {
   const int factor = 4;
   const ChainSetup fine = refined_chain(chain, segs, b, factor);
   const Window &a = chain.protocol.windows[5], &z = chain.protocol.windows[6];
-  const ajx::physics::MotorSchedule s0(chain.protocol.schedule), s1(fine.protocol.schedule);
+  const ajx::physics::MotorSchedule s0 = chain.motor(), s1 = fine.motor();
 
   // Identical drive before the bracket: φ and ω agree to the round-off of summing segments.
   for (double t = 0.0; t <= a.t_begin; t += a.t_begin / 97) {

@@ -51,7 +51,7 @@ TEST(Simulation, FreeFrictionlessMotionConservesEnergy) {
   m.p.drive_radius = 0.0;
   m.layers.friction = Friction::None;
   m.layers.bottom_stop = false;
-  const MotorSchedule sched({{0.0, 0.0, 100.0}});
+  const MotorSchedule sched(m.p.drive_radius, {{0.0, 0.0, 100.0}});
   const double l = m.p.string_length, s0 = 0.3;
   const Vec3 r1 = s0 * Vec3(std::sin(0.5), 0, -std::cos(0.5));
   const Vec3 r2 = r1 + (l - s0) * Vec3(std::sin(0.9), 0, -std::cos(0.9));
@@ -82,7 +82,7 @@ TEST(Simulation, MotorWorkBalancesEnergyDragFrictionAndImpacts) {
     m.p.drive_radius = 0.02;
     m.layers.friction = Friction::Kinetic;
     m.layers.friction_law = law;
-    const MotorSchedule sched({{0.0, 45.0, 40.0}});  // 0 → ~14π rad/s over 40 s
+    const MotorSchedule sched(m.p.drive_radius, {{0.0, 45.0, 40.0}});  // 0 → ~14π rad/s over 40 s
     State s = sim::hanging_at_rest(m, sched);
     sim::Simulation simulation(m, sched, tight("dopri5", 1e-10));
     const sim::RunSummary r = simulation.run(s, 40.0, 0.01);
@@ -108,7 +108,7 @@ TEST(Simulation, EnergyClosesThroughStickSlipSlackPhasesAndImpacts) {
   m.p.drive_radius = 0.06;
   m.layers.friction = Friction::StickSlip;
   const double pi = 3.141592653589793;
-  const MotorSchedule sched({{2 * pi, 2 * pi, 10.0}, {2 * pi, 14 * pi, 75.4}, {14 * pi, 14 * pi, 20.0}});
+  const MotorSchedule sched(m.p.drive_radius, {{2 * pi, 2 * pi, 10.0}, {2 * pi, 14 * pi, 75.4}, {14 * pi, 14 * pi, 20.0}});
   State s = sim::hanging_at_rest(m, sched);
   sim::Simulation simulation(m, sched, tight("dopri5", 1e-10));
   const sim::RunSummary r = simulation.run(s, sched.duration(), 0.01);
@@ -127,7 +127,7 @@ TEST(Simulation, EnergyClosesThroughStickSlipSlackPhasesAndImpacts) {
 TEST(Simulation, ConstraintDriftStaysBelow1e10OverA600sRun) {
   Model m;
   m.p.drive_radius = 0.01;
-  const MotorSchedule sched({{0.0, 30.0, 300.0}, {30.0, 10.0, 300.0}});
+  const MotorSchedule sched(m.p.drive_radius, {{0.0, 30.0, 300.0}, {30.0, 10.0, 300.0}});
   State s = sim::hanging_at_rest(m, sched);
   sim::Simulation simulation(m, sched, tight("dopri5", 1e-9));
   const sim::RunSummary r = simulation.run(s, 600.0, 0.05);
@@ -169,7 +169,7 @@ TEST(Simulation, MeasuredConvergenceOrderOfRk4AndDopri5) {
   // round-off of ~800 steps (~1e-15).
   Model m;
   m.layers.friction = Friction::None;
-  const MotorSchedule sched({{14.0, 16.0, 10.0}});
+  const MotorSchedule sched(m.p.drive_radius, {{14.0, 16.0, 10.0}});
   const Vec y0 = table1_state(m, sched, 14.0).y;
   const double T = 0.5;
   for (const auto& [method, order, n0] : {std::tuple{std::string("rk4"), 4, 50}, std::tuple{std::string("dopri5"), 5, 50}}) {
@@ -197,7 +197,7 @@ TEST(Simulation, PairOnTheBottomStopSettlesToTheSteadyConicalOrbit) {
     Model m;
     m.p.drag = 0.02;
     m.p.drive_radius = 0.02;
-    const MotorSchedule sched({{w, w, 80.0}});
+    const MotorSchedule sched(m.p.drive_radius, {{w, w, 80.0}});
     State s = sim::hanging_at_rest(m, sched);
     sim::Simulation simulation(m, sched, tight("dop853", 1e-11));
     const sim::RunSummary r = simulation.run(s, 80.0, 0.0);
@@ -227,7 +227,7 @@ TEST(Simulation, AJammedPointContactEndsTheRunWithAReasonNotACrash) {
   m.p.mu_static = m.p.mu_kinetic = 2.0;
   m.p.drive_radius = 0.0;
   m.layers.friction_law = FrictionLaw::PointContact;
-  const MotorSchedule sched({{0.0, 0.0, 1.0}});
+  const MotorSchedule sched(m.p.drive_radius, {{0.0, 0.0, 1.0}});
   const Vec3 r1(0.3, 0.0, -0.3), r2 = r1 + (m.p.string_length - r1.norm()) * Vec3(-1, 0, 0);
   State s = sim::explicit_state(m, sched, r1, r2, Vec3(0, 0, 0.5), Vec3::Zero(), Mode::Sliding);
   sim::Simulation simulation(m, sched, tight("dopri5", 1e-9));
@@ -244,7 +244,7 @@ TEST(Simulation, SampleSpansDeliverExactlyTheGridSamplesInsideThem) {
   Model m;
   m.p.drive_radius = 0.015;
   const double pi = 3.141592653589793;
-  const MotorSchedule sched({{4 * pi, 6 * pi, 3.0}});
+  const MotorSchedule sched(m.p.drive_radius, {{4 * pi, 6 * pi, 3.0}});
   const double dt = 0.02;
   const std::vector<std::pair<double, double>> spans{{0.0, 0.1}, {0.505, 1.0}, {1.37, 1.5}, {2.9, 4.0}};
   std::vector<std::pair<double, Vec>> all, kept;

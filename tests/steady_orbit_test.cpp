@@ -225,7 +225,7 @@ TEST(SteadyOrbit, ConeMarginsAgreeWithTheSimulatorsSwitch) {
   opt.method = "dop853";
   opt.integ.tol.rtol = 1e-11;
   opt.integ.tol.atol = 1e-13;
-  const physics::MotorSchedule sched({{w, w, 1.0}});
+  const physics::MotorSchedule sched(m.p.drive_radius, {{w, w, 1.0}});
   for (const auto& e : cat.edges) {
     for (double ds : {-1e-4, 1e-4}) {
       const OrbitProblem pb{m, w, Closure::Stuck, e.s + ds};
@@ -244,7 +244,7 @@ TEST(SteadyOrbit, ConeMarginsAgreeWithTheSimulatorsSwitch) {
       } else {
         EXPECT_GT(sum.mode_switches, 0) << to_string(e.closure) << " s " << o.s;
         // Which way: the bead's L1 after 0.2 s against s.
-        const double L1 = (Vec3(s.y.segment<3>(physics::idx::r1)) - sched.top(m.p.drive_radius, s.t).a).norm();
+        const double L1 = (Vec3(s.y.segment<3>(physics::idx::r1)) - sched.top(s.t).a).norm();
         if (o.margins.up < 0) {
           EXPECT_LT(L1, o.s) << "should have slid up";
         } else {

@@ -85,7 +85,7 @@ double first_taut_exact(const config::RunConfig& c) {
 
 // The first sample (every 1e-4 s over 0.2 s, a whole turn) with the string taut, if any.
 std::optional<double> first_taut_sample(const config::RunConfig& c, long* steps = nullptr) {
-  const physics::MotorSchedule schedule(c.schedule);
+  const physics::MotorSchedule schedule(c.model.p.drive_radius, c.schedule);
   physics::State s = sim::explicit_state(c.model, schedule, c.initial.r1, c.initial.r2, c.initial.v1, c.initial.v2,
                                          c.initial.mode);
   sim::Simulation simulation(c.model, schedule, c.run);
@@ -115,10 +115,10 @@ TEST(StepBound, TheDefaultIsAutoAndANumberOverridesIt) {
 // 31.4 rad/s beats the swing √(g / 0.41 m) = 4.9 rad/s, so h ≤ 1/ω_m = 0.032 s.
 TEST(StepBound, TheFlightIsBoundByTheTopTurningAboutTheBalls) {
   const config::RunConfig c = config::parse_run_config(scene("\"auto\""), "auto");
-  const physics::MotorSchedule schedule(c.schedule);
+  const physics::MotorSchedule schedule(c.model.p.drive_radius, c.schedule);
   const physics::State s = sim::explicit_state(c.model, schedule, c.initial.r1, c.initial.r2, c.initial.v1,
                                                c.initial.v2, c.initial.mode);
-  const physics::TopKinematics top = schedule.top(kR, 0.0);
+  const physics::TopKinematics top = schedule.top(0.0);
   EXPECT_DOUBLE_EQ(sim::guard_rate(c.model.p, top, s.y), kOmega);
   EXPECT_DOUBLE_EQ(sim::guard_step_bound(c.model.p, top, s.y), 1.0 / kOmega);
 }
@@ -156,10 +156,10 @@ TEST(StepBound, InteriorSamplesSeeThePullWithStepsLongerThanTheRate) {
   const config::RunConfig c0 = config::parse_run_config(scene("\"auto\"", 0), "k0");
   const config::RunConfig c3 = config::parse_run_config(scene("\"auto\"", 3), "k3");
   EXPECT_EQ(c3.run.integ.event_samples, 3);
-  const physics::MotorSchedule schedule(c3.schedule);
+  const physics::MotorSchedule schedule(c3.model.p.drive_radius, c3.schedule);
   const physics::State s = sim::explicit_state(c3.model, schedule, c3.initial.r1, c3.initial.r2, c3.initial.v1,
                                                c3.initial.v2, c3.initial.mode);
-  EXPECT_DOUBLE_EQ(sim::guard_step_bound(c3.model.p, schedule.top(kR, 0.0), s.y, 3), 4.0 / kOmega);
+  EXPECT_DOUBLE_EQ(sim::guard_step_bound(c3.model.p, schedule.top(0.0), s.y, 3), 4.0 / kOmega);
   const double t_exact = first_taut_exact(c3);
   long steps0 = 0, steps3 = 0;
   const std::optional<double> seen0 = first_taut_sample(c0, &steps0);
@@ -184,15 +184,15 @@ TEST(StepBound, InteriorSamplesSeeThePullWithStepsLongerThanTheRate) {
 TEST(StepBound, TheLengthGuardsChangeNoMoreThanTheirBound) {
   using physics::Guard;
   const config::RunConfig c = config::parse_run_config(scene("\"auto\""), "auto");
-  const physics::MotorSchedule schedule(c.schedule);
+  const physics::MotorSchedule schedule(c.model.p.drive_radius, c.schedule);
   const physics::State s = sim::explicit_state(c.model, schedule, c.initial.r1, c.initial.r2, c.initial.v1,
                                                c.initial.v2, physics::Mode::Slack);
   const physics::Contact slack{physics::Mode::Slack, 0, 0.0};
-  const physics::TopKinematics top0 = schedule.top(kR, 0.0);
+  const physics::TopKinematics top0 = schedule.top(0.0);
   for (int k = 0; k < 200; ++k) {
     numerics::Vec y1 = s.y;
     for (int i = 0; i < 6; ++i) y1(i) += 0.03 * std::sin(1.7 * k + 2.3 * i + 0.4 * k * i);
-    const physics::TopKinematics top1 = schedule.top(kR, 0.0013 * k);
+    const physics::TopKinematics top1 = schedule.top(0.0013 * k);
     const double travel = (top1.a - top0.a).norm();
     const numerics::Vec e = (y1 - s.y).cwiseAbs();
     for (Guard g : {Guard::LandBottom, Guard::LandTop, Guard::Taut, Guard::ReachBall, Guard::ReachTop}) {

@@ -34,7 +34,7 @@ ChainSetup short_chain() {
 
 // Run the chain as consecutive tasks, each from the previous task's final state.
 std::vector<WindowRecord> run_chain(const ChainSetup& c, int windows_per_task) {
-  const physics::MotorSchedule sched(c.protocol.schedule);
+  const physics::MotorSchedule sched = c.motor();
   physics::State carry = sim::hanging_at_rest(c.model, sched);
   std::vector<WindowRecord> all;
   for (const TaskSpan& span : split(c.protocol, windows_per_task)) {
@@ -94,7 +94,7 @@ TEST(Task, EveryWindowClosesTheMotorsLedgerWithTheClutch) {
   c.run.integ.tol.rtol = 1e-10;
   c.run.integ.tol.atol = 1e-12;
   c.sample_rate = 50.0;
-  const physics::MotorSchedule sched(c.protocol.schedule);
+  const physics::MotorSchedule sched = c.motor();
   const TaskOutput out = run_task(c, split(c.protocol, 8).front(), seed_state(c.model, sched, "circular_high", w, 0, 0.0));
   ASSERT_TRUE(out.ok) << out.failure;
   ASSERT_FALSE(out.windows.empty());
@@ -125,7 +125,7 @@ TEST(Task, TheMotorSustainsALockedOrbitAndNothingMore) {
   c.run.integ.tol.rtol = 1e-10;
   c.run.integ.tol.atol = 1e-12;
   c.sample_rate = 50.0;
-  const physics::MotorSchedule sched(c.protocol.schedule);
+  const physics::MotorSchedule sched = c.motor();
   const TaskOutput out = run_task(c, split(c.protocol, 1).front(), seed_state(c.model, sched, "locked_orbit", w, 0, 0.0));
   ASSERT_TRUE(out.ok) << out.failure;
   ASSERT_EQ(out.windows.size(), 1u);
@@ -154,7 +154,7 @@ TEST(Task, SplittingAChainDifferentlyChangesNothingBeyondTheTolerance) {
 
 TEST(Task, TheSameTaskTwiceGivesTheSameBytes) {
   const ChainSetup c = short_chain();
-  const physics::MotorSchedule sched(c.protocol.schedule);
+  const physics::MotorSchedule sched = c.motor();
   const auto spans = split(c.protocol, 3);
   const physics::State s0 = sim::hanging_at_rest(c.model, sched);
   EXPECT_EQ(encode(run_task(c, spans[0], s0)), encode(run_task(c, spans[0], s0)));
@@ -162,7 +162,7 @@ TEST(Task, TheSameTaskTwiceGivesTheSameBytes) {
 
 TEST(Task, EncodingRoundTripsExactly) {
   const ChainSetup c = short_chain();
-  const physics::MotorSchedule sched(c.protocol.schedule);
+  const physics::MotorSchedule sched = c.motor();
   const TaskOutput out = run_task(c, split(c.protocol, 2)[0], sim::hanging_at_rest(c.model, sched));
   const std::vector<std::byte> bytes = encode(out);
   const TaskOutput back = decode_output(bytes);
@@ -211,7 +211,7 @@ TEST(Task, TheStateRowRoundTripsEveryField) {
 TEST(Task, AFailedIntegrationComesBackWithItsReasonAndLastGoodState) {
   ChainSetup c = short_chain();
   c.run.integ.max_steps = 50;  // far too few for the first task
-  const physics::MotorSchedule sched(c.protocol.schedule);
+  const physics::MotorSchedule sched = c.motor();
   const TaskOutput out = run_task(c, split(c.protocol, 100)[0], sim::hanging_at_rest(c.model, sched));
   EXPECT_FALSE(out.ok);
   EXPECT_NE(out.failure.find("max steps"), std::string::npos) << out.failure;

@@ -9,7 +9,9 @@
 #    |dE/dt| / P_drag is below the derived tolerance m/(2 c_D T) (0.096 for T = 54.5 s);
 #  - the verdict follows the rule of sweep/hold_verdict.hpp, re-derived here from the columns;
 #  - with --refine, the rate_dependent column; --sequence finds the paper's "rise" step at the
-#    bracket; bad --hold values exit 2 before any work.
+#    bracket; bad --hold values exit 2 before any work;
+#  - every chain is listed: on the README's "your own sweep" (quick.toml at R = 5, 10, 20 mm) the
+#    5 mm chain, which reaches no threshold, says "nothing reached"; a missing file is one line.
 # Usage: thresholds_hold_test.sh ASTROJAX_BINARY SOURCE_DIR
 set -u
 bin=$1; src=$2
@@ -77,5 +79,16 @@ for bad in -3 abc 0tau 1e9; do
   "$bin" thresholds "$work/rise.h5" --hold "$bad" > "$work/bad.out" 2>&1
   check "--hold $bad: exit 2 naming --hold" "[ $? -eq 2 ] && grep -q -- '--hold' '$work/bad.out'"
 done
+
+"$bin" sweep "$src/sweeps/quick.toml" -o "$work/own.h5" -q --set "grid.drive_radius=[0.005,0.01,0.02]" > /dev/null 2>&1
+"$bin" thresholds "$work/own.h5" --no-hold > "$work/own.out" 2>&1
+check "every chain listed: exit 0" "[ $? -eq 0 ]"
+check "every chain listed: the 5 mm chain says nothing reached" \
+  "grep -E '^ *\(none\) +0 drive_radius=0.005 +nothing reached' '$work/own.out'"
+check "every chain listed: the others have their ω_rise" \
+  "grep -cE '^ *ω_rise +[12] drive_radius' '$work/own.out' | grep -qx 2"
+"$bin" thresholds "$work/none.h5" > "$work/none.out" 2>&1
+check "a missing file: exit 2, one line naming it" \
+  "[ $? -eq 2 ] && [ \$(wc -l < '$work/none.out') -eq 1 ] && grep -q 'none.h5: no such file' '$work/none.out'"
 
 finish "thresholds_hold"

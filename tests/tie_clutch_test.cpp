@@ -239,7 +239,7 @@ TEST(TieClutch, LedgerClosesForAChatteringClutch) {
 TEST(TieClutch, TheRodsPowerSplitsIntoTieClutchAndString) {
   const physics::Model m = one_parameter_set();
   const double omega_m = 13 * pi, omega_dot = 0.5;
-  const physics::MotorSchedule schedule({{omega_m, omega_m + omega_dot * 100.0, 100.0}});
+  const physics::MotorSchedule schedule(m.p.drive_radius, {{omega_m, omega_m + omega_dot * 100.0, 100.0}});
   numerics::Vec y = numerics::Vec::Zero(physics::state_dim(m));
   y(idx::chi) = 0.3;
   y(idx::chi_dot) = 4.2 * pi;
@@ -394,7 +394,7 @@ TEST(TieClutch, SettleJudgesTheRestingBeadAtTheHeldBeadsTop) {
   // are the physics', not noise.
   const physics::Model m = one_parameter_set();
   const double omega_m = 4 * pi, chi_dot = 2 * pi, R = m.p.drive_radius;
-  const physics::MotorSchedule schedule({{omega_m, omega_m, 100.0}});
+  const physics::MotorSchedule schedule(m.p.drive_radius, {{omega_m, omega_m, 100.0}});
   const double L1 = 0.7, theta1 = 1.15, alpha = -1.0, theta2 = 0.1;
   numerics::Vec y = numerics::Vec::Zero(physics::state_dim(m));
   y(idx::chi) = 0.0;  // the tie at (R, 0, 0), ȧ = R χ̇ ŷ

@@ -28,18 +28,23 @@ def _table(f, path, name, need):
     return out
 
 
+def _names(obj, path, name, sep, n):
+    """A list of n names: a 1-D string attribute, or (files of astrojax orbits before
+    2026-11-28, whatever their format_version) one string joined by `sep`."""
+    joined = not isinstance(obj.attrs.get(name), np.ndarray)
+    return string_list(obj, path, name, 2 if joined else 3, sep, n) if n else []
+
+
 def read_branches(path):
     """(parameter, points {column: array}, events {column: array}, event kinds [str])."""
     with open_h5(path) as f:
-        version = format_version(f, path)
+        format_version(f, path)
         points = _table(f, path, "branches/points", POINT_COLUMNS)
         events = _table(f, path, "branches/events", EVENT_COLUMNS)
         parameter = text_attr(f["branches"], path, "parameter")
         n = len(events["lambda"])
         ev = f["branches/events"]
-        # astrojax orbits writes `kinds` joined by commas whatever the format: read either form.
-        joined = not isinstance(ev.attrs.get("kinds"), np.ndarray)
-        kinds = string_list(ev, path, "kinds", 2 if joined else version, ",", n) if n else []
+        kinds = _names(ev, path, "kinds", ",", n)
     cases = points["case"]
     if len(cases) and (np.any(cases < 0) or np.any(cases > 4) or np.any(cases != np.round(cases))):
         raise SweepFileError(path, "/branches/points/case", "a case outside 0..4 (stuck, bottom_stop, frictionless, "
@@ -90,9 +95,8 @@ class Curves:
             self.parameter_unit = text_attr(g, path, "parameter_unit")
             self.points = _table(f, path, "curves/points", ("curve_id", "kind", "p", "omega_m"))
             self.codim2 = _table(f, path, "curves/codim2", ("curve_id", "kind", "p", "omega_m"))
-            # astrojax orbits writes the codimension-2 names joined by commas
-            names = text_attr(f["curves/codim2"], path, "names")
-            self.codim2_names = names.split(",") if names else []
+            # the codimension-2 names: a string array, or joined by commas before
+            self.codim2_names = _names(f["curves/codim2"], path, "names", ",", len(self.codim2["p"]))
             self.resolved = resolved(f["resolved"]) if "resolved" in f else {}
         kinds = self.points["kind"]
         if len(kinds) and not np.all(np.isin(kinds, list(self.KINDS))):

@@ -191,7 +191,7 @@ def file_kind(path):
     """'sweep' (written by astrojax sweep) or 'run' (astrojax run); SweepFileError otherwise."""
     with open_h5(path) as f:
         format_version(f, path)
-        if "windows" in f and "samples" in f:
+        if "windows" in f:  # one without /samples is refused by SweepFile, which says so
             return "sweep"
         if "trajectory" in f:
             return "run"
@@ -260,10 +260,12 @@ class SweepFile:
         self.path = os.fspath(path)
         with open_h5(self.path) as f:
             self.version = format_version(f, self.path)
-            if "windows" not in f or "samples" not in f:
+            if "windows" not in f:
                 what = "it is a run file, /trajectory" if "trajectory" in f else "nor a run file"
                 raise SweepFileError(self.path, "/windows", f"missing: not a sweep file ({what}); make one with "
                                      f"`astrojax sweep`")
+            if "samples" not in f:  # as the C++ reader says it
+                raise SweepFileError(self.path, "/samples", "missing: the file stores no samples of its windows")
             _kind_attr(f, self.path, "sweep")
             self.classes = read_classes(f, self.path, self.version)
             self._read_windows(f)
@@ -272,6 +274,7 @@ class SweepFile:
             self._read_tasks(f)
             self.basins = _read_basins(f, self.path, self.version, self.cls, len(self.classes))
             self.config, self.overrides = read_config(f, self.path, self.version)
+            self.config_source = text_attr(f["config"], self.path, "source", "")
             prov = f.get("provenance")
             self.provenance = {k: as_text(v) for k, v in prov.attrs.items()} if isinstance(prov, h5py.Group) else {}
         self.class_names = {c.code: c.name for c in self.classes}
@@ -443,6 +446,21 @@ class SweepFile:
         out["mode"] = out["mode"].astype(int)
         return out
 
+    def all_samples(self, names=SAMPLE_COLUMNS + SAMPLE_VECTORS):
+        """The stored samples of every computed window at once, {(c, k): {name: array}} trimmed
+        to /samples/count (one read per dataset instead of one per window), checked as
+        `samples` checks them."""
+        out = {}
+        with open_h5(self.path) as f:
+            data = {name: read(f["samples"][name], self.path) for name in names}
+        for c, k in zip(*np.nonzero(self.valid & (self.count > 0))):
+            n = int(self.count[c, k])
+            win = {name: data[name][c, k, :n] for name in names}
+            for name, v in win.items():
+                check_finite(v, self.path, f"samples/{name}", what=f"chain {c}, window {k}: non-finite sample")
+            out[(int(c), int(k))] = win
+        return out
+
     def check_samples(self):
         """Reads every stored sample once (what `samples` checks, for the whole file): a
         checksum failure or a non-finite sample inside /samples/count is a SweepFileError."""
@@ -605,6 +623,47 @@ def read_run(path, columns=None):
         out["resolved"] = resolved(f["resolved"]) if isinstance(f.get("resolved"), h5py.Group) else None
         out["format_version"] = version
     out["mode"] = out["mode"].astype(int)
+    return out
+
+
+# What an animation needs of a run file beyond read_run's columns: the energy ledger [J] and,
+# from format 4, the tie's azimuth χ, its energy and the clutch's loss.
+MOTION_COLUMNS = ("energy", "motor_work", "drag_loss", "friction_loss", "impact_loss", "string_work", "clutch_loss",
+                  "tie_energy", "chi")
+
+
+def read_motion(path):
+    """A run file (`astrojax run`, or `astrojax replay`, which adds /replay) as an animation
+    reads it: read_run's trajectory with the ledger's columns (MOTION_COLUMNS); 'chi', the
+    azimuth of the string's top, is φ where the file predates it (format < 4: a rigid tie's
+    top, φ, is all such a file holds), and the clutch's loss and the tie's energy are zeros
+    there; the configuration in force as 'resolved' (required: it gives R, the masses, g);
+    the replay's attributes as 'replay', its stored and replayed window as 'replay_stored'
+    and 'replay_replayed' ({} for a run file)."""
+    path = os.fspath(path)
+    out = read_run(path, MOTION_COLUMNS)
+    n = len(out["t"])
+    if out["resolved"] is None:
+        raise SweepFileError(path, "/resolved", "missing: the configuration in force (format 2 on); rerun it with "
+                             "this version of astrojax")
+    for name in ("model.drive_radius", "model.bead_mass", "model.ball_mass", "model.contact_distance"):
+        if name not in out["resolved"]:
+            raise SweepFileError(path, "/resolved", f"no setting {name}")
+    if "chi" not in out:
+        out["chi"] = out["phi"].copy()
+    for name in ("clutch_loss", "tie_energy"):
+        out.setdefault(name, np.zeros(n))
+    out["string_work"] = out.get("string_work", out["motor_work"])
+    out["replay"], out["replay_stored"], out["replay_replayed"] = {}, {}, {}
+    with open_h5(path) as f:
+        rp = f.get("replay")
+        if isinstance(rp, h5py.Group):
+            out["replay"] = resolved(rp)
+            for key, name in (("replay_stored", "stored"), ("replay_replayed", "replayed")):
+                if isinstance(rp.get(name), h5py.Group):
+                    out[key] = resolved(rp[name])
+    if n < 2:
+        raise SweepFileError(path, "/trajectory/t", f"{n} samples, too few to show motion")
     return out
 
 

@@ -70,6 +70,28 @@ struct ThresholdsArgs {
 };
 int thresholds_command(const ThresholdsArgs& args);
 
+// astrojax replay: one window of a sweep file re-run from its stored start, dense samples into a
+// run file; 0 reproduced, 2 bad input (nothing written), 3 written but not reproduced or failed.
+struct ReplayArgs {
+  std::string input;           // a sweep's HDF5 file
+  long chain = -1, window = -1;
+  std::string output;          // the run file to write
+  double sample_rate = 200.0;  // dense samples per second [1/s]
+  double before = 0.0;         // also sample this long before the window, within its task [s]
+  bool force = false;          // replace an existing output
+  bool quiet = false;
+  std::string command_line;
+};
+int replay_command(const ReplayArgs& args);
+
+// astrojax windows: every computed window with its class and the classifier's reason -> CSV.
+struct WindowsArgs {
+  std::string input;   // a sweep's HDF5 file
+  std::string output;  // CSV path, "-" for stdout
+  bool force = false;
+};
+int windows_command(const WindowsArgs& args);
+
 struct ClassifyArgs {
   std::string input;                  // a sweep's HDF5 file
   std::string output;                 // the reclassified copy; empty: rewrite input (needs force)

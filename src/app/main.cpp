@@ -103,6 +103,33 @@ int main(int argc, char** argv) {
                 "(exit 0 intact, 2 damaged)");
   verify_cmd->add_option("file", verify.input, "HDF5 file written by astrojax sweep, or its .part")->required();
 
+  ajx::app::ReplayArgs replay;
+  replay.command_line = command_line;
+  CLI::App* replay_cmd = app.add_subcommand(
+      "replay", "Re-run one window of a sweep file from its stored start state with the file's own model, variant and "
+                "integrator; check it reproduces the stored class and ω_ball; write dense samples to a run file");
+  replay_cmd->add_option("file", replay.input, "HDF5 file written by astrojax sweep")->required();
+  replay_cmd->add_option("--chain", replay.chain, "Chain index (astrojax thresholds and the report name them)")->required();
+  replay_cmd->add_option("--window", replay.window, "Window index within the chain")->required();
+  replay_cmd->add_option("-o,--output", replay.output, "Run file (HDF5) to write")->required()->check(non_empty);
+  replay_cmd->add_option("--sample-rate", replay.sample_rate, "Dense samples per second in the run file [1/s]")
+      ->check(CLI::Range(1.0, 1e4))
+      ->capture_default_str();
+  replay_cmd->add_option("--before", replay.before,
+                         "Also sample this many seconds before the window (within its task) [s]")
+      ->check(CLI::Range(0.0, 1e6))
+      ->capture_default_str();
+  replay_cmd->add_flag("--force", replay.force, "Replace an existing output file");
+  replay_cmd->add_flag("-q,--quiet", replay.quiet, "No notes: only the result and errors");
+
+  ajx::app::WindowsArgs windows;
+  CLI::App* windows_cmd = app.add_subcommand(
+      "windows", "Every computed window of a sweep file as a CSV row: its ω_m, class, ω_ball, confidence and the "
+                 "classifier's reason (classified again from the stored samples)");
+  windows_cmd->add_option("file", windows.input, "HDF5 file written by astrojax sweep")->required();
+  windows_cmd->add_option("-o,--output", windows.output, "CSV to write, - for stdout")->required()->check(non_empty);
+  windows_cmd->add_flag("--force", windows.force, "Replace an existing output file");
+
   bool keys_markdown = false;
   CLI::App* keys_cmd = app.add_subcommand(
       "keys", "List every configuration key with its type, unit, allowed values, default and meaning (the "
@@ -297,6 +324,8 @@ int main(int argc, char** argv) {
   if (*keys_cmd) return ajx::app::keys_command(keys_markdown);
   if (*run_cmd) return ajx::app::run_command(run);
   if (*verify_cmd) return ajx::app::verify_command(verify);
+  if (*replay_cmd) return ajx::app::replay_command(replay);
+  if (*windows_cmd) return ajx::app::windows_command(windows);
   if (*thresholds_cmd) return ajx::app::thresholds_command(thresholds);
   if (*classify_cmd) return ajx::app::classify_command(classify);
   if (*orbits_cmd) return ajx::app::orbits_command(orbits);

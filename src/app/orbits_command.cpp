@@ -17,11 +17,11 @@
 
 #include "app/commands.hpp"
 #include "app/orbits_map.hpp"
-#include "results/provenance.hpp"
+#include "results/orbits_file.hpp"
+#include "results/table.hpp"
 #include "results/sweep_reader.hpp"
 #include "config/config.hpp"
 #include "config/text.hpp"
-#include "io/hdf5_file.hpp"
 #include "orbits/continuation.hpp"
 #include "physics/parameter_table.hpp"
 #include "orbits/lagging_orbit.hpp"
@@ -47,11 +47,7 @@ struct Row {
 };
 
 // The columns written to CSV and HDF5, with units.
-struct Column {
-  const char* name;
-  const char* unit;
-  std::function<double(const Row&)> get;
-};
+using Column = results::ColumnSpec<Row>;
 const std::vector<Column>& columns() {
   static const std::vector<Column> cols{
       {"branch_id", "1", [](const Row& r) { return double(r.id); }},
@@ -88,25 +84,7 @@ const std::vector<Column>& columns() {
   return cols;
 }
 
-void write_csv(const std::string& path, const std::vector<Row>& rows) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot write " + path);
-  const auto& cols = columns();
-  for (std::size_t j = 0; j < cols.size(); ++j) out << (j ? "," : "") << cols[j].name;
-  out << '\n';
-  for (const Row& r : rows) {
-    for (std::size_t j = 0; j < cols.size(); ++j) out << (j ? "," : "") << fmt::format("{:.12g}", cols[j].get(r));
-    out << '\n';
-  }
-}
-
-void write_table(io::Group g, const std::vector<Row>& rows) {
-  for (const Column& c : columns()) {
-    std::vector<double> v;
-    for (const Row& r : rows) v.push_back(c.get(r));
-    g.write_dataset(c.name, std::span<const double>(v)).set_attribute("units", c.unit);
-  }
-}
+results::Table table_of(const std::vector<Row>& rows) { return results::tabulate(columns(), rows); }
 
 Row make_row(const physics::Model& m, const SteadyOrbit& o, int id, double lambda) {
   Row r{id, lambda, o, stability({m, o.omega, o.closure, o.s}, unknowns(o)), 0};
@@ -520,8 +498,8 @@ int predict(const config::OrbitsConfig& cfg, const OrbitsArgs& args, std::option
 // CSV and HDF5 files; throws on a file that cannot be written.
 void write_orbit_files(const OrbitsArgs& args, const config::OrbitsConfig& cfg, const std::vector<Row>& table,
                        const Branches& br, const std::optional<Predictions>& pred) {
-  if (!args.csv.empty()) write_csv(args.csv, table);
-  if (!args.branches_csv.empty()) write_csv(args.branches_csv, br.points);
+  if (!args.csv.empty()) results::write_csv(args.csv, table_of(table));
+  if (!args.branches_csv.empty()) results::write_csv(args.branches_csv, table_of(br.points));
   if (!args.events_csv.empty()) {
     std::ofstream out(args.events_csv);
     if (!out) throw std::runtime_error("cannot write " + args.events_csv);
@@ -534,30 +512,15 @@ void write_orbit_files(const OrbitsArgs& args, const config::OrbitsConfig& cfg, 
     }
   }
   if (args.output.empty()) return;
-  const std::filesystem::path out(args.output);
-  std::error_code ec;
-  if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path(), ec);
-  io::File f = io::File::create_temporary(out);
-  results::write_format(f, "orbits");
-  results::write_provenance(f, args.command_line, cfg);
-  write_table(f.create_group("orbits"), table);
-  if (!br.points.empty()) {
-    io::Group bg = f.create_group("branches");
-    bg.set_attribute("parameter", cfg.orbits.parameter);
-    write_table(bg.create_group("points"), br.points);
-    write_table(bg.create_group("events"), br.events);
-    bg.open_group("events").set_attribute("kinds", fmt::format("{}", fmt::join(br.event_kind, ",")));
-  }
+  results::OrbitsOutput o{table_of(table), std::nullopt, std::nullopt};
+  if (!br.points.empty())
+    o.branches = results::OrbitsOutput::Branches{cfg.orbits.parameter, table_of(br.points), table_of(br.events),
+                                                  br.event_kind};
   if (pred) {
-    io::Group tg = f.create_group("thresholds");
-    for (const auto& t : pred->thresholds) {
-      io::Group g = tg.create_group(t.symbol);
-      g.set_attribute("predicted", t.predicted);
-      g.set_attribute("measured", t.measured);
-      g.set_attribute("mechanism", t.mechanism);
-    }
+    o.thresholds.emplace();
+    for (const auto& t : pred->thresholds) o.thresholds->push_back({t.symbol, t.predicted, t.measured, t.mechanism});
   }
-  f.commit();
+  results::write_orbits_file(args.output, args.command_line, cfg, o);
 }
 
 }  // namespace

@@ -11,11 +11,11 @@
 #include <stdexcept>
 #include <string>
 
-#include "io/hdf5_file.hpp"
 #include "orbits/continuation.hpp"
 #include "orbits/threshold_curves.hpp"
 #include "physics/parameter_table.hpp"
-#include "results/provenance.hpp"
+#include "results/orbits_file.hpp"
+#include "results/table.hpp"
 
 namespace ajx::app {
 
@@ -45,11 +45,7 @@ struct MapRow {
   CurvePoint pt;
 };
 
-struct MapColumn {
-  const char* name;
-  const char* unit;
-  std::function<double(const MapRow&)> get;
-};
+using MapColumn = results::ColumnSpec<MapRow>;
 const std::vector<MapColumn>& map_columns() {
   static const std::vector<MapColumn> cols{
       {"curve_id", "1", [](const MapRow& r) { return double(r.curve); }},
@@ -76,24 +72,9 @@ const std::vector<MapColumn>& map_columns() {
 }
 
 void write_map_csv(const std::string& path, const std::string& parameter, const std::vector<MapRow>& rows) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot write " + path);
-  out << "row,parameter";
-  for (const MapColumn& c : map_columns()) out << ',' << c.name;
-  out << '\n';
-  for (const MapRow& r : rows) {
-    out << r.what << ',' << parameter;
-    for (const MapColumn& c : map_columns()) out << ',' << fmt::format("{:.12g}", c.get(r));
-    out << '\n';
-  }
-}
-
-void write_map_table(io::Group& g, const std::vector<MapRow>& rows) {
-  for (const MapColumn& c : map_columns()) {
-    std::vector<double> v;
-    for (const MapRow& r : rows) v.push_back(c.get(r));
-    g.write_dataset(c.name, std::span<const double>(v)).set_attribute("units", c.unit);
-  }
+  results::TextColumns text{{"row", {}}, {"parameter", std::vector<std::string>(rows.size(), parameter)}};
+  for (const MapRow& r : rows) text[0].second.push_back(r.what);
+  results::write_csv(path, results::tabulate(map_columns(), rows), text);
 }
 
 // The parameter's symbol and unit, from the parameter table (s: the bead's position).
@@ -106,27 +87,13 @@ std::pair<std::string, std::string> parameter_label(const std::string& name) {
 
 void write_map_h5(const OrbitsArgs& args, const config::OrbitsConfig& cfg, const std::vector<MapRow>& points,
                   const std::vector<MapRow>& meets, const std::vector<std::string>& stops) {
-  const std::filesystem::path out(args.output);
-  std::error_code ec;
-  if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path(), ec);
-  io::File f = io::File::create_temporary(out);
-  results::write_format(f, "orbits");
-  results::write_provenance(f, args.command_line, cfg);
-  io::Group g = f.create_group("curves");
-  g.set_attribute("parameter", args.map_parameter);
   const auto [symbol, unit] = parameter_label(args.map_parameter);
-  g.set_attribute("parameter_symbol", symbol);
-  g.set_attribute("parameter_unit", unit);
-  g.set_attribute("kinds", "0 fold,1 cone_up,2 cone_down,3 hopf");
-  g.set_attribute("stop_reasons", fmt::format("{}", fmt::join(stops, "\n")));
-  io::Group pg = g.create_group("points");
-  write_map_table(pg, points);
-  io::Group mg = g.create_group("codim2");
-  write_map_table(mg, meets);
-  std::vector<std::string> what;
-  for (const MapRow& r : meets) what.push_back(r.what);
-  mg.set_attribute("names", fmt::format("{}", fmt::join(what, ",")));
-  f.commit();
+  results::CurvesOutput c{args.map_parameter, symbol, unit, {}, stops, results::tabulate(map_columns(), points),
+                          results::tabulate(map_columns(), meets), {}};
+  for (CurveKind k : {CurveKind::Fold, CurveKind::ConeUp, CurveKind::ConeDown, CurveKind::Hopf})
+    c.kinds.emplace_back(to_string(k));  // by code, as the column `kind`
+  for (const MapRow& r : meets) c.codim2_names.push_back(r.what);
+  results::write_curves_file(args.output, args.command_line, cfg, c);
 }
 
 std::string omega_pi(double w) { return std::isfinite(w) ? fmt::format("{:.5f}π", w / kPi) : std::string("-"); }

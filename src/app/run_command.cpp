@@ -14,7 +14,6 @@
 #include "results/resource_budget.hpp"
 #include "results/run_file.hpp"
 #include "config/config.hpp"
-#include "io/hdf5_file.hpp"
 #include "physics/energy.hpp"
 #include "sim/paper_scheme.hpp"
 #include "sim/simulation.hpp"
@@ -32,7 +31,7 @@ sim::PairStart pair_start(const config::RunConfig& c, const physics::MotorSchedu
   const double h = c.run.integ.h_fixed;
   if (c.initial.preset == "table1")
     return sim::table1_pair(c.initial.orbit,
-                            std::isnan(c.initial.orbit_omega) ? schedule.top(c.model.p.drive_radius, 0.0).omega
+                            std::isnan(c.initial.orbit_omega) ? schedule.top(0.0).omega
                                                               : c.initial.orbit_omega,
                             h);
   sim::PairStart p;
@@ -74,7 +73,7 @@ int run_command(const RunArgs& args) {
   config::RunConfig cfg;
   physics::MotorSchedule schedule;
   physics::State state;
-  std::optional<io::File> file;
+  std::optional<results::RunFile> file;
   std::optional<sim::PaperDrag> paper;  // the paper's two-step scheme (sim/paper_scheme.hpp)
   sim::PairStart pair;
   double start_projection = 0.0;        // |L1 + L2 - l| of the pair before projection [m]
@@ -86,7 +85,7 @@ int run_command(const RunArgs& args) {
                       {args.config_path}, {".part"});
     check_not_overwriting(cfg.source_name, "output.path", cfg.output.path, args.force);
     paper = sim::paper_variant(cfg.run.method);
-    schedule = physics::MotorSchedule(cfg.schedule);
+    schedule = physics::MotorSchedule(cfg.model.p.drive_radius, cfg.schedule);
     check_run_size(cfg, schedule.duration(), args.max_memory);
     try {
       if (paper) {
@@ -100,12 +99,9 @@ int run_command(const RunArgs& args) {
                                             "|L1 + L2 - l| <= initial.length_tolerance and L2 >= d",
                                             cfg.source_name, e.what()));
     }
-    const std::filesystem::path out(cfg.output.path);
-    std::error_code ec;
-    if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path(), ec);
     try {
-      file.emplace(io::File::create_temporary(out));
-    } catch (const io::Hdf5Error& e) {
+      file.emplace(cfg.output.path);
+    } catch (const results::OutputError& e) {
       throw config::ConfigError(fmt::format("{}: key 'output.path': cannot write '{}' ({})",
                                             cfg.source_name, cfg.output.path, e.what()));
     }
@@ -125,11 +121,10 @@ int run_command(const RunArgs& args) {
 
   try {
     const bool two_step = cfg.initial.preset == "table1" || cfg.initial.preset == "pair";
-    results::write_run(*file, args.command_line, cfg, schedule, traj, sum, state, wall,
-                       paper ? std::optional<double>(start_projection) : std::nullopt,
-                       two_step ? std::optional<sim::PairStart>(pair_start(cfg, schedule)) : std::nullopt);
-  } catch (const io::Hdf5Error& e) {  // disk full, file too large, I/O error
-    file.reset();  // an uncommitted temporary file is removed
+    file->write(args.command_line, cfg, schedule, traj, sum, state, wall,
+                paper ? std::optional<double>(start_projection) : std::nullopt,
+                two_step ? std::optional<sim::PairStart>(pair_start(cfg, schedule)) : std::nullopt);
+  } catch (const results::OutputError& e) {  // disk full, file too large, I/O error
     std::fprintf(stderr, "error: cannot write %s: %s\n", cfg.output.path.c_str(), e.what());
     return kExitOutputFailed;
   }

@@ -138,7 +138,7 @@ struct SweepOutput {
         journal_path(c.output_path + ".journal") {}
 
   void make_file() {
-    file.emplace(io::File::create(part_path), plan.setups.size(), plan.max_windows, plan.max_samples, plan.n_tasks);
+    file.emplace(part_path, plan);
     file->create(cfg, plan);
   }
 
@@ -348,27 +348,15 @@ parallel::FarmOptions farm_options(const SweepArgs& args, SweepOutput& output, S
 
 // ---- report -----------------------------------------------------------------------------------
 
-void write_sweep_provenance(io::Group& prov, const SweepArgs& args, int ranks, const std::string& started,
-                            double wall, const parallel::FarmSummary& fs) {
+results::SweepRunRecord run_record(const SweepArgs& args, int ranks, const std::string& started, double wall,
+                                   const parallel::FarmSummary& fs) {
   char host[256] = "?";
   gethostname(host, sizeof host - 1);
-  prov.set_attribute("program", "astrojax-explorer");
-  prov.set_attribute("command_line", args.command_line);
-  prov.set_attribute("ranks", ranks);
-  prov.set_attribute("host", std::string(host));
-  prov.set_attribute(args.resume ? "resume_start_time" : "start_time", started);
-  prov.set_attribute("end_time", now_iso());
-  prov.set_attribute(args.resume ? "resume_wall_time" : "wall_time", wall);
-  prov.set_attribute("farm_status", parallel::to_string(fs.status));
-  prov.set_attribute("tasks_per_second", fs.tasks_per_second);
-  prov.set_attribute("bytes_to_workers", fs.bytes_sent);  // farm messages, headers included
-  prov.set_attribute("bytes_from_workers", fs.bytes_received);
-  double work = 0;
-  for (double b : fs.busy_seconds) work += b;
-  prov.set_attribute("work_seconds", work);  // summed over ranks: integration alone
-  prov.set_attribute("master_result_seconds", fs.result_seconds);  // classify, journal, write
-  prov.set_attribute("version", results::program_version());
-  prov.set_attribute("git_commit", results::program_commit());  // when built
+  results::SweepRunRecord r{args.command_line, std::string(host), ranks, args.resume, started, now_iso(), wall,
+                            std::string(parallel::to_string(fs.status)), fs.tasks_per_second, fs.bytes_sent,
+                            fs.bytes_received, 0.0, fs.result_seconds};
+  for (double b : fs.busy_seconds) r.work_seconds += b;
+  return r;
 }
 
 // Rank 0 after the farm: the file finished (and renamed when complete), the summary line, the
@@ -379,7 +367,7 @@ int report_sweep(const SweepArgs& args, SweepOutput& output, const parallel::Far
   const std::vector<results::TaskStatus>& status = output.status;
   const std::filesystem::path &final_path = output.final_path, &part_path = output.part_path;
   std::sort(failures.begin(), failures.end());
-  output.file->finish(failures, [&](io::Group& prov) { write_sweep_provenance(prov, args, ranks, started, wall, fs); });
+  output.file->finish(failures, run_record(args, ranks, started, wall, fs));
   const bool complete = std::none_of(status.begin(), status.end(), [](results::TaskStatus v) { return v == results::TaskStatus::NeverRan; });
   if (complete) {
     std::filesystem::rename(part_path, final_path);

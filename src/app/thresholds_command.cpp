@@ -523,6 +523,21 @@ void lag_plateau_lines(const TableText& table, const SweepWindows& sw, std::size
   }
 }
 
+// Every chain of variant v that reached no threshold, said so: a table that lists only the chains
+// with a bracket would leave a reader to guess about the others.
+void silent_chain_lines(const TableText& table, const SweepWindows& sw, const std::vector<Row>& rows,
+                        const std::vector<std::optional<Onset>>& onsets, std::size_t v) {
+  for (std::size_t c = 0; c < sw.chains.size(); ++c) {
+    if (sw.variant[c] != v) continue;
+    bool reached = onsets[c] && onsets[c]->fit;
+    for (const Row& r : rows) reached = reached || (r.chain == c && r.bracket);
+    if (!reached)
+      table.line({"(none)", chain_name(sw, c), "nothing reached", "", "no threshold's class change on its windows", "",
+                  "", ""},
+                 kReportWidths);
+  }
+}
+
 // One report, as text or as Markdown: per variant, a table of its brackets, the Hopf fits,
 // and the verdicts' reasons.
 std::string report(const ThresholdsArgs& args, const SweepWindows& sw, const std::vector<Row>& rows,
@@ -550,6 +565,7 @@ std::string report(const ThresholdsArgs& args, const SweepWindows& sw, const std
                     "", ""},
                    kReportWidths);
     lag_plateau_lines(table, sw, v);
+    silent_chain_lines(table, sw, rows, onsets, v);
     if (!reasons.empty()) {
       out += markdown ? "\nVerdicts:\n\n" : "  verdicts:\n";
       for (std::size_t i = 0; i < reasons.size(); ++i)

@@ -14,7 +14,6 @@ ConstraintRun run_constraint_variant(const Scene& scene, const ConstraintVariant
   using numerics::Vec;
   const physics::Model& m = scene.model;
   const physics::Contact c = scene.initial.contact;
-  const double R = m.p.drive_radius;
   const Eigen::Matrix<double, 6, 1> inv_mass =
       (Eigen::Matrix<double, 6, 1>() << Eigen::Vector3d::Constant(1.0 / m.p.bead_mass),
        Eigen::Vector3d::Constant(1.0 / m.p.ball_mass))
@@ -22,7 +21,7 @@ ConstraintRun run_constraint_variant(const Scene& scene, const ConstraintVariant
   const numerics::System f = [&](double t, const Vec& y, Vec& dydt) {
     physics::rhs(m, scene.schedule, c, t, y, dydt);
     if (v.alpha <= 0.0) return;
-    const physics::Constraints k = physics::constraints(m, c, scene.schedule.top(R, t), y);
+    const physics::Constraints k = physics::constraints(m, c, scene.schedule.top(t), y);
     if (k.n == 0) return;
     // Fixed-capacity types (n <= 2): no heap allocation inside the RHS.
     using MatJ = Eigen::Matrix<double, Eigen::Dynamic, 6, 0, 2, 6>;
@@ -45,11 +44,11 @@ ConstraintRun run_constraint_variant(const Scene& scene, const ConstraintVariant
   ConstraintRun out;
   double max_drift = 0.0;
   const auto drift = [&](double t, const Vec& y) {
-    return physics::constraint_drift(m, c, scene.schedule.top(R, t), y).position;
+    return physics::constraint_drift(m, c, scene.schedule.top(t), y).position;
   };
   const numerics::PostStep project = [&](double t, Vec& y) {
     if (!v.project) return false;
-    const physics::TopKinematics top = scene.schedule.top(R, t);
+    const physics::TopKinematics top = scene.schedule.top(t);
     const physics::Drift d = physics::constraint_drift(m, c, top, y);
     if (d.position <= scene.run.projection_tol && d.velocity <= scene.run.projection_tol) return false;
     physics::project_positions(m, c, top, y);

@@ -19,7 +19,7 @@ Scene kinetic(const Scene& base) {
 }
 
 double bead_position(const Scene& scene, const physics::State& s) {
-  const physics::TopKinematics top = scene.schedule.top(scene.model.p.drive_radius, s.t);
+  const physics::TopKinematics top = scene.schedule.top(s.t);
   return (physics::Vec3(s.y.segment<3>(physics::idx::r1)) - top.a).norm();
 }
 

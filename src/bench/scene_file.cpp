@@ -13,7 +13,7 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   Scene s;
   s.name = std::filesystem::path(path).stem().string();
   s.model = c.model;
-  s.schedule = physics::MotorSchedule(c.schedule);
+  s.schedule = physics::MotorSchedule(c.model.p.drive_radius, c.schedule);
   s.run = c.run;
   s.horizon = horizon;
   try {

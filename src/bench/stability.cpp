@@ -6,7 +6,7 @@ namespace ajx::bench {
 
 Scene held_at(const Scene& base, double omega) {
   Scene s = base;
-  s.schedule = physics::MotorSchedule({{omega, omega, base.horizon + 1.0}});
+  s.schedule = physics::MotorSchedule(base.model.p.drive_radius, {{omega, omega, base.horizon + 1.0}});
   // The initial state is kept; a preset state at rest does not depend on the schedule's ω.
   return s;
 }

@@ -112,7 +112,7 @@ Separation separation(const Scene& scene, int samples) {
   constexpr double kick = 1e-9, saturation = 0.1;
   Scene kicked = scene;
   double d0 = 0.0;
-  const physics::TopKinematics top = scene.schedule.top(scene.model.p.drive_radius, scene.initial.t);
+  const physics::TopKinematics top = scene.schedule.top(scene.initial.t);
   for (int axis = 0; axis < 3 && !(d0 > 0.1 * kick); ++axis) {
     kicked.initial = scene.initial;
     kicked.initial.y(physics::idx::v1 + axis) += kick;

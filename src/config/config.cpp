@@ -627,7 +627,7 @@ sweep::BasinSpec read_basin(const toml::table& root, SweepConfig& c) {
   if (b.family == sweep::BasinFamily::Cloud)  // the orbit at every level, before any work
     for (std::size_t i = 0; i < b.omega.size(); ++i) try {
         const sweep::CompiledProtocol p = sweep::basin_protocol(b, b.omega[i], int(i), 0);
-        (void)sweep::basin_orbit(c.model, physics::MotorSchedule(p.schedule), b, b.omega[i]);
+        (void)sweep::basin_orbit(c.model, physics::MotorSchedule(c.model.p.drive_radius, p.schedule), b, b.omega[i]);
       } catch (const sweep::BasinError& e) {
         throw ConfigError(fmt::format("{}: key 'basin.orbit': at basin.omega[{}] = {} rad/s: {}; allowed: a level "
                                       "where the orbit exists, or orbit = \"circular_high\"", file, i, b.omega[i], e.what()));

@@ -139,7 +139,7 @@ LagStability lag_stability(const physics::Model& m0, const SteadyOrbit& o) {
   physics::Model m = m0;
   const double tau = tie_drive_torque(m0, o), w_motor = wb + 1.0;
   m.p.tie_kinetic_torque = tau - m.p.tie_damping * (w_motor - wb);
-  const physics::MotorSchedule motor({{w_motor, w_motor, 1e9}});
+  const physics::MotorSchedule motor(R, {{w_motor, w_motor, 1e9}});
   physics::Contact c(physics::Mode::Stuck, 0, s);
   c.tie.slip = true;
   c.tie.sigma = +1;

@@ -6,8 +6,9 @@
 
 namespace ajx::physics {
 
-MotorSchedule::MotorSchedule(std::vector<DriveSegment> segments, double phi0)
-    : segs_(std::move(segments)) {
+MotorSchedule::MotorSchedule(double drive_radius, std::vector<DriveSegment> segments, double phi0)
+    : radius_(drive_radius), segs_(std::move(segments)) {
+  if (!(radius_ >= 0.0)) throw std::invalid_argument("motor schedule: drive radius R < 0 or not a number");
   if (segs_.empty()) throw std::invalid_argument("motor schedule is empty");
   double t = 0.0, phi = phi0;
   for (const auto& s : segs_) {
@@ -57,10 +58,10 @@ TopKinematics point_on_circle(double R, double phi, double omega, double omega_d
   return k;
 }
 
-TopKinematics MotorSchedule::top(double R, double t) const {
+TopKinematics MotorSchedule::top(double t) const {
   double phi, omega, omega_dot;
   phase(t, phi, omega, omega_dot);
-  return point_on_circle(R, phi, omega, omega_dot);
+  return point_on_circle(radius_, phi, omega, omega_dot);
 }
 
 }  // namespace ajx::physics

@@ -37,11 +37,14 @@ struct TopKinematics {
 // motor_omega(_dot) are set to ω (ω̇): the motor's own, unless the caller says otherwise.
 TopKinematics point_on_circle(double R, double phi, double omega, double omega_dot);
 
+// The motor: its schedule of ω_m and the radius R of the circle it turns the top on, held
+// together so that no caller pairs them by hand. R is the model's drive_radius (the Simulation
+// refuses a schedule whose R is not its model's).
 class MotorSchedule {
  public:
   MotorSchedule() = default;
-  // Throws std::invalid_argument for an empty schedule or a segment with duration <= 0.
-  MotorSchedule(std::vector<DriveSegment> segments, double phi0 = 0.0);
+  // Throws std::invalid_argument for an empty schedule, a segment with duration <= 0, or R < 0.
+  MotorSchedule(double drive_radius, std::vector<DriveSegment> segments, double phi0 = 0.0);
 
   double duration() const { return t_begin_.empty() ? 0.0 : t_begin_.back() + segs_.back().duration; }
   const std::vector<DriveSegment>& segments() const { return segs_; }
@@ -50,9 +53,12 @@ class MotorSchedule {
 
   // φ, ω, ω̇ at time t (t beyond the end holds the last ω).
   void phase(double t, double& phi, double& omega, double& omega_dot) const;
-  TopKinematics top(double drive_radius, double t) const;
+  double radius() const { return radius_; }  // R [m]
+  // a(t) = R (cos φ, sin φ, 0) and its derivatives.
+  TopKinematics top(double t) const;
 
  private:
+  double radius_ = 0.0;            // R [m]
   std::vector<DriveSegment> segs_;
   std::vector<double> t_begin_;    // [s]
   std::vector<double> phi_begin_;  // φ at each segment start [rad]

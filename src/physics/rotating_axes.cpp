@@ -4,7 +4,8 @@
 
 namespace ajx::physics {
 
-TopKinematics top_in_rotating_axes(const MotorSchedule& schedule, double R, double t) {
+TopKinematics top_in_rotating_axes(const MotorSchedule& schedule, double t) {
+  const double R = schedule.radius();
   double phi, omega, omega_dot;
   schedule.phase(t, phi, omega, omega_dot);
   // point_on_circle(R, 0, ω, ω̇) without its cos 0 and sin 0: a = (R, 0, 0), ȧ = (0, R ω, 0),
@@ -22,7 +23,7 @@ TopKinematics top_in_rotating_axes(const MotorSchedule& schedule, double R, doub
 // flatten: as physics::evaluate (astrojax_system.cpp), the drive and the dynamics in one body.
 [[gnu::flatten]] void rhs_in_rotating_axes(const Model& m, const MotorSchedule& schedule, const Contact& c,
                                            double t, const numerics::Vec& y, numerics::Vec& dydt) {
-  const TopKinematics top = top_in_rotating_axes(schedule, m.p.drive_radius, t);
+  const TopKinematics top = top_in_rotating_axes(schedule, t);
   const Dynamics d = evaluate(m, top, c, y, true);
   const double w = top.omega;
   // Ω×x = ω (−x_y, x_x, 0)

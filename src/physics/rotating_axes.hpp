@@ -15,7 +15,7 @@
 namespace ajx::physics {
 
 // The top at time t seen in the turning axes: phi = 0, a' = (R, 0, 0).
-TopKinematics top_in_rotating_axes(const MotorSchedule& schedule, double drive_radius, double t);
+TopKinematics top_in_rotating_axes(const MotorSchedule& schedule, double t);
 
 // dy'/dt for the state in turning axes (layout of idx; the three work integrals are the lab
 // ones, which are invariant).

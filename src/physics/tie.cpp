@@ -9,18 +9,18 @@ namespace ajx::physics {
 namespace {
 
 // The schedule's top turned by δ about the motor axis.
-TopKinematics held_top(const MotorSchedule& schedule, double R, double t, double offset) {
+TopKinematics held_top(const MotorSchedule& schedule, double t, double offset) {
   double phi, omega, omega_dot;
   schedule.phase(t, phi, omega, omega_dot);
-  return point_on_circle(R, phi + offset, omega, omega_dot);
+  return point_on_circle(schedule.radius(), phi + offset, omega, omega_dot);
 }
 
 }  // namespace
 
 TopKinematics top_kinematics(const Model& m, const MotorSchedule& schedule, const Contact& c, double t,
                              const numerics::Vec& y) {
-  const double R = m.p.drive_radius;
-  if (!m.layers.tie_clutch || !c.tie.slip) return held_top(schedule, R, t, m.layers.tie_clutch ? c.tie.offset : 0.0);
+  if (!m.layers.tie_clutch || !c.tie.slip) return held_top(schedule, t, m.layers.tie_clutch ? c.tie.offset : 0.0);
+  const double R = schedule.radius();
   // Slipping: a, ȧ from χ, χ̇; ä from the tie's equation with the string's pull.
   double phi_m, omega_m, omega_m_dot;
   schedule.phase(t, phi_m, omega_m, omega_m_dot);

@@ -74,4 +74,37 @@ inline void write_provenance(io::File& f, const std::string& command_line, const
   write_resolved(resolved, cfg);
 }
 
+// What one run of a sweep (the first, or a resume) records of itself in /provenance: a
+// resume's times go under resume_start_time and resume_wall_time beside the first run's.
+struct SweepRunRecord {
+  std::string command_line, host;
+  int ranks = 0;
+  bool resume = false;
+  std::string started, ended;   // ISO 8601
+  double wall = 0;              // [s]
+  std::string farm_status;
+  double tasks_per_second = 0;
+  std::uint64_t bytes_to_workers = 0, bytes_from_workers = 0;  // farm messages, headers included
+  double work_seconds = 0;           // summed over ranks: integration alone
+  double master_result_seconds = 0;  // rank 0: classify, journal, write
+};
+
+inline void write_run_record(io::Group& prov, const SweepRunRecord& r) {
+  prov.set_attribute("program", "astrojax-explorer");
+  prov.set_attribute("command_line", r.command_line);
+  prov.set_attribute("ranks", r.ranks);
+  prov.set_attribute("host", r.host);
+  prov.set_attribute(r.resume ? "resume_start_time" : "start_time", r.started);
+  prov.set_attribute("end_time", r.ended);
+  prov.set_attribute(r.resume ? "resume_wall_time" : "wall_time", r.wall);
+  prov.set_attribute("farm_status", r.farm_status);
+  prov.set_attribute("tasks_per_second", r.tasks_per_second);
+  prov.set_attribute("bytes_to_workers", r.bytes_to_workers);
+  prov.set_attribute("bytes_from_workers", r.bytes_from_workers);
+  prov.set_attribute("work_seconds", r.work_seconds);
+  prov.set_attribute("master_result_seconds", r.master_result_seconds);
+  prov.set_attribute("version", program_version());
+  prov.set_attribute("git_commit", program_commit());  // when built
+}
+
 }  // namespace ajx::results

@@ -43,7 +43,8 @@ std::vector<ReclassifiedWindow> reclassify_windows(const SweepReader& in, const 
       w.mode = modes;
       w.failed = cls(c, k) == static_cast<std::int32_t>(sweep::OrbitClass::Failed);
       w.failure = "the integration failed (see /tasks)";
-      out.push_back({c, k, cls(c, k), window_row(sweep::classify_orbit(w, scales, settings))});
+      const sweep::OrbitClassification found = sweep::classify_orbit(w, scales, settings);
+      out.push_back({c, k, cls(c, k), window_row(found), found.reason});
     }
   }
   return out;

@@ -20,6 +20,7 @@ struct ReclassifiedWindow {
   std::size_t chain = 0, window = 0;
   std::int32_t old_class = -1;  // as the file has it
   WindowRow row;                // the new class and statistics
+  std::string reason;           // the classifier's, one line
 };
 
 // Every computed window (class >= 0 with samples) in chain-major order. A window whose

@@ -135,11 +135,33 @@ void write_run(io::File& f, const std::string& command_line, const config::RunCo
     const double h = cfg.run.integ.h_fixed;
     sg.set_attribute("start_pair_speed_bead", (raw.r1_1 - raw.r1_0).norm() / h);
     sg.set_attribute("start_pair_speed_ball", (raw.r2_1 - raw.r2_0).norm() / h);
-    sg.set_attribute("start_pair_length_excess", (raw.r1_0 - schedule.top(cfg.model.p.drive_radius, 0.0).a).norm() +
+    sg.set_attribute("start_pair_length_excess", (raw.r1_0 - schedule.top(0.0).a).norm() +
                                                      (raw.r2_0 - raw.r1_0).norm() - cfg.model.p.string_length);
   }
   sg.set_attribute("wall_time", wall);
   f.commit();
+}
+
+RunFile::RunFile(const std::filesystem::path& out) {
+  std::error_code ec;
+  if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path(), ec);
+  try {
+    f_ = io::File::create_temporary(out);
+  } catch (const io::Hdf5Error& e) {
+    throw OutputError(e.what());
+  }
+}
+
+void RunFile::write(const std::string& command_line, const config::RunConfig& cfg,
+                    const physics::MotorSchedule& schedule, const Trajectory& traj, const sim::RunSummary& sum,
+                    const physics::State& state, double wall, std::optional<double> start_projection,
+                    const std::optional<sim::PairStart>& raw_pair) {
+  try {
+    write_run(f_, command_line, cfg, schedule, traj, sum, state, wall, start_projection, raw_pair);
+  } catch (const io::Hdf5Error& e) {
+    f_ = io::File();  // the uncommitted .part is removed
+    throw OutputError(e.what());
+  }
 }
 
 }  // namespace ajx::results

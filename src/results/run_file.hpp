@@ -2,7 +2,9 @@
 // summary (energy ledger, counters, the violations of omitted layers) and the provenance.
 #pragma once
 #include <cstdint>
+#include <filesystem>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -26,6 +28,27 @@ struct Trajectory {
   // One sample; the schedule gives the motor's phase φ (the sample's top is the tie's, at χ).
   void add(const sim::Sample& s, const physics::Parameters& p, const physics::MotorSchedule& schedule);
   void write(io::Group& g) const;  // one dataset per quantity, with units and a description
+};
+
+// A run's output could not be made or written (disk full, no permission, I/O error).
+class OutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// The run's file: made as "<path>.part" before the run, so that an output that cannot be
+// written is refused before any work; written and renamed to <path> after it. Destroyed
+// without write(), or when write() fails, it leaves nothing behind.
+class RunFile {
+ public:
+  explicit RunFile(const std::filesystem::path& out);  // throws OutputError
+  // write_run below; throws OutputError (the .part is removed).
+  void write(const std::string& command_line, const config::RunConfig& cfg, const physics::MotorSchedule& schedule,
+             const Trajectory& traj, const sim::RunSummary& sum, const physics::State& state, double wall,
+             std::optional<double> start_projection, const std::optional<sim::PairStart>& raw_pair);
+
+ private:
+  io::File f_;
 };
 
 // The trajectory, the summary and the provenance into the run's file, then committed.

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <limits>
 #include <algorithm>
 #include <fmt/format.h>
@@ -65,6 +66,9 @@ class SweepFile {
 
   SweepFile(io::File file, std::size_t chains, std::size_t windows, std::size_t cap, std::size_t tasks)
       : f_(std::move(file)), C_(chains), W_(windows), cap_(cap), T_(tasks) {}
+  // A new, empty file at `path` (truncated if there) sized for the plan; create() fills it.
+  SweepFile(const std::filesystem::path& path, const sweep::SweepPlan& plan)
+      : SweepFile(io::File::create(path), plan.setups.size(), plan.max_windows, plan.max_samples, plan.n_tasks) {}
 
   // A new file: the configuration, the layout and the empty result datasets.
   void create(const config::SweepConfig& cfg, const sweep::SweepPlan& plan) {
@@ -168,7 +172,7 @@ class SweepFile {
   }
 
   // Failures of this run join those of earlier runs of the same sweep (one line each, sorted).
-  void finish(std::vector<std::string> failures, const std::function<void(io::Group&)>& provenance) {
+  void finish(std::vector<std::string> failures, const SweepRunRecord& run) {
     io::Group tg = f_.open_group("tasks");
     if (tg.has_attribute("failures"))
       for (std::string& old : tg.read_strings_attribute("failures")) failures.push_back(std::move(old));
@@ -177,7 +181,7 @@ class SweepFile {
     tg.set_attribute("failures", std::span<const std::string>(failures));
     write_basin_results(f_);  // the fractions of the samples done
     io::Group prov = f_.require_group("provenance");
-    provenance(prov);
+    write_run_record(prov, run);
     close();
   }
 
@@ -302,7 +306,7 @@ class SweepFile {
     std::vector<double> phase(C_ * W_, kNotComputed);
     std::vector<std::int32_t> dir(C_ * W_, 0), seg(C_ * W_, -1);
     for (std::size_t c = 0; c < C_; ++c) {
-      const physics::MotorSchedule motor(setups[c].protocol.schedule);
+      const physics::MotorSchedule motor = setups[c].motor();
       for (std::size_t k = 0; k < setups[c].protocol.windows.size(); ++k) {
         const auto& w = setups[c].protocol.windows[k];
         const std::size_t i = c * W_ + k;

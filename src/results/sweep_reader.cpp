@@ -143,6 +143,9 @@ std::vector<std::string> SweepReader::strings(std::string_view object, std::stri
 }
 
 SweepReader::SweepReader(const std::filesystem::path& path) : path_(path.string()) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) fail("", "no such file");
+  if (std::filesystem::is_directory(path, ec)) fail("", "is a directory, not a file");
   try {
     f_ = io::File::open_read(path);
   } catch (const io::Hdf5Error& e) {
@@ -200,6 +203,13 @@ void SweepReader::read_config() {
   config_source_ = d.read_string_attribute("source");
   overrides_ = strings("config", "overrides", '\n');
   if (version_ < 3) std::erase(overrides_, std::string());
+  // /provenance (written when the sweep finishes) names the commit; a file without it reads "".
+  if (f_.exists("provenance")) {
+    const io::Group prov = f_.open_group("provenance");
+    if (prov.has_attribute("git_commit") && prov.attribute_type_class("git_commit") == io::TypeClass::String &&
+        prov.attribute_dims("git_commit").empty())
+      git_commit_ = prov.read_string_attribute("git_commit");
+  }
 }
 
 config::SweepConfig SweepReader::config() const {
@@ -220,7 +230,8 @@ void SweepReader::read_windows() {
   (void)ints("windows/segment", cw);
   wb_ = doubles("windows/omega_m_begin", cw);
   we_ = doubles("windows/omega_m_end", cw);
-  const Array<double> tb = doubles("windows/t_begin", cw), te = doubles("windows/t_end", cw);
+  tb_ = doubles("windows/t_begin", cw);
+  te_ = doubles("windows/t_end", cw);
   if (version_ >= 2) (void)doubles("windows/phi_begin", cw);
   for (std::size_t i = 0; i < C_ * W_; ++i) {
     const std::int32_t c = cls_.data[i];
@@ -229,7 +240,7 @@ void SweepReader::read_windows() {
                                         sweep::kNumOrbitClasses - 1));
     if (c < 0) continue;  // not computed: its layout may be padding
     const std::pair<const char*, const Array<double>*> spans[] = {
-        {"windows/t_begin", &tb}, {"windows/t_end", &te}, {"windows/omega_m_begin", &wb_}, {"windows/omega_m_end", &we_}};
+        {"windows/t_begin", &tb_}, {"windows/t_end", &te_}, {"windows/omega_m_begin", &wb_}, {"windows/omega_m_end", &we_}};
     for (const auto& [name, a] : spans)
       if (!std::isfinite(a->data[i])) fail(name, fmt::format("at {}: {} in a computed window", index_text(cw, i), a->data[i]));
     if (dir_.data[i] < -1 || dir_.data[i] > 1)
@@ -318,6 +329,7 @@ void SweepReader::read_groups() {
 }
 
 void SweepReader::read_samples() {
+  if (!f_.exists("samples")) fail("samples", "missing: the file stores no samples of its windows");
   count_ = ints("samples/count", {C_, W_});
   cap_ = dataset("samples/t", 3, io::TypeClass::Float).dims()[2];
   for (std::size_t i = 0; i < C_ * W_; ++i) {

@@ -66,6 +66,8 @@ class SweepReader {
   const std::string& config_source() const { return config_source_; }
   const std::vector<std::string>& overrides() const { return overrides_; }
   config::SweepConfig config() const;  // throws SweepFileError naming /config
+  // /provenance@git_commit: the commit of the astrojax that wrote the file, "" without it.
+  const std::string& git_commit() const { return git_commit_; }
 
   const StoredModels& models() const { return models_; }
   const std::vector<std::string>& axes() const { return axes_; }
@@ -80,6 +82,8 @@ class SweepReader {
   const Array<std::int32_t>& direction() const { return dir_; }
   const Array<double>& omega_m_begin() const { return wb_; }
   const Array<double>& omega_m_end() const { return we_; }
+  const Array<double>& t_begin() const { return tb_; }  // [s]
+  const Array<double>& t_end() const { return te_; }    // [s]
   // A statistic of kStats or kPowers by name; throws std::logic_error for another name.
   const Array<double>& stat(std::string_view name) const;
   const Array<double>& mode_fraction() const { return modes_; }
@@ -132,14 +136,14 @@ class SweepReader {
   io::File f_;
   std::int64_t version_ = 1;
   std::size_t C_ = 0, W_ = 0, cap_ = 0, T_ = 0;
-  std::string config_text_, config_source_;
+  std::string config_text_, config_source_, git_commit_;
   std::vector<std::string> overrides_, axes_, classifier_settings_, failures_;
   StoredModels models_;
   Array<double> grid_;
   bool grouped_ = false;
   NameList groups_, variants_, start_seeds_;
   Array<std::int32_t> cls_, dir_, count_;
-  Array<double> wb_, we_, modes_;
+  Array<double> wb_, we_, tb_, te_, modes_;
   std::map<std::string, Array<double>, std::less<>> stats_;
   std::vector<TaskStatus> status_;
   Array<double> final_states_;

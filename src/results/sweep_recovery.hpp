@@ -95,13 +95,12 @@ inline void check_journal_identity(const config::SweepConfig& cfg, const std::fi
         cfg.source_name, journal.string()));
 }
 
-// What a resume lost to damage in its journal, on stderr: each damaged stretch (where, why,
-// how many records), the results kept and discarded (their tasks run again), a damaged magic.
-inline void report_journal_damage(const std::filesystem::path& journal, const io::JournalContents& c) {
-  if (c.damaged_magic)
-    std::fprintf(stderr, "warning: %s: its file header (the first 8 bytes) is damaged; the records behind it are "
-                 "intact and kept\n", journal.c_str());
-  if (c.damage.empty()) return;
+// What a journal's damage costs, in one sentence ("" when it has none): the results kept and
+// discarded, where and why, and what runs again. Said alike by a resume and by verify.
+inline std::string journal_damage_text(const io::JournalContents& c) {
+  std::string header = c.damaged_magic ? "its file header (the first 8 bytes) is damaged; the records behind it are "
+                                         "intact and kept" : "";
+  if (c.damage.empty()) return header;
   std::vector<std::string> where;
   for (const io::JournalDamage& d : c.damage)
     where.push_back(fmt::format("{} at bytes {}-{}, {} record{}", d.reason, d.offset, d.offset + d.length, d.records,
@@ -109,9 +108,15 @@ inline void report_journal_damage(const std::filesystem::path& journal, const io
   // The header record lost with no result after it (killed while writing it) is no result.
   const std::size_t lost = c.records_lost() - (c.first_record_lost ? 1 : 0);
   const std::size_t kept = c.records.empty() ? 0 : c.records.size() - 1;
-  std::fprintf(stderr, "warning: %s: %zu results kept, %zu discarded (%s); %s\n", journal.c_str(), kept, lost,
-               fmt::format("{}", fmt::join(where, "; ")).c_str(),
-               lost == 0 ? "nothing to run again" : lost == 1 ? "that task runs again" : "those tasks run again");
+  return fmt::format("{}{}{} results kept, {} discarded ({}); {}", header, header.empty() ? "" : "; ", kept, lost,
+                     fmt::join(where, "; "),
+                     lost == 0 ? "nothing to run again" : lost == 1 ? "that task runs again" : "those tasks run again");
+}
+
+// What a resume lost to damage in its journal, on stderr.
+inline void report_journal_damage(const std::filesystem::path& journal, const io::JournalContents& c) {
+  const std::string text = journal_damage_text(c);
+  if (!text.empty()) std::fprintf(stderr, "warning: %s: %s\n", journal.c_str(), text.c_str());
 }
 
 // Refuses to start afresh over an interrupted sweep's files: its finished tasks would be lost.

@@ -18,14 +18,14 @@ WindowRow window_row(const sweep::OrbitClassification& c) {
   return r;
 }
 
-namespace {
-// The stored precision in memory: a float32 column's values rounded to float.
 void round_to_stored(sweep::WindowRecord& rec) {
   std::vector<double>* columns[] = {&rec.t, &rec.omega_m, &rec.L1, &rec.T1, &rec.T2, nullptr, &rec.r1, &rec.r2};
   for (std::size_t k = 0; k < kNumSampleColumns; ++k)
     if (kSampleFloat32[k] && columns[k])
       for (double& v : *columns[k]) v = double(float(v));
 }
+
+namespace {
 
 // One column's first `values` entries as a chunk of `size` (NaN beyond), in its stored type.
 template <class T>

@@ -117,6 +117,10 @@ struct TaskResult {
   std::vector<WindowResult> windows;
 };
 
+// The stored precision in memory: each float32 column's values rounded to float (what the
+// classifier of a sweep reads, and astrojax replay with it).
+void round_to_stored(sweep::WindowRecord& rec);
+
 // On the worker: round the samples to the precision the file stores, classify the windows
 // from them (so that astrojax classify reproduces /windows from the file), and compress them
 // into chunks of `cap` samples (padded with NaN), as the file stores them.

@@ -14,6 +14,7 @@
 #include "results/reclassify.hpp"
 #include "results/sweep_file.hpp"
 #include "results/sweep_reader.hpp"
+#include "results/sweep_recovery.hpp"
 #include "sweep/orbit_classes.hpp"
 #include "sweep/plan.hpp"
 
@@ -204,8 +205,9 @@ void check_tasks(const SweepReader& in, const std::string& path, VerifyReport& r
   if (std::filesystem::exists(journal)) {
     const io::JournalContents j = io::Journal::read(journal);
     const std::size_t results = j.records.empty() ? 0 : j.records.size() - 1;
-    rep.notes.push_back(fmt::format("{}: {} results with valid checksums{}", journal, results,
-                                    j.torn_tail ? ", then a record cut short or damaged (that task runs again)" : ""));
+    const std::string damage = journal_damage_text(j);
+    rep.notes.push_back(damage.empty() ? fmt::format("{}: {} results with valid checksums", journal, results)
+                                       : fmt::format("{}: {}", journal, damage));
     for (std::size_t k = 1; k < j.records.size(); ++k) {
       const std::int64_t id = j.records[k].key;
       if (id < 0 || std::size_t(id) >= status.size())

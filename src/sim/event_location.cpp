@@ -35,7 +35,7 @@ double GuardEvents::value(Guard kind, bool force, double t, const Vec& y) {
 // diameter 2R, which is all that is claimed for a tie's top.
 double GuardEvents::top_travel(double t0, double t1) const {
   if (ctx_.axes.rotating) return 0.0;
-  const double R = ctx_.model.p.drive_radius;
+  const double R = ctx_.schedule.radius();
   if (ctx_.model.layers.tie_clutch) return 2.0 * R;
   double phi, w0, w1, wd;
   ctx_.schedule.phase(t0, phi, w0, wd);

@@ -92,12 +92,12 @@ struct MeanAzimuth {
 }  // namespace
 
 double project_pair(const physics::Model& model, const physics::MotorSchedule& schedule, double h, PairStart& pair) {
-  const double R = model.p.drive_radius, l = model.p.string_length;
+  const double l = model.p.string_length;
   double worst = 0.0;
   for (int k = 0; k < 2; ++k) {
     Vec3& r1 = k == 0 ? pair.r1_0 : pair.r1_1;
     Vec3& r2 = k == 0 ? pair.r2_0 : pair.r2_1;
-    const physics::TopKinematics top = schedule.top(R, pair.t0 + k * h);
+    const physics::TopKinematics top = schedule.top(pair.t0 + k * h);
     worst = std::max(worst, std::abs(length_excess(top.a, r1, r2, l)));
     numerics::Vec y = positions(r1, r2);
     physics::project_positions(model, kTaut, top, y);
@@ -109,7 +109,7 @@ double project_pair(const physics::Model& model, const physics::MotorSchedule& s
 
 physics::State state_from_pair(const physics::Model& model, const physics::MotorSchedule& schedule,
                                const PairStart& pair, double h, double tol) {
-  const physics::TopKinematics top = schedule.top(model.p.drive_radius, pair.t0);
+  const physics::TopKinematics top = schedule.top(pair.t0);
   const double excess = length_excess(top.a, pair.r1_0, pair.r2_0, model.p.string_length);
   const physics::Mode mode = excess >= -tol ? physics::Mode::Sliding : physics::Mode::Slack;
   return explicit_state(model, schedule, pair.r1_0, pair.r2_0, (pair.r1_1 - pair.r1_0) / h,
@@ -204,7 +204,7 @@ bool PaperRun::step(double t, const Vec3& a, const Vec3& a_next) {
 }
 
 void PaperRun::diagnose(double t) {
-  top_ = sched_.top(p_.drive_radius, t);
+  top_ = sched_.top(t);
   const double h2 = h_ * h_;
   const Vec3 v1 = (q1_next_ - q1_prev_) / (2 * h_), v2 = (q2_next_ - q2_prev_) / (2 * h_);
   dyn_.g = physics::geometry(top_, q1_, q2_, v1, v2);
@@ -238,12 +238,11 @@ void PaperRun::diagnose(double t) {
 RunSummary PaperRun::run(const PairStart& pair, double t_end, double sample_dt, const SampleObserver& on_sample,
                          physics::State& end, double omega_window) {
   RunSummary sum;
-  const double R = p_.drive_radius;
   q1_prev_ = pair.r1_0;
   q2_prev_ = pair.r2_0;
   q1_ = pair.r1_1;
   q2_ = pair.r2_1;
-  L1_prev_ = (pair.r1_0 - sched_.top(R, pair.t0).a).norm();
+  L1_prev_ = (pair.r1_0 - sched_.top(pair.t0).a).norm();
   // A first guess for the tension: the weight below the bead.
   T2_ = p_.ball_mass * p_.gravity;
   const double t1 = pair.t0 + h_;
@@ -264,7 +263,7 @@ RunSummary PaperRun::run(const PairStart& pair, double t_end, double sample_dt, 
   for (;; ++k) {
     const double t = pair.t0 + double(k) * h_;
     if (t > t_end + 0.5 * h_) break;
-    const Vec3 a = sched_.top(R, t).a, a_next = sched_.top(R, t + h_).a;
+    const Vec3 a = sched_.top(t).a, a_next = sched_.top(t + h_).a;
     bool ok = false;
     try {
       ok = step(t, a, a_next);

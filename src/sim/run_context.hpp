@@ -25,7 +25,7 @@ struct RunAxes {
   // tie's χ̈ depends on the string's pull in that mode).
   // (Inline: called at every guard evaluation.)
   physics::TopKinematics top(const Contact& c, double t, const numerics::Vec& y) const {
-    return rotating ? physics::top_in_rotating_axes(schedule, model.p.drive_radius, t)
+    return rotating ? physics::top_in_rotating_axes(schedule, t)
                     : physics::top_kinematics(model, schedule, c, t, y);
   }
   // The angle from the integrator's axes to the lab's: φ(t), or 0 in the lab.

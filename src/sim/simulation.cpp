@@ -21,7 +21,11 @@ using physics::Vec3;
 
 Simulation::Simulation(const physics::Model& model, const physics::MotorSchedule& schedule,
                        RunOptions opt)
-    : model_(model), schedule_(schedule), opt_(std::move(opt)) {}
+    : model_(model), schedule_(schedule), opt_(std::move(opt)) {
+  // R is the model's parameter; the schedule carries it so that the top is never paired by hand.
+  if (schedule.radius() != model.p.drive_radius)
+    throw std::invalid_argument("Simulation: the motor schedule's drive radius is not the model's drive_radius");
+}
 
 // The loop of a run over its stages: segments of smooth flow between the schedule's
 // breakpoints (sim/step.hpp) stopped by the mode's guards (sim/event_location.hpp); at a
@@ -109,7 +113,7 @@ RunSummary Simulation::run(State& s, double t_end, double sample_dt, const Sampl
 
 State hanging_at_rest(const physics::Model& model, const physics::MotorSchedule& schedule, double t0) {
   const physics::Parameters& p = model.p;
-  const physics::TopKinematics top = schedule.top(p.drive_radius, t0);
+  const physics::TopKinematics top = schedule.top(t0);
   State s;
   s.t = t0;
   s.contact = {Mode::BottomStop, 0, 0.0};
@@ -124,7 +128,7 @@ State explicit_state(const physics::Model& model, const physics::MotorSchedule& 
                      const Vec3& r1, const Vec3& r2, const Vec3& v1, const Vec3& v2, Mode mode,
                      double t0, double tol_length, double tie_slip_rate) {
   const physics::Parameters& p = model.p;
-  const physics::TopKinematics top = schedule.top(p.drive_radius, t0);
+  const physics::TopKinematics top = schedule.top(t0);
   State s;
   s.t = t0;
   s.contact = {mode, 0, mode == Mode::Stuck ? (r1 - top.a).norm() : 0.0};

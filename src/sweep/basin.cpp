@@ -58,7 +58,7 @@ physics::State hanging_start(const physics::Model& m, const physics::MotorSchedu
   const double two_pi = 2.0 * std::numbers::pi;
   const Vec3 u1 = hanging_direction(d.uniform(0.0, b.swing), d.uniform(0.0, two_pi));
   const Vec3 u2 = hanging_direction(d.uniform(0.0, b.swing), d.uniform(0.0, two_pi));
-  const Vec3 a = schedule.top(m.p.drive_radius, 0.0).a;
+  const Vec3 a = schedule.top(0.0).a;
   const Vec3 r1 = a + s * u1, r2 = r1 + (l - s) * u2;
   physics::Mode mode = physics::Mode::Sliding;
   if (m.layers.bottom_stop && s >= stops.hi) mode = physics::Mode::BottomStop;
@@ -68,7 +68,7 @@ physics::State hanging_start(const physics::Model& m, const physics::MotorSchedu
 
 physics::State cloud_start(const physics::Model& m, const physics::MotorSchedule& schedule, const BasinSpec& b,
                            double omega, const physics::State& o, BasinDraws& d) {
-  const Vec3 a = schedule.top(m.p.drive_radius, 0.0).a;
+  const Vec3 a = schedule.top(0.0).a;
   const Vec3 r1 = o.r1(), r2 = o.r2();
   const double L1 = (r1 - a).norm(), L2 = (r2 - r1).norm();
   // Each ball moved across its segment, the segment's length kept: s and l − s stay where the orbit has them.

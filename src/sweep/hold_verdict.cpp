@@ -29,7 +29,7 @@ ChainSetup held_chain(const ChainSetup& chain, double t_cut, int n_windows, doub
                                             chain.protocol.duration));
   double phi = 0.0, omega = 0.0, omega_dot = 0.0;
   if (!chain.protocol.schedule.empty())
-    physics::MotorSchedule(chain.protocol.schedule).phase(t_cut, phi, omega, omega_dot);
+    chain.motor().phase(t_cut, phi, omega, omega_dot);
   ChainSetup out = chain;
   out.protocol.schedule = schedule_until(chain.protocol.schedule, t_cut, omega);
   const double hold = n_windows * window;

@@ -83,7 +83,7 @@ SweepPlan make_plan(const std::vector<PlanPart>& parts) {
     if (start.sample >= 0) {
       const BasinSpec& b = *part.spec.basin;
       c.protocol = basin_protocol(b, start.omega, start.level, start.sample);
-      const physics::MotorSchedule schedule(c.protocol.schedule);
+      const physics::MotorSchedule schedule = c.motor();
       const physics::State* orbit = nullptr;
       if (b.family == BasinFamily::Cloud) {
         if (start.sample == 0) level_orbit = basin_orbit(c.model, schedule, b, start.omega);
@@ -109,7 +109,7 @@ SweepPlan make_plan(const std::vector<PlanPart>& parts) {
 
 physics::State SweepPlan::start_state(std::size_t c) const {
   if (starts[c].state) return *starts[c].state;
-  const physics::MotorSchedule schedule(setups[c].protocol.schedule);
+  const physics::MotorSchedule schedule = setups[c].motor();
   return seed_state(setups[c].model, schedule, starts[c].seed, starts[c].omega, starts[c].perturbation, starts[c].kick);
 }
 

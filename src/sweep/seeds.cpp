@@ -29,7 +29,7 @@ physics::State seed_state(const physics::Model& m, const physics::MotorSchedule&
     // An equilibrium of the co-rotating frame (orbits/orbit_seed.hpp), turned to the top's phase.
     const auto o = orbits::locked_orbit_seed(m, omega);
     if (!o) throw std::invalid_argument(fmt::format("no locked orbit at ω_m = {} rad/s", omega));
-    const physics::TopKinematics top = schedule.top(m.p.drive_radius, 0.0);
+    const physics::TopKinematics top = schedule.top(0.0);
     const Eigen::AngleAxisd turn(top.phi, Vec3::UnitZ());
     const Vec3 r1 = turn * o->orbit.p1, r2 = turn * o->orbit.p2, w(0, 0, omega);
     s = sim::explicit_state(m, schedule, r1, r2, w.cross(r1), w.cross(r2),
@@ -45,7 +45,7 @@ physics::State seed_state(const physics::Model& m, const physics::MotorSchedule&
     std::mt19937_64 rng(h ^ (0x9e3779b97f4a7c15ULL * std::uint64_t(perturbation)));
     std::normal_distribution<double> N(0.0, kick);
     for (int k = 0; k < 6; ++k) s.y(physics::idx::v1 + k) += N(rng);
-    const physics::TopKinematics top = schedule.top(m.p.drive_radius, s.t);
+    const physics::TopKinematics top = schedule.top(s.t);
     physics::project_velocities(m, s.contact, top, s.y);
   }
   return s;

@@ -12,7 +12,7 @@
 namespace ajx::sweep {
 
 TaskOutput run_task(const ChainSetup& chain, const TaskSpan& span, physics::State start) {
-  const physics::MotorSchedule schedule(chain.protocol.schedule);
+  const physics::MotorSchedule schedule = chain.motor();
   sim::RunOptions run = chain.run;
   run.run_statistics = false;  // the windows are measured from the samples
   for (int i = 0; i < span.num_windows; ++i) {  // and only the windows' samples are stored

@@ -20,6 +20,8 @@ struct ChainSetup {
   CompiledProtocol protocol;
   sim::RunOptions run;
   double sample_rate = 200.0;  // samples per second inside windows [1/s]
+  // The chain's motor: its protocol's schedule on the circle of the model's R.
+  physics::MotorSchedule motor() const { return physics::MotorSchedule(model.p.drive_radius, protocol.schedule); }
 };
 
 // The samples of one window, row-major: r1 and r2 are N×3.

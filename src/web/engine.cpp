@@ -37,7 +37,7 @@ std::string Engine::configure(const std::vector<std::string>& overrides) {
   config_ = std::move(next);
   new_schedule(omega, omega_target_, rate_);  // an ongoing ramp goes on
   // A string made longer than L1 + L2 is slack: the balls fly until it is taut again.
-  const Vec3 a = schedule_.top(config_.model.p.drive_radius, 0.0).a;
+  const Vec3 a = schedule_.top(0.0).a;
   if (config_.model.layers.slack && (r1 - a).norm() + (r2 - r1).norm() < config_.model.p.string_length - 1e-6)
     mode = Mode::Slack;
   try {
@@ -90,7 +90,7 @@ void Engine::new_schedule(double omega_begin, double omega_end, double rate) {
   const double change = std::abs(omega_end - omega_begin);
   if (change > 0.0 && rate > 0.0) segs.push_back({omega_begin, omega_end, change / rate});
   segs.push_back({omega_end, omega_end, 1.0});  // past its end the schedule holds the last ω
-  schedule_ = physics::MotorSchedule(std::move(segs), phi);
+  schedule_ = physics::MotorSchedule(config_.model.p.drive_radius, std::move(segs), phi);
   omega_target_ = omega_end;
   rate_ = rate;
   // A held tie keeps its offset χ − φ; the schedule's φ is continuous, so χ is too.

@@ -30,7 +30,7 @@ constexpr double kOmega = 6.0 * std::numbers::pi;  // ω_m [rad/s]
 
 struct Fixture {
   physics::Model model;
-  physics::MotorSchedule schedule{{{kOmega, kOmega, 1e6}}};
+  physics::MotorSchedule schedule{0.01, {{kOmega, kOmega, 1e6}}};  // R: the model.p.drive_radius set below
   physics::State s0;
   Fixture() {
     model.p.drive_radius = 0.01;
@@ -54,7 +54,7 @@ void BM_rhs_in(benchmark::State& st, physics::Mode mode, Rhs rhs) {
   physics::Contact c = fx.s0.contact;
   c.mode = mode;
   c.sigma = 1;
-  c.s_star = (physics::Vec3(fx.s0.y.segment<3>(physics::idx::r1)) - fx.schedule.top(fx.model.p.drive_radius, 0).a).norm();
+  c.s_star = (physics::Vec3(fx.s0.y.segment<3>(physics::idx::r1)) - fx.schedule.top(0).a).norm();
   const numerics::System f = [&](double t, const Vec& y, Vec& dydt) { rhs(fx.model, fx.schedule, c, t, y, dydt); };
   Vec y = fx.s0.y, dydt(physics::idx::dim);
   double t = 0.0;
@@ -81,7 +81,7 @@ void BM_top(benchmark::State& st) {
   const Fixture& fx = fixture();
   double t = 0.0;
   for (auto _ : st) {
-    const physics::TopKinematics k = fx.schedule.top(fx.model.p.drive_radius, t);
+    const physics::TopKinematics k = fx.schedule.top(t);
     benchmark::DoNotOptimize(k.a_ddot.data());
     t += 1e-9;
   }
@@ -132,7 +132,7 @@ BENCHMARK_CAPTURE(BM_step, radau_iia, "radau_iia", 2e-3);
 // bottom ball of sweeps/scenes/bottom_stop_fast.toml at 15π rad/s.
 void BM_run(benchmark::State& st, bool bottom, double sample_rate, bool bound = true, bool statistics = false) {
   const Fixture& fx = fixture();
-  const physics::MotorSchedule fast{{{15 * std::numbers::pi, 15 * std::numbers::pi, 1e6}}};
+  const physics::MotorSchedule fast{fx.model.p.drive_radius, {{15 * std::numbers::pi, 15 * std::numbers::pi, 1e6}}};
   const physics::MotorSchedule& schedule = bottom ? fast : fx.schedule;
   const physics::State start =
       bottom ? sim::explicit_state(fx.model, fast, {-0.00047020629163896111, -8.5514041346164998e-05, -0.79593113236439883},

@@ -32,8 +32,6 @@ import sys
 import tempfile
 import time
 
-from selenium import webdriver
-from selenium.webdriver.chrome.service import Service
 
 # [s] simulated, check 2: two full windows of 5 s (measured: the page first says locked at
 # 6.0-8.4 s; the natively run scene "locked" at 5.0 s).
@@ -48,13 +46,9 @@ def fail(msg):
 
 
 def browser(user_dir):
-    opts = webdriver.ChromeOptions()
-    opts.binary_location = "/usr/bin/chromium"
-    for a in ("--headless=new", "--no-sandbox", f"--user-data-dir={user_dir}", "--window-size=1500,1250",
-              "--disable-gpu", "--disable-dev-shm-usage"):
-        opts.add_argument(a)
-    opts.set_capability("goog:loggingPrefs", {"browser": "ALL"})
-    return webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=opts)
+    sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent.parent / "browser"))
+    import chromium  # tests/browser/chromium.py: how every browser test starts Chromium
+    return chromium.start(user_dir, size=(1500, 1250))
 
 
 def console_errors(drv):

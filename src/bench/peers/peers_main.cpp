@@ -271,7 +271,7 @@ int main(int argc, char** argv) {
         row.out.final.t = t1;
         row.out.final.y = Eigen::Map<const Eigen::VectorXd>(y.data(), Eigen::Index(y.size()));
         physics::rotate_about_z(row.out.final.y, axes_angle(t1));
-        const physics::TopKinematics top = scene.schedule.top(scene.model.p.drive_radius, t1);
+        const physics::TopKinematics top = scene.schedule.top(t1);
         row.out.max_drift = physics::constraint_drift(scene.model, scene.initial.contact, top, row.out.final.y).position;
         row.out.energy_residual = physics::energy_balance(scene.model.p, scene.initial, row.out.final).relative();
         row.err = bench::compare(row.out.final, ref.run.final);
