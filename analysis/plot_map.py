@@ -13,9 +13,16 @@ The paper's measured value is a dashed line; the model's own PARAM (the file's) 
 vertical line, and where the paper gives PARAM (l, m, c_D, μ) its apparatus is marked too
 (for l and m also Section 3.3's second point, 0.662 m and 0.1 kg).
 
---brackets CSV overlays a sweep's brackets (columns symbol, p, before, after; symbol one of
-omega_1, omega_fall, omega_2; before and after in rad/s): each a grey bar from before to after
-at its p, so that the sweep and the continuation are read together.
+--brackets CSV overlays a sweep's brackets, so that the sweep and the continuation are read
+together: either the CSV of `astrojax thresholds --csv` of a map ([bisect], docs/guide/maps.md:
+columns threshold, one per grid axis, before_rad_s, after_rad_s, variant), whose column named
+PARAM gives each bracket's place, or a plain CSV with columns symbol, p, before, after (symbol
+one of omega_1, omega_fall, omega_2, omega_rise; before and after in rad/s). Each bracket is a
+bar from before to after at its p: grey for the paper's physics (rigid tie), black for the tie
+clutch; the brackets at one p (the other grid axis) side by side. A bisection that found no
+crossing is a triangle at its last level (the threshold lies beyond, in the triangle's
+direction); one whose start was already past the threshold an × at the start level. An ω_rise
+panel appears when the brackets hold ω_rise (no curve predicts it).
 
 Run with Debian's interpreter:
     build/astrojax orbits sweeps/orbits_map.toml --map drive_radius --range 0.005 0.03 -o out/map_R.h5
@@ -25,7 +32,7 @@ import csv
 
 import numpy as np
 
-from astrojax_analysis import (BRACKET_SHADE, PAPER_LINE, Curves, add_figure_args, fail, legend, new_figure,
+from astrojax_analysis import (PAPER_LINE, Curves, add_figure_args, fail, legend, new_figure,
                                panel_grid, panels, parser, pyplot, run, runs, save)
 
 PI = np.pi
@@ -34,7 +41,11 @@ PANELS = [
     ("omega_1", "ω1: the locked orbit is lost", 4.80, ("cone_up", "fold")),
     ("omega_fall", "ω_fall: the stuck bead slides down", 3.24, ("cone_down",)),
     ("omega_2", "ω2: the lag turns into a flower", 15.00, ("hopf",)),
+    ("omega_rise", "ω_rise: the bead climbs off the ball", 12.63, ()),
 ]
+# Which way a threshold's known side lies: +1 the threshold is above the known side (rising ω_m).
+DIRECTION = {"omega_1": 1, "omega_2": 1, "omega_rise": 1, "omega_fall": -1}
+VARIANT_STYLE = {"clutch": {"color": "k", "lw": 1.6}, "": {"color": "0.45", "lw": 3.2}}
 KIND_STYLE = {"cone_up": "-", "cone_down": "-", "fold": "-.", "hopf": "-"}
 # Where the paper gives the parameter: its apparatus, and Section 3.3's second point.
 PAPER_APPARATUS = {
@@ -71,27 +82,66 @@ def draw_curves(ax, curves, kinds):
     return drawn
 
 
-def draw_brackets(ax, p, before, after):
-    """A sweep's brackets: grey bars from before to after [rad/s] at each p."""
-    p, before, after = (np.asarray(v, dtype=float) for v in (p, before, after))
-    ax.vlines(p, before / PI, after / PI, color=BRACKET_SHADE, lw=4, zorder=1)
+def draw_brackets(ax, sym, rows, span):
+    """A sweep's brackets of one threshold: a bar from before to after [rad/s] at each p, the
+    brackets sharing a p side by side (span: the x range, for the offsets); a triangle where the
+    bisection found no crossing, an × where its start was already past the threshold."""
+    if not rows:
+        return
+    at_p = {}
+    for r in rows:
+        at_p.setdefault(r["p"], []).append(r)
+    dx = 0.02 * span
+    for p, here in at_p.items():
+        for j, r in enumerate(sorted(here, key=lambda r: (r["variant"], r["other"]))):
+            x = p + (j - (len(here) - 1) / 2) * dx
+            style = VARIANT_STYLE.get(r["variant"], VARIANT_STYLE[""])
+            b, a = r["before"], r["after"]
+            if np.isfinite(b) and np.isfinite(a):
+                ax.vlines(x, b / PI, a / PI, zorder=3, **style)
+            elif np.isfinite(b):
+                ax.plot(x, b / PI, "^" if DIRECTION[sym] > 0 else "v", ms=4, mfc="none", mec=style["color"], zorder=3)
+            elif np.isfinite(a):
+                ax.plot(x, a / PI, "x", ms=4, color=style["color"], zorder=3)
 
 
-def read_brackets(path):
-    """{symbol: (p, before, after)} from a CSV with columns symbol, p, before, after."""
+def _number(text):
+    return float(text) if text not in (None, "") else np.nan
+
+
+def read_brackets(path, param):
+    """{symbol: [{p, before, after, variant, other}]} from `astrojax thresholds --csv` of a map
+    (the column `param` gives p) or from a CSV with columns symbol, p, before, after."""
     out = {}
     try:
         with open(path, newline="") as f:
-            rows = list(csv.DictReader(f))
+            reader = csv.DictReader(f)
+            rows, head = list(reader), reader.fieldnames or []
     except OSError as e:
         fail(f"--brackets {path}: {e}")
+    sweep_csv = "threshold" in head and "before_rad_s" in head
+    if sweep_csv and param not in head:
+        axes = [h for h in head[head.index("variant") + 1:head.index("method")]] if "method" in head else []
+        fail(f"--brackets {path}: no column '{param}', the curves' parameter; the map's grid axes are "
+             f"{', '.join(axes) or 'none'}")
+    other_axes = [h for h in head[head.index("variant") + 1:head.index("method")] if h != param] \
+        if sweep_csv and "method" in head else []
     for n, r in enumerate(rows, start=2):
         try:
-            out.setdefault(r["symbol"], ([], [], []))
-            for lst, key in zip(out[r["symbol"]], ("p", "before", "after")):
-                lst.append(float(r[key]))
+            if sweep_csv:
+                row = {"p": float(r[param]), "before": _number(r["before_rad_s"]), "after": _number(r["after_rad_s"]),
+                       "variant": r.get("variant", ""), "other": tuple(float(r[a]) for a in other_axes)}
+                sym = r["threshold"]
+            else:
+                row = {"p": float(r["p"]), "before": float(r["before"]), "after": float(r["after"]), "variant": "",
+                       "other": ()}
+                sym = r["symbol"]
         except (KeyError, TypeError, ValueError):
-            fail(f"--brackets {path}: line {n}: expected columns symbol, p, before, after (numbers)")
+            fail(f"--brackets {path}: line {n}: expected columns symbol, p, before, after (numbers), or the columns "
+                 f"of `astrojax thresholds --csv` with {param}")
+        if sym not in DIRECTION:
+            fail(f"--brackets {path}: line {n}: threshold '{sym}'; allowed: {', '.join(DIRECTION)}")
+        out.setdefault(sym, []).append(row)
     return out
 
 
@@ -102,21 +152,22 @@ def main(argv=None):
     add_figure_args(ap, "4 in per panel × 4.2 in")
     args = ap.parse_args(argv)
     curves = Curves(args.input)
-    brackets = read_brackets(args.brackets) if args.brackets else {}
-    panels_drawn = [pn for pn in PANELS if curves.curve_ids(pn[3]) or pn[0] in brackets]
+    param = curves.parameter
+    brackets = read_brackets(args.brackets, param) if args.brackets else {}
+    panels_drawn = [pn for pn in PANELS if (pn[3] and curves.curve_ids(pn[3])) or pn[0] in brackets]
     if not panels_drawn:
         fail(f"{args.input}: no curves in /curves/points")
     rows, cols = panel_grid(len(panels_drawn))
     fig = new_figure(args, (4.0 * cols, 3.6 * rows + 0.6))
-    axes, leg = panels(fig, rows, cols, n_legend=6)
-    param = curves.parameter
+    axes, leg = panels(fig, rows, cols, n_legend=6 + (4 if brackets else 0))
     symbol = curves.parameter_symbol or param
     unit = curves.parameter_unit
     model_value = curves.resolved.get(f"model.{param}", curves.resolved.get("model.bead_mass") if param == "mass" else None)
     for ax, (sym, title, paper, kinds) in zip(axes.ravel(), panels_drawn):
-        draw_curves(ax, curves, kinds)
-        if sym in brackets:
-            draw_brackets(ax, *brackets[sym])
+        if kinds:
+            draw_curves(ax, curves, kinds)
+        xs = [r["p"] for rows in brackets.values() for r in rows] + list(curves.points["p"])
+        draw_brackets(ax, sym, brackets.get(sym, []), (max(xs) - min(xs)) if xs else 1.0)
         ax.axhline(paper, **PAPER_LINE)
         ax.text(1.0, paper, f" paper {paper:.2f}π", transform=ax.get_yaxis_transform(), fontsize=7, va="center",
                 ha="left", clip_on=False)
@@ -140,7 +191,16 @@ def main(argv=None):
                plt.Line2D([], [], **PAPER_LINE, label="the paper's measured value"),
                plt.Line2D([], [], color="k", ls=":", lw=0.8, label=f"this model's {symbol}")]
     if brackets:
-        handles.append(plt.Line2D([], [], color=BRACKET_SHADE, lw=4, label="sweep bracket"))
+        variants = {r["variant"] for rows in brackets.values() for r in rows}
+        if "clutch" in variants:
+            handles.append(plt.Line2D([], [], **VARIANT_STYLE["clutch"], label="sweep bracket, tie clutch"))
+        if variants - {"clutch"}:
+            handles.append(plt.Line2D([], [], **VARIANT_STYLE[""], label="sweep bracket" +
+                                      (", rigid tie" if "clutch" in variants else "")))
+        if any(np.isfinite(r["before"]) and not np.isfinite(r["after"]) for rows in brackets.values() for r in rows):
+            handles.append(plt.Line2D([], [], marker="^", mfc="none", mec="k", ls="", label="no crossing up to here (▼: down to)"))
+        if any(np.isfinite(r["after"]) and not np.isfinite(r["before"]) for rows in brackets.values() for r in rows):
+            handles.append(plt.Line2D([], [], marker="x", color="k", ls="", label="start already past the threshold"))
     legend(leg, handles)
     fig.suptitle(f"Thresholds over {symbol}, bead stuck at s = {', '.join(f'{s:g}' for s in s_values)} m "
                  f"(continuation, astrojax orbits --map {param})", fontsize=9)

@@ -4,7 +4,8 @@
 Reads the paired sweep of sweeps/sensitivity.toml (the main job's tie clutch, variant `base`, and
 one variant per parameter and end of its plausible range, `NAME_lo` and `NAME_hi`) and, per
 variant, takes from it:
-  - ω_rise (group rise), ω1 and ω2's classifier bracket and ω_fall after the lag (group up),
+  - ω_rise (group rise), ω2's classifier bracket and ω_fall after the lag (group up), ω1 (group
+    lock),
     ω_fall from the fresh orbit (group fall): the brackets of `astrojax thresholds --no-hold`,
     each as its midpoint and its width;
   - the lag at 12π on the way up: its ω_ball and the bead's stuck position s (the window's
@@ -21,7 +22,12 @@ With --histories FILE (sweeps/lag_histories.toml: held lags from several seeds, 
 settle times): the stuck position s of every lagging chain, the spread of s, and ω_H and ω_ball
 at each s from the continuation: ω2's spread over histories.
 
+With --paths FILE (sweeps/lag_paths.toml: the lag reached through ω1 in several ways): the
+bead's s at 10π after each path, and ω_H at each s: ω2's spread over the histories that reach
+the lag.
+
 usage: /usr/bin/python3 analysis/sensitivity.py out/sensitivity.h5 -o out/sensitivity.md --figures out/
+       /usr/bin/python3 analysis/sensitivity.py --paths out/lag_paths.h5 -o out/lag_paths.md
        /usr/bin/python3 analysis/sensitivity.py out/sensitivity.h5 --histories out/lag_histories.h5 \\
            --histories out/lag_histories_60.h5 -o out/sensitivity.md --figures out/
 """
@@ -53,7 +59,9 @@ SYMBOLS = {"drive_radius": "R", "contact_distance": "d", "top_stop": "s_min", "m
 UNITS = {"drive_radius": "m", "contact_distance": "m", "top_stop": "m", "mu_static": "", "mu_kinetic": "",
          "drag": "kg/s", "string_length": "m", "bead_mass": "kg", "ball_mass": "kg", "tie_static_torque": "N m",
          "tie_kinetic_torque": "N m", "tie_damping": "N m s"}
-THRESHOLD_OF_GROUP = {("rise", "omega_rise"): "omega_rise", ("up", "omega_1"): "omega_1",
+# ω1 from the group `lock`, which approaches it in the main job's gentle steps (up's quick step
+# to 4.6π loses the lock on the way)
+THRESHOLD_OF_GROUP = {("rise", "omega_rise"): "omega_rise", ("lock", "omega_1"): "omega_1",
                       ("up", "omega_2"): "omega_2", ("up", "omega_fall"): "omega_fall_lag",
                       ("fall", "omega_fall"): "omega_fall_fresh"}
 
@@ -223,6 +231,48 @@ def histories(paths, astrojax):
     return found
 
 
+def paths(path, astrojax, omega_pi=10.0):
+    """Every chain of a sweep of paths to the lag (sweeps/lag_paths.toml): its group (the way it
+    crossed ω1), the bead's s and ω_ball of its window at omega_pi on the way up if that window
+    is lagging, and ω_H at that s from the continuation."""
+    sweep = ajx.Sweep(path)
+    sets = model_sets(sweep, 0)
+    hopf, rows = {}, []
+    for c in range(sweep.n_chains):
+        omega_ball, s = lag_at(sweep, c, omega_pi, +1)
+        k = level_window(sweep, c, omega_pi, +1)
+        g = int(sweep.group[c])
+        row = dict(path=sweep.group_names[g], purpose=sweep.group_purposes[g], s=s, omega_ball=omega_ball,
+                   cls=sweep.class_name(c, k) if k is not None else "not reached", omega_H=np.nan)
+        if np.isfinite(s):
+            key = round(s, 6)  # the continuation takes s to 1 µm
+            if key not in hopf:
+                hopf[key] = lag_continuation(astrojax, sets, key, 12 * PI)[0]
+            row["omega_H"] = hopf[key]
+        rows.append(row)
+    return rows
+
+
+def paths_report(path, rows, omega_pi=10.0):
+    """The markdown section of --paths."""
+    lines = ["## ω2 over the paths through ω1", "", f"- sweep: `{path}`; the lag read at {omega_pi:g}π on the way up",
+             "", f"| path | class at {omega_pi:g}π | s [m] | ω_ball [π] | ω_H at s [π] |", "|---|---|---|---|---|"]
+    for r in rows:
+        lines.append(f"| {ajx.printable(r['path'])} | {r['cls']} | {fmt(r['s'], 5)} | {fmt(r['omega_ball'], 4)} | "
+                     f"{fmt(r['omega_H'], 3)} |")
+    lag = [r for r in rows if np.isfinite(r["s"])]
+    if lag:
+        s = np.array([r["s"] for r in lag])
+        h = np.array([r["omega_H"] for r in lag])
+        lines += ["", f"- {len(lag)} of {len(rows)} paths end on the lag; s: {s.min():.5f} … {s.max():.5f} m "
+                  f"(spread {1e3 * (s.max() - s.min()):.2f} mm); ω_H: {fmt(np.nanmin(h))} … {fmt(np.nanmax(h))}π "
+                  f"(spread {fmt(np.nanmax(h) - np.nanmin(h))}π)"]
+    else:
+        lines += ["", "- no path ends on the lag"]
+    lines.append("")
+    return "\n".join(lines)
+
+
 def fmt(v, d=3):
     return f"{v:.{d}f}" if np.isfinite(v) else "—"
 
@@ -279,18 +329,29 @@ def report(path, out, values, table, hist, hist_paths):
 
 def main(argv=None):
     ap = ajx.parser(__doc__)
-    ap.add_argument("input", help="the paired sweep (sweeps/sensitivity.toml)")
+    ap.add_argument("input", nargs="?", help="the paired sweep (sweeps/sensitivity.toml)")
     ap.add_argument("-o", "--output", required=True, help="markdown report to write")
     ap.add_argument("--figures", metavar="DIR", help="write a tornado figure per number into DIR")
     ap.add_argument("--histories", action="append", default=[], metavar="H5",
                     help="hold sweeps of the lag (sweeps/lag_histories.toml), repeatable")
+    ap.add_argument("--paths", metavar="H5", help="a sweep of paths through ω1 to the lag (sweeps/lag_paths.toml)")
+    ap.add_argument("--lag-omega", type=float, default=10.0, metavar="W",
+                    help="with --paths: the level (in π rad/s, on the way up) where the lag is read (default 10)")
     ap.add_argument("--astrojax", metavar="PATH", help="the astrojax executable")
     args = ap.parse_args(argv)
+    if not args.input and not args.paths:
+        ap.error("give the paired sweep, or --paths H5, or both")
     exe = ajx.require_astrojax(args.astrojax)
+    if not 0 < args.lag_omega < 100:
+        ap.error(f"--lag-omega {args.lag_omega:g}: allowed 0 < W < 100 (in π rad/s)")
+    section = paths_report(args.paths, paths(args.paths, exe, args.lag_omega), args.lag_omega) if args.paths else ""
+    if not args.input:
+        ajx.write_report(args.output, "# ω2's spread over histories\n\n" + section)
+        return
     out, values, _ = measure_variants(args.input, exe)
     table = sensitivity_rows(out, values)
     hist = histories(args.histories, exe) if args.histories else None
-    ajx.write_report(args.output, report(args.input, out, values, table, hist, args.histories))
+    ajx.write_report(args.output, report(args.input, out, values, table, hist, args.histories) + section)
     if args.figures:
         os.makedirs(args.figures, exist_ok=True)
         for key, sym, _ in NUMBERS:

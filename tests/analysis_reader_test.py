@@ -190,6 +190,40 @@ class reader_formats(unittest.TestCase):
                 f.attrs["format_version"] = value
             refused(self, self.path("v.h5"), "/", words)
 
+    def test_brackets(self):
+        # Format 5: a bisection's bracket and its two probes (chain 1: ω_fall from 4π, past it at 2.5π).
+        def add(path, threshold=1, index=(0, 1)):
+            with h5py.File(path, "r+") as f:
+                b = f.create_group("brackets")
+                for k, v in (("chain", [1]), ("threshold", [threshold]), ("planned_probes", [2]), ("known_class", [1]),
+                             ("other_class", [0]), ("status", [1])):
+                    b.create_dataset(k, data=np.array(v, np.int32))
+                for k, v in (("from", 4), ("to", 2.5), ("width", 1.5), ("start_omega", 4), ("known_omega", 4),
+                             ("other_omega", 2.5)):
+                    b.create_dataset(k, data=np.array([v * np.pi]))
+                p = b.create_group("probes")
+                for k, v in (("chain", [1, 1]), ("index", list(index)), ("class", [1, 0]), ("ran", [1, 1]),
+                             ("known_side", [1, 0]), ("status", [0, 1])):
+                    p.create_dataset(k, data=np.array(v, np.int32))
+                for k, v in (("omega_m", [4, 2.5]), ("known_omega", [4, 4]), ("other_omega", [np.nan, 2.5])):
+                    p.create_dataset(k, data=np.array(v) * np.pi)
+                p.create_dataset("stats", data=np.zeros((2, 17)))
+                p.create_dataset("powers", data=np.zeros((2, 6)))
+        make_sweep(self.path("b.h5"), 5)
+        add(self.path("b.h5"))
+        s = ajx.SweepFile(self.path("b.h5"))
+        self.assertAlmostEqual(s.brackets["known_omega"][0], 4 * np.pi)
+        self.assertEqual(list(s.brackets["probes"]["class"]), [1, 0])
+        make_sweep(self.path("b.h5"), 5)
+        add(self.path("b.h5"), threshold=7)
+        refused(self, self.path("b.h5"), "/brackets/threshold", ["7", "outside [0, 3]"])
+        make_sweep(self.path("b.h5"), 5)
+        add(self.path("b.h5"), index=(1, 0))
+        refused(self, self.path("b.h5"), "/brackets/probes/index", ["expected chain 1 probe 0"])
+        make_sweep(self.path("b.h5"), 4)
+        add(self.path("b.h5"))
+        refused(self, self.path("b.h5"), "/brackets", ["new in format 5"])
+
     def test_missing_and_not_hdf5(self):
         refused(self, self.path("none.h5"), None, ["no such file"])
         with open(self.path("text.h5"), "w") as f:

@@ -1016,6 +1016,47 @@ class lag_limits(unittest.TestCase):
             self.assertFalse(os.path.exists(data("lag_bad.md")))
 
 
+class lag_paths(unittest.TestCase):
+    """analysis/sensitivity.py --paths: the lag reached through ω1 in two ways (levels 0.1π and
+    0.2π apart, tests/data/lag_paths_short.toml, about 1.5 s of CPU), the bead's s each leaves,
+    and the lag's Hopf point at each s from the continuation."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.h5 = data("lag_paths_short.h5")
+        if os.path.exists(cls.h5):
+            os.remove(cls.h5)
+        run([ASTROJAX, "sweep", os.path.join(SOURCE, "tests/data/lag_paths_short.toml"), "-o", cls.h5, "-q"])
+
+    def test_paths_leave_the_bead_at_different_s_and_the_hopf_point_falls_with_s(self):
+        out = data("lag_paths.md")
+        script("sensitivity.py", "--paths", self.h5, "--lag-omega", "6", "-o", out, "--astrojax", ASTROJAX)
+        rows = {r[0]: r for r in (cells(l) for l in section(out, "ω2 over the paths through ω1")) if r[0] in
+                ("fine", "coarse")}
+        self.assertEqual(sorted(rows), ["coarse", "fine"])
+        for r in rows.values():
+            self.assertEqual(r[1], "lagging-circular")  # both paths reach the lag
+        s = {k: float(r[2]) for k, r in rows.items()}
+        ball = {k: float(r[3]) for k, r in rows.items()}
+        hopf = {k: float(r[4]) for k, r in rows.items()}
+        # The slide at ω1 decides s: the two paths must not leave the bead at the same place to
+        # the file's 10 µm (they differ by about 3 mm), or the table measures no spread.
+        self.assertGreater(abs(s["coarse"] - s["fine"]), 1e-5)
+        # Along the string the stuck lag turns faster further out and loses its stability at a
+        # lower ω_m (ω_H = ω_ball,H + (τ_H − τ_k)/c_a with τ_H falling with s): opposite orders.
+        lo, hi = sorted(s, key=s.get)
+        self.assertLess(ball[lo], ball[hi])
+        self.assertGreater(hopf[lo], hopf[hi])
+
+    def test_bad_lag_omega_names_the_option_and_range(self):
+        code, text = script("sensitivity.py", "--paths", self.h5, "--lag-omega", "0", "-o", data("lag_bad.md"),
+                            "--astrojax", ASTROJAX, check=False)
+        self.assertEqual(code, 2)
+        self.assertIn("--lag-omega", text)
+        self.assertIn("0 < W < 100", text)
+        self.assertFalse(os.path.exists(data("lag_bad.md")))
+
+
 class paper_scheme(ImageChecks):
     """analysis/paper_scheme.py: the paper's scheme against DOP853 from Table 1's starts."""
 

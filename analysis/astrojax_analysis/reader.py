@@ -21,9 +21,12 @@ from .errors import SweepFileError
 # names, labels, purposes, overrides and failures as string arrays and adds /classes; 4 made
 # motor_work and motor_power the motor's at its rod with a clutch (the string's side moved to
 # string_work and string_power; clutch_loss, clutch_power, tie_energy and /trajectory/chi new)
-# and added the motor's ledger, two columns, to /tasks/final_state; 5 added /basins to a sweep
-# with basin chains (nothing else changed).
+# and added the motor's ledger, two columns, to /tasks/final_state; 5 added /brackets, the
+# bisections of a sweep with [bisect] chains, and /basins, a sweep's basin chains (laid out as
+# format 4 otherwise).
 FORMAT_VERSION = 5
+THRESHOLD_NAMES = ("omega_rise", "omega_fall", "omega_1", "omega_2")  # /brackets/threshold codes
+BISECT_STATUS = ("running", "converged", "start not on the known side", "no crossing in the range", "a probe failed")
 
 SAMPLE_COLUMNS = ("t", "omega_m", "L1", "T1", "T2", "mode")
 SAMPLE_VECTORS = ("r1", "r2")
@@ -271,6 +274,7 @@ class SweepFile:
             self._read_windows(f)
             self._read_samples_layout(f)
             self._read_chains(f)
+            self._read_brackets(f)
             self._read_tasks(f)
             self.basins = _read_basins(f, self.path, self.version, self.cls, len(self.classes))
             self.config, self.overrides = read_config(f, self.path, self.version)
@@ -398,6 +402,54 @@ class SweepFile:
         start = dataset(f, p, "chains/start_omega", "f", (C,), optional=True)
         self.start_omega = read(start, p) if start is not None else None
 
+    def _read_brackets(self, f):
+        """/brackets (format 5): {name: array} per bisection chain, and "probes": {name: array}
+        per probe; None without bisections. Checked as the C++ reader checks it."""
+        p = self.path
+        self.brackets = None
+        if "brackets" not in f:
+            return
+        if self.version < 5:
+            raise SweepFileError(p, "/brackets", f"present in a file of format {self.version}; /brackets is new in format 5")
+        B = dataset(f, p, "brackets/chain", "i", (None,)).shape[0]
+        P = dataset(f, p, "brackets/probes/chain", "i", (None,)).shape[0]
+        b = {k: read(dataset(f, p, "brackets/" + k, "i", (B,)), p).astype(int)
+             for k in ("chain", "threshold", "planned_probes", "known_class", "other_class", "status")}
+        b.update({k: read(dataset(f, p, "brackets/" + k, "f", (B,)), p)
+                  for k in ("from", "to", "width", "start_omega", "known_omega", "other_omega")})
+        pr = {k: read(dataset(f, p, "brackets/probes/" + k, "i", (P,)), p).astype(int)
+              for k in ("chain", "index", "class", "ran", "known_side", "status")}
+        pr.update({k: read(dataset(f, p, "brackets/probes/" + k, "f", (P,)), p)
+                   for k in ("omega_m", "known_omega", "other_omega")})
+        pr["stats"] = read(dataset(f, p, "brackets/probes/stats", "f", (P, None)), p)
+        pr["powers"] = read(dataset(f, p, "brackets/probes/powers", "f", (P, None)), p)
+        n = len(self.classes) - 1
+        check_range(b["chain"], p, "brackets/chain", 0, self.n_chains - 1, "chain index")
+        check_range(b["threshold"], p, "brackets/threshold", 0, 3, "threshold code")
+        check_range(b["planned_probes"], p, "brackets/planned_probes", 2, 64)
+        for k in ("known_class", "other_class"):
+            check_range(b[k], p, "brackets/" + k, -1, n, "class code")
+        check_range(b["status"], p, "brackets/status", -1, len(BISECT_STATUS) - 1, "status")
+        for k in ("from", "to", "width"):
+            check_finite(b[k], p, "brackets/" + k)
+        if int(b["planned_probes"].sum()) != P:
+            raise SweepFileError(p, "/brackets/probes/chain", f"{P} probes, but /brackets/planned_probes plans "
+                                 f"{int(b['planned_probes'].sum())}")
+        want_chain = np.repeat(b["chain"], b["planned_probes"])
+        want_index = np.concatenate([np.arange(k) for k in b["planned_probes"]]) if B else np.zeros(0, int)
+        bad = np.flatnonzero((pr["chain"] != want_chain) | (pr["index"] != want_index))
+        if len(bad):
+            i = int(bad[0])
+            raise SweepFileError(p, "/brackets/probes/index", f"at [{i}]: chain {pr['chain'][i]} probe {pr['index'][i]}, "
+                                 f"expected chain {want_chain[i]} probe {want_index[i]}")
+        check_range(pr["class"], p, "brackets/probes/class", -1, n, "class code")
+        check_range(pr["ran"], p, "brackets/probes/ran", -1, 1)
+        check_range(pr["known_side"], p, "brackets/probes/known_side", -1, 1)
+        check_range(pr["status"], p, "brackets/probes/status", -1, len(BISECT_STATUS) - 1, "status")
+        check_finite(pr["omega_m"], p, "brackets/probes/omega_m", pr["ran"] == 1)
+        b["probes"] = pr
+        self.brackets = b
+
     def _read_tasks(self, f):
         p = self.path
         chain = dataset(f, p, "tasks/chain", "i", (None,))
@@ -407,8 +459,9 @@ class SweepFile:
         self.task_index = read(dataset(f, p, "tasks/index", "i", (T,)), p).astype(int)
         self.task_t_begin = read(dataset(f, p, "tasks/t_begin", "f", (T,)), p)
         self.task_t_end = read(dataset(f, p, "tasks/t_end", "f", (T,)), p)
-        check_finite(self.task_t_begin, p, "tasks/t_begin")
-        check_finite(self.task_t_end, p, "tasks/t_end")
+        planned = ~np.isin(self.task_chain, self.brackets["chain"]) if self.brackets else None  # a probe's times are not
+        check_finite(self.task_t_begin, p, "tasks/t_begin", planned)
+        check_finite(self.task_t_end, p, "tasks/t_end", planned)
         self.task_status = read(dataset(f, p, "tasks/status", "i", (T,)), p).astype(int)
         check_range(self.task_status, p, "tasks/status", 0, TASK_STATUSES - 1, "status")
         dataset(f, p, "tasks/steps", "i", (T,))

@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <limits>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -32,6 +33,7 @@
 #include "parallel/signals.hpp"
 #include "sim/paper_scheme.hpp"
 #include "sim/simulation.hpp"
+#include "sweep/bisection.hpp"
 #include "sweep/codec.hpp"
 #include "sweep/orbit_classifier.hpp"
 #include "sweep/plan.hpp"
@@ -132,6 +134,7 @@ struct SweepOutput {
   io::JournalContents replay;
   std::vector<results::TaskStatus> status;  // per task
   std::vector<std::string> failures;
+  std::map<std::size_t, std::vector<std::byte>> probe_carry;  // per finished bisection probe: the next one's carry
 
   SweepOutput(const SweepArgs& a, const config::SweepConfig& c, const sweep::SweepPlan& p)
       : args(a), cfg(c), plan(p), final_path(c.output_path), part_path(c.output_path + ".part"),
@@ -224,6 +227,7 @@ struct SweepOutput {
     } else {
       result = results::decode_result(record.subspan(1));
     }
+    if (result.probe) probe_carry[id] = result.probe->carry;
     status[id] = out.ok ? results::TaskStatus::Ok : results::TaskStatus::Failed;
     if (!out.ok) failures.push_back(fmt::format("task {} (chain {}, part {}): {}", id, chain, id - first_task[chain], out.failure));
     file->write_task(id, chain, result);  // written and flushed at once
@@ -269,11 +273,14 @@ std::vector<parallel::Chain> chains_to_run(const SweepOutput& output, double& do
   for (std::size_t c = 0; c < plan.setups.size(); ++c) {
     std::size_t k = 0;
     while (k < spans[c].size() && status[first_task[c] + k] == results::TaskStatus::Ok) ++k;
-    if (k > 0) done_sim += spans[c][k - 1].t_end;
+    if (k > 0 && !plan.bisect[c]) done_sim += spans[c][k - 1].t_end;  // a probe's times are not planned
     if (k == spans[c].size() || status[first_task[c] + k] != results::TaskStatus::NeverRan) continue;
     parallel::Chain ch;
     ch.id = std::int64_t(c);
-    ch.carry = sweep::encode(k == 0 ? plan.start_state(c) : output.file->state(first_task[c] + k - 1));
+    if (plan.bisect[c])  // probe 0 starts from the seed; a later one from the carry its predecessor left
+      ch.carry = k == 0 ? sweep::encode(sweep::BisectCarry{}) : output.probe_carry.at(first_task[c] + k - 1);
+    else
+      ch.carry = sweep::encode(k == 0 ? plan.start_state(c) : output.file->state(first_task[c] + k - 1));
     for (std::size_t j = k; j < spans[c].size(); ++j) {
       sweep::ByteWriter w;
       w.put<std::int64_t>(std::int64_t(c));
@@ -294,6 +301,16 @@ parallel::WorkFunction task_work(const sweep::SweepPlan& plan) {
     sweep::ByteReader r(task.input.data(), task.input.size());
     const auto chain = std::size_t(r.get<std::int64_t>());
     const auto span = std::size_t(r.get<std::int64_t>());
+    if (const auto& b = plan.bisect[chain]) {  // a bisection's probe: one held level
+      const sweep::ChainSetup& c = setups[chain];
+      sweep::Probe probe = sweep::run_probe(*b, c.model, c.run, c.sample_rate, int(span), sweep::decode_carry(carry));
+      parallel::Outcome o;
+      o.ok = probe.out.ok;
+      o.error = probe.out.failure;
+      o.carry = sweep::encode(probe.next);
+      o.output = results::encode(results::probe_result(std::move(probe)));
+      return o;
+    }
     sweep::TaskOutput out = sweep::run_task(setups[chain], plan.spans[chain][span], sweep::decode_state(carry));
     parallel::Outcome o;
     o.ok = out.ok;

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "app/commands.hpp"
+#include "app/thresholds_brackets.hpp"
 #include "config/config.hpp"
 #include "config/text.hpp"
 #include "results/reclassify.hpp"
@@ -724,7 +725,15 @@ int thresholds_command(const ThresholdsArgs& args) {
   }
   std::vector<Row> rows;
   for (std::size_t c = 0; c < sw.chains.size(); ++c)
-    for (sweep::Threshold t : sweep::kThresholds) rows.push_back({c, t, sweep::find_threshold(t, sw.chains[c]), {}, {}});
+    if (!is_bisection_chain(*in, c))  // a bisection's bracket is in /brackets, not in its windows
+      for (sweep::Threshold t : sweep::kThresholds) rows.push_back({c, t, sweep::find_threshold(t, sw.chains[c]), {}, {}});
+  ChainNames names;
+  for (std::size_t c = 0; c < sw.chains.size(); ++c) {
+    names.params_.push_back(sw.params[c]);
+    names.groups_.push_back(sw.group[c]);
+    names.variants_.push_back(sw.variants[sw.variant[c]].name);
+    names.labels_.push_back(chain_name(sw, c) + (sw.variants[sw.variant[c]].name.empty() ? "" : " " + sw.variants[sw.variant[c]].name));
+  }
   if (args.refine > 0 || hold)
     if (const std::string error = judge_rows(args, *in, settings, hold, sw, rows); !error.empty()) {
       std::fprintf(stderr, "error: %s\n", config::printable(error).c_str());
@@ -737,10 +746,14 @@ int thresholds_command(const ThresholdsArgs& args) {
                          hold->in_drag_times ? fmt::format("{:g} drag times m/c_D", hold->value)
                                              : fmt::format("{:g} s", hold->value))
            : "";
-  std::fputs(report(args, sw, rows, onsets, false, hold_text).c_str(), stdout);
+  if (!rows.empty() || !in->brackets()) std::fputs(report(args, sw, rows, onsets, false, hold_text).c_str(), stdout);
+  if (in->brackets()) std::fputs(bisection_report(*in, names).c_str(), stdout);
   if (!args.markdown.empty() && !write_text(args.markdown, report(args, sw, rows, onsets, true, hold_text)))
     return kExitBadInput;
-  if (!args.csv.empty() && !write_csv(args.csv, csv_table(args, sw, rows, bool(hold)))) return kExitBadInput;
+  if (!args.csv.empty()) {
+    const std::string csv = csv_table(args, sw, rows, bool(hold));
+    if (!write_csv(args.csv, in->brackets() ? with_bisection_rows(csv, *in, names) : csv)) return kExitBadInput;
+  }
   if (args.sequence || !args.sequence_csv.empty()) {
     std::string seq;
     const std::string text = sequence_report(args, sw, seq);

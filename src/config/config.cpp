@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <numbers>
 #include <limits>
 #include <optional>
 #include <fmt/format.h>
@@ -528,6 +529,66 @@ std::vector<sweep::Segment> parse_protocol(const toml::table& root, std::string_
   return out;
 }
 
+// [bisect] (instead of [protocol] or [hold]): one threshold per grid point by bisection on held
+// levels (sweep/bisection.hpp). Every bound is checked here, before any work.
+sweep::BisectSpec parse_bisect(const toml::table& root, std::string_view file, SweepConfig& c) {
+  for (const char* other : {"protocol", "hold"})
+    if (root.contains(other))
+      throw ConfigError(fmt::format("{}: key 'bisect': a sweep has one of [protocol], [hold] or [bisect]; this one "
+                                    "also has [{}]", file, other));
+  const toml::table& bt = subtable(root, "bisect", file);
+  Reader r(bt, "bisect", file);
+  sweep::BisectSpec b;
+  const std::string t = r.word("threshold", "", {"omega_rise", "omega_fall", "omega_1", "omega_2"});
+  if (t.empty()) r.fail("threshold", "missing; allowed: omega_rise, omega_fall, omega_1, omega_2");
+  for (sweep::Threshold th : sweep::kThresholds)
+    if (sweep::to_string(th) == t) b.threshold = th;
+  b.start_seed = r.word("start_seed", b.threshold == sweep::Threshold::Rise ? "hanging" : "circular_high",
+                        {"hanging", "circular_high", "locked_orbit"});
+  b.start_omega = r.number("start_omega", 0.0, 0.0, kOmegaMax);
+  for (const char* k : {"from", "to", "width"})
+    if (!r.has(k)) r.fail(k, "missing (from: a level on the threshold's known side, to: the far end, width: the "
+                             "bracket's final width, all in rad/s)");
+  b.from = r.number("from", 0.0, 0.0, kOmegaMax);
+  b.to = r.number("to", 0.0, 0.0, kOmegaMax);
+  const int dir = sweep::bisect_direction(b.threshold);
+  if ((b.to - b.from) * dir <= 0.0)
+    r.fail("to", fmt::format("{} is not {} than from = {}: {} is found with {} ω_m; allowed: to {} from", b.to,
+                             dir > 0 ? "larger" : "smaller", b.from, t, dir > 0 ? "rising" : "falling", dir > 0 ? ">" : "<"));
+  b.width = r.number("width", 0.0, 0.0, kOmegaMax, true);
+  b.settle = r.number("settle", b.settle, 0.0, 1e6);
+  b.measure = r.number("measure", b.measure, 0.0, 1e6, true);
+  b.step_rate = r.number("step_rate", b.step_rate, 0.0, 1e4, true);
+  c.sample_rate = r.number("sample_rate", 100.0, 0.0, 1e5, true);
+  r.reject_unknown();
+  const double range = std::abs(b.to - b.from), w_min = sweep::min_width(b);
+  if (b.width >= range)
+    r.fail("width", fmt::format("{} rad/s is not below |to - from| = {} rad/s: nothing to bisect; allowed ({}, {})",
+                                b.width, range, w_min, range));
+  if (b.width < w_min)
+    r.fail("width", fmt::format("{} rad/s ({:.4f}π) is below what a window of measure = {} s resolves; allowed at "
+                                "least 2π/(4·measure) = {:.6g} rad/s ({:.4f}π): widen the bracket or lengthen "
+                                "bisect.measure", b.width, b.width / std::numbers::pi, b.measure, w_min,
+                                w_min / std::numbers::pi));
+  c.windows_per_task = 1;
+  c.start_seed = b.start_seed;
+  c.start_omega = b.start_omega;
+  return b;
+}
+
+// A map's grid (a [bisect] part): every axis a model parameter with at least two values.
+void check_map_grid(const SweepConfig& c) {
+  for (const sweep::GridAxis& a : c.grid) {
+    if (a.key == sweep::kRampRateAxis)
+      throw ConfigError(fmt::format("{}: key 'grid.{}': a bisection holds levels and has no ramps; allowed: a model "
+                                    "parameter", c.source_name, a.key));
+    if (a.values.size() < 2)
+      throw ConfigError(fmt::format("{}: key 'grid.{}': a map's axis needs at least 2 values, it has {}; allowed: 2 "
+                                    "or more values (or leave the axis out and set the parameter in [model])",
+                                    c.source_name, a.key, a.values.size()));
+  }
+}
+
 }  // namespace
 
 namespace {
@@ -642,9 +703,9 @@ sweep::BasinSpec read_basin(const toml::table& root, SweepConfig& c) {
 void read_sweep_tables(const toml::table& root, SweepConfig& c, double chains_before = 0.0) {
   const std::string_view file = c.source_name;
   if (root.contains("basin")) {
-    for (const char* other : {"protocol", "hold"})
+    for (const char* other : {"protocol", "hold", "bisect"})
       if (root.contains(other))
-        throw ConfigError(fmt::format("{}: key 'basin': a sweep has one of [protocol], [hold] and [basin], not {} beside it",
+        throw ConfigError(fmt::format("{}: key 'basin': a sweep has one of [protocol], [hold], [bisect] and [basin], not {} beside it",
                                       file, other));
     c.basin = read_basin(root, c);
   } else if (root.contains("hold")) {
@@ -681,6 +742,8 @@ void read_sweep_tables(const toml::table& root, SweepConfig& c, double chains_be
     r.reject_unknown();
     c.windows_per_task = 1;
     c.hold = h;
+  } else if (root.contains("bisect")) {
+    c.bisect = parse_bisect(root, file, c);
   } else {
     c.protocol = parse_protocol(root, file, c);
   }
@@ -698,13 +761,14 @@ void read_sweep_tables(const toml::table& root, SweepConfig& c, double chains_be
     c.output_path = r.text("path", c.output_path);
     r.reject_unknown();
   }
+  if (c.bisect) check_map_grid(c);
   check_chain_count(c, chains_before);  // before the grid is expanded: a sweep too large to hold is refused, not run out of memory
   try {
     sweep::expand_grid(c.model, c, file);  // every grid point is checked before any work
   } catch (const sweep::GridError& e) {
     throw ConfigError(e.what());
   }
-  if (c.hold || c.basin) return;
+  if (c.hold || c.basin || c.bisect) return;
   try {
     sweep::compile(c.protocol, c.start_omega);
   } catch (const std::invalid_argument& e) {
@@ -713,10 +777,10 @@ void read_sweep_tables(const toml::table& root, SweepConfig& c, double chains_be
 }
 
 
-const std::set<std::string> kSweepTables{"model", "layers", "integrator", "initial", "protocol", "grid", "hold", "basin", "output"};
+const std::set<std::string> kSweepTables{"model", "layers", "integrator", "initial", "protocol", "grid", "hold", "basin", "bisect", "output"};
 // The tables a variant or a group may set over the file's.
 const std::set<std::string> kVariantTables{"model", "layers", "integrator", "initial"};
-const std::set<std::string> kGroupTables{"model", "layers", "integrator", "initial", "protocol", "hold", "basin", "grid"};
+const std::set<std::string> kGroupTables{"model", "layers", "integrator", "initial", "protocol", "hold", "basin", "bisect", "grid"};
 
 // src's keys over dst's, table by table; anything else (numbers, arrays such as the segments
 // of a protocol or a grid axis) replaces what dst had.
@@ -852,6 +916,8 @@ std::vector<GroupSpec> read_groups(const toml::table& root, const std::vector<Va
       r.fail("hold", "a group has either [group.protocol] (ramps, steps) or [group.hold], not both");
     if (g.tables.contains("basin") && (g.tables.contains("protocol") || g.tables.contains("hold")))
       r.fail("basin", "a group has one of [group.protocol], [group.hold] and [group.basin]");
+    if (g.tables.contains("bisect") && (g.tables.contains("protocol") || g.tables.contains("hold")))
+      r.fail("bisect", "a group has one of [group.protocol], [group.hold] or [group.bisect]");
     out.push_back(std::move(g));
   });
   return out;
@@ -866,6 +932,11 @@ toml::table part_root(const toml::table& base, const VariantSpec& v, const Group
   if (g.tables.contains("protocol")) root.erase("hold");
   if (g.tables.contains("basin")) root.erase("protocol"), root.erase("hold");
   if (g.tables.contains("protocol") || g.tables.contains("hold")) root.erase("basin");
+  // And a group's [bisect] replaces both, as either replaces the file's [bisect].
+  if (g.tables.contains("bisect")) root.erase("protocol"), root.erase("hold");
+  if (g.tables.contains("protocol") || g.tables.contains("hold")) root.erase("bisect");
+  if (g.tables.contains("basin")) root.erase("bisect");
+  if (g.tables.contains("bisect")) root.erase("basin");
   merge_into(root, g.tables);
   return root;
 }
@@ -997,7 +1068,7 @@ OrbitsConfig parse_orbits_config(std::string_view text, std::string_view source_
   OrbitsConfig c;
   const toml::table root = begin(c, text, source_name, overrides,
                                  {"model", "layers", "integrator", "initial", "schedule", "output", "protocol",
-                                  "grid", "hold", "orbits"});
+                                  "grid", "hold", "bisect", "orbits"});
   const std::string file = c.source_name;
   const physics::Parameters& p = c.model.p;
   if (const toml::table* t = root.get_as<toml::table>("orbits")) {

@@ -227,6 +227,25 @@ void basin_keys(std::vector<KeyInfo>& k) {
   k.push_back(num("basin", "sample_rate", "1/s", 0.0, 1e5, true, false, "100", "samples stored per second of every window"));
 }
 
+// [bisect] (astrojax sweep, instead of [protocol] or [hold]): sweep/bisection.hpp.
+void bisect_keys(std::vector<KeyInfo>& k) {
+  k.push_back(other("bisect", "threshold", "word", "", "omega_rise, omega_fall, omega_1, omega_2", "",
+                    "the threshold bracketed at every grid point"));
+  k.push_back(other("bisect", "start_seed", "word", "", "hanging, circular_high, locked_orbit",
+                    "hanging (omega_rise), circular_high (the others)", "the state at t = 0, a seed state at start_omega"));
+  k.push_back(num("bisect", "start_omega", "rad/s", 0.0, kOmegaMax, false, false, "0", "ω_m of the seed at t = 0"));
+  k.push_back(num("bisect", "from", "rad/s", 0.0, kOmegaMax, false, false, "",
+                  "the first level, on the threshold's known side (reached from the seed at step_rate)"));
+  k.push_back(num("bisect", "to", "rad/s", 0.0, kOmegaMax, false, false, "",
+                  "the far end of the range: above from for omega_rise, omega_1, omega_2, below it for omega_fall"));
+  k.push_back(num("bisect", "width", "rad/s", 0.0, kOmegaMax, true, false, "",
+                  "the bracket's final width; at least 2π/(4·measure), below |to − from|"));
+  k.push_back(num("bisect", "settle", "s", 0.0, 1e6, false, false, "100", "transient at each probed level"));
+  k.push_back(num("bisect", "measure", "s", 0.0, 1e6, true, false, "20", "the classified window at each probed level"));
+  k.push_back(num("bisect", "step_rate", "rad/s^2", 0.0, 1e4, true, false, "0.1", "|dω_m/dt| on the way to a level"));
+  k.push_back(num("bisect", "sample_rate", "1/s", 0.0, 1e5, true, false, "100", "samples per second of every probe's window"));
+}
+
 // [grid]: each axis a list of values or {start, stop, num}.
 void grid_keys(std::vector<KeyInfo>& k) {
   for (const std::string& axis : physics::grid_parameter_keys()) {
@@ -250,7 +269,7 @@ void group_keys(std::vector<KeyInfo>& k) {
   k.push_back(other("group", "name", "text", "", "1 to 40 letters, digits, '_' or '-'", "", "the chain group's name"));
   k.push_back(other("group", "purpose", "text", "", "non-empty", "", "why its chains are there (any UTF-8 but control "
                     "characters other than TAB); a group may also hold "
-                    "[model], [layers], [integrator], [initial], [protocol] or [hold], and [grid] tables"));
+                    "[model], [layers], [integrator], [initial], [protocol], [hold] or [bisect], and [grid] tables"));
   k.push_back(other("group", "variants", "list of words", "", "names of [variant.NAME] tables", "every variant",
                     "the variants the group runs with"));
 }
@@ -276,7 +295,7 @@ void classifier_keys(std::vector<KeyInfo>& k) {
 // Every section's keys, in the order of a file's tables.
 std::vector<KeyInfo> build() {
   std::vector<KeyInfo> k = physics_keys();
-  for (auto add : {integrator_keys, initial_keys, schedule_keys, output_keys, protocol_keys, hold_keys, basin_keys, grid_keys,
+  for (auto add : {integrator_keys, initial_keys, schedule_keys, output_keys, protocol_keys, hold_keys, basin_keys, bisect_keys, grid_keys,
                    group_keys, orbits_keys, classifier_keys})
     add(k);
   return k;

@@ -28,8 +28,9 @@ namespace ajx::results {
 //      /trajectory/motor_work and a sweep's /windows/motor_power are at the rod (W_m), the
 //      string's side moved to string_work, string_power; clutch_loss, clutch_power,
 //      /trajectory/chi and tie_energy new; /trajectory/phi is the motor's phase.
-//   5  a sweep with basin chains holds /basins (results/basin_file.hpp); nothing else changed,
-//      so a format-5 file without basins reads as format 4 did.
+//   5  sweeps with [bisect] chains hold /brackets (each bisection's bracket and every probe);
+//      files without bisections are laid out as in format 4.
+//      A sweep with basin chains holds /basins (results/basin_file.hpp), also since 5.
 inline constexpr std::int64_t kFileFormatVersion = 5;
 
 inline void write_format(io::File& f, std::string_view kind) {

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,7 @@
 #include "physics/parameter_table.hpp"
 #include "physics/state_row.hpp"
 #include "io/hdf5_file.hpp"
+#include "results/brackets_file.hpp"
 #include "results/sweep_result.hpp"
 #include "sweep/orbit_classes.hpp"
 #include "sweep/orbit_classifier.hpp"
@@ -130,6 +132,8 @@ class SweepFile {
     tg.create_filled("final_state", {T_, kStateCols}, io::DType::Float64, kNotComputed, {1, kStateCols})
         .set_attribute("columns", std::span<const std::string>(physics::state_column_names()));
     write_basin_layout(f_, cfg, plan);
+    brackets_.emplace(plan);
+    create_brackets(f_, plan, *brackets_);
     f_.flush();
   }
 
@@ -161,6 +165,10 @@ class SweepFile {
 
   void write_task(std::size_t task, std::size_t chain, const TaskResult& result) {
     write_windows(chain, result.windows);
+    if (result.probe) {
+      if (!brackets_ || brackets_->probe_row.at(task) < 0) throw io::Hdf5Error("sweep file: a probe's result for a task that is not a probe");
+      write_probe([this](const std::string& p) -> io::Dataset& { return ds(p); }, *brackets_, task, chain, *result.probe);
+    }
     const sweep::TaskOutput& out = result.summary;
     const auto st = std::int32_t(out.ok ? TaskStatus::Ok : TaskStatus::Failed);
     ds("tasks/status").write_region({task}, {1}, std::span<const std::int32_t>(&st, 1));
@@ -306,6 +314,7 @@ class SweepFile {
     std::vector<double> phase(C_ * W_, kNotComputed);
     std::vector<std::int32_t> dir(C_ * W_, 0), seg(C_ * W_, -1);
     for (std::size_t c = 0; c < C_; ++c) {
+      if (setups[c].protocol.windows.empty()) continue;  // a bisection: its probes are in /brackets
       const physics::MotorSchedule motor = setups[c].motor();
       for (std::size_t k = 0; k < setups[c].protocol.windows.size(); ++k) {
         const auto& w = setups[c].protocol.windows[k];
@@ -397,6 +406,7 @@ class SweepFile {
 
   io::File f_;
   std::map<std::string, io::Dataset> open_;
+  std::optional<BracketsLayout> brackets_;  // set by create()
   std::size_t C_, W_, cap_, T_;
 };
 

@@ -171,6 +171,8 @@ SweepReader::SweepReader(const std::filesystem::path& path) : path_(path.string(
     read_classes();
     step = "basins";
     read_basins();
+    step = "brackets";
+    read_brackets();
   } catch (const io::Hdf5Error& e) {
     fail(step, fmt::format("cannot be read (the file is damaged): {}", e.what()));
   }

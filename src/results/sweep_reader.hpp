@@ -49,6 +49,23 @@ struct NameList {
   std::vector<std::int32_t> of_chain;  // each chain's index into names
 };
 
+// /brackets (format 5, a sweep with [bisect] chains): per bisection chain and per probe, as
+// results/brackets_file.hpp writes them.
+struct BracketTable {
+  std::vector<std::int64_t> chain;                       // per bracket: its chain
+  std::vector<std::int32_t> threshold, planned;           // sweep::Threshold; probes planned
+  std::vector<double> from, to, width, start_omega;       // [rad/s]
+  std::vector<double> known_omega, other_omega;           // the bracket [rad/s]
+  std::vector<std::int32_t> known_class, other_class, status;  // status: sweep::BisectStatus, -1 not computed
+  struct Probes {
+    std::vector<std::int64_t> chain, index;
+    std::vector<double> omega_m, known_omega, other_omega;
+    std::vector<std::int32_t> cls, ran, known_side, status;
+    Array<double> stats, powers;  // probes × kNumStats, probes × kNumPowers
+  } probes;
+  std::size_t size() const { return chain.size(); }
+};
+
 class SweepReader {
  public:
   // Opens read-only and validates; throws SweepFileError.
@@ -116,6 +133,9 @@ class SweepReader {
 
   const io::File& file() const { return f_; }
 
+  // /brackets; none for a sweep without bisections.
+  const std::optional<BracketTable>& brackets() const { return brackets_; }
+
  private:
   [[noreturn]] void fail(std::string_view dataset, const std::string& problem) const;
   io::Dataset dataset(std::string_view name, std::size_t rank, io::TypeClass type) const;
@@ -131,6 +151,7 @@ class SweepReader {
   void read_tasks();
   void read_classes() const;
   void read_basins();
+  void read_brackets();  // sweep_reader_brackets.cpp
 
   std::string path_;
   io::File f_;
@@ -152,6 +173,7 @@ class SweepReader {
   std::vector<double> basin_omega_;
   Array<std::int32_t> basin_count_;
   Array<double> basin_fraction_, basin_lower_, basin_upper_;
+  std::optional<BracketTable> brackets_;
 };
 
 }  // namespace ajx::results

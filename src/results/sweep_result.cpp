@@ -65,6 +65,34 @@ TaskResult make_result(const sweep::ChainSetup& chain, sweep::TaskOutput out, st
   return r;
 }
 
+TaskResult probe_result(sweep::Probe p) {
+  TaskResult r;
+  ProbeRecord& rec = r.probe.emplace();
+  rec.ran = p.ran ? 1 : 0;
+  rec.omega = p.omega;
+  rec.known_side = p.known_side ? 1 : 0;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (p.ran) {
+    rec.row = window_row(p.classification);
+    const sweep::WindowPowers w = sweep::window_powers(p.out.windows.front());
+    for (std::size_t k = 0; k < kNumPowers; ++k) rec.powers[k] = kPowers[k].of(w);
+  } else {
+    rec.row.stats.fill(nan);
+    rec.row.mode_fraction.fill(nan);
+    rec.powers.fill(nan);
+  }
+  rec.known_omega = p.next.known_omega;
+  rec.other_omega = p.next.other_omega;
+  rec.known_class = p.next.known_class;
+  rec.other_class = p.next.other_class;
+  rec.status = std::int32_t(p.next.status);
+  rec.carry = sweep::encode(p.next);
+  p.out.windows.clear();
+  if (p.out.ok) p.out.final_state = p.next.known;  // /tasks/final_state: where the next probe starts
+  r.summary = std::move(p.out);
+  return r;
+}
+
 std::vector<std::byte> encode(const TaskResult& r) {
   sweep::ByteWriter w;
   w.put_vector(sweep::encode(r.summary));
@@ -78,6 +106,23 @@ std::vector<std::byte> encode(const TaskResult& r) {
     w.put(x.powers);
     w.put<std::uint64_t>(x.chunks.size());
     for (const auto& c : x.chunks) w.put_vector(c);
+  }
+  if (r.probe) {  // after the windows: a record without it reads as before
+    const ProbeRecord& p = *r.probe;
+    w.put<std::uint8_t>(1);
+    w.put(p.ran);
+    w.put(p.omega);
+    w.put(p.known_side);
+    w.put(p.row.cls);
+    w.put(p.row.stats);
+    w.put(p.row.mode_fraction);
+    w.put(p.powers);
+    w.put(p.known_omega);
+    w.put(p.other_omega);
+    w.put(p.known_class);
+    w.put(p.other_class);
+    w.put(p.status);
+    w.put_vector(p.carry);
   }
   return w.take();
 }
@@ -96,6 +141,23 @@ TaskResult decode_result(std::span<const std::byte> bytes) {
     x.powers = rd.get<decltype(x.powers)>();
     x.chunks.resize(rd.get<std::uint64_t>());
     for (auto& c : x.chunks) c = rd.get_vector<std::byte>();
+  }
+  if (!rd.done()) {
+    if (rd.get<std::uint8_t>() != 1) throw std::runtime_error("sweep result: unknown trailing block");
+    ProbeRecord& p = r.probe.emplace();
+    p.ran = rd.get<std::int32_t>();
+    p.omega = rd.get<double>();
+    p.known_side = rd.get<std::int32_t>();
+    p.row.cls = rd.get<std::int32_t>();
+    p.row.stats = rd.get<decltype(p.row.stats)>();
+    p.row.mode_fraction = rd.get<decltype(p.row.mode_fraction)>();
+    p.powers = rd.get<decltype(p.powers)>();
+    p.known_omega = rd.get<double>();
+    p.other_omega = rd.get<double>();
+    p.known_class = rd.get<std::int32_t>();
+    p.other_class = rd.get<std::int32_t>();
+    p.status = rd.get<std::int32_t>();
+    p.carry = rd.get_vector<std::byte>();
   }
   if (!rd.done()) throw std::runtime_error("sweep result: trailing bytes");
   return r;

@@ -7,9 +7,12 @@
 #include <cstddef>
 #include <cstdint>
 #include <iterator>
+#include <limits>
+#include <optional>
 #include <span>
 #include <vector>
 
+#include "sweep/bisection.hpp"
 #include "sweep/orbit_classifier.hpp"
 #include "sweep/task.hpp"
 
@@ -112,10 +115,28 @@ struct WindowResult {
   std::vector<std::vector<std::byte>> chunks;  // per kSampleColumns; none when count == 0
 };
 
+// A bisection probe's result (sweep/bisection.hpp): the held level, its window's class and
+// statistics (one row of /brackets/probes; its samples are not stored), and the bracket after it.
+struct ProbeRecord {
+  std::int32_t ran = 0;       // 0: the bracket was settled before this probe
+  double omega = std::numeric_limits<double>::quiet_NaN();  // the held level [rad/s]
+  std::int32_t known_side = 0;
+  WindowRow row;                               // class and kStats of the measured window
+  std::array<double, kNumPowers> powers{};     // its energy account [W]
+  double known_omega = 0.0, other_omega = 0.0;  // the bracket after the probe [rad/s]
+  std::int32_t known_class = -1, other_class = -1, status = 0;
+  std::vector<std::byte> carry;                // the encoded BisectCarry the next probe starts from
+};
+
 struct TaskResult {
   sweep::TaskOutput summary;  // the task's outcome, its windows' samples left out
   std::vector<WindowResult> windows;
+  std::optional<ProbeRecord> probe;  // a bisection's task; encoded only when present
 };
+
+// A probe's result: no window rows, the probe's row, and the known-side state as the task's
+// final state (what the next probe starts from).
+TaskResult probe_result(sweep::Probe p);
 
 // The stored precision in memory: each float32 column's values rounded to float (what the
 // classifier of a sweep reads, and astrojax replay with it).

@@ -10,6 +10,7 @@
 
 #include "physics/model.hpp"
 #include "sweep/basin.hpp"
+#include "sweep/bisection.hpp"
 #include "sweep/protocol.hpp"
 
 namespace ajx::sweep {
@@ -52,6 +53,7 @@ struct SweepSpec {
   std::vector<GridAxis> grid;
   std::optional<HoldSpec> hold;
   std::optional<BasinSpec> basin;  // basin sampling (sweep/basin.hpp); replaces the protocol when present
+  std::optional<BisectSpec> bisect;    // [bisect]: a threshold by bisection, instead of the protocol
 };
 
 // One chain of a sweep: its parameters and protocol.

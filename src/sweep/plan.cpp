@@ -34,6 +34,12 @@ void add_chains(SweepPlan& plan, const PlanPart& p, std::size_t part) {
       add_basin_chains(plan, cfg, g, part);
       continue;
     }
+    if (cfg.bisect) {  // one chain of probes per grid point
+      plan.starts.push_back({cfg.bisect->start_seed, cfg.bisect->start_omega, 0, 0.0});
+      plan.points.push_back(g);
+      plan.part.push_back(part);
+      continue;
+    }
     if (!cfg.hold) {
       plan.starts.push_back({cfg.start_seed, cfg.start_omega, 0, 0.0});
       plan.points.push_back(g);
@@ -51,6 +57,24 @@ void add_chains(SweepPlan& plan, const PlanPart& p, std::size_t part) {
           plan.part.push_back(part);
         }
   }
+}
+
+// A bisection chain: probe_count tasks without windows, whose times depend on the bracket (NaN
+// in the plan); its simulated time estimated as the holds plus the ramps between the levels.
+void add_probes(SweepPlan& plan, const PlanPart& part, std::size_t chain) {
+  const BisectSpec& b = *part.spec.bisect;
+  ChainSetup c;
+  c.model = plan.points[chain].model;
+  c.run = part.run;
+  c.sample_rate = part.spec.sample_rate;
+  const int n = probe_count(b);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  plan.spans.push_back(std::vector<TaskSpan>(std::size_t(n), TaskSpan{nan, nan, 0, 0}));
+  plan.first_task.push_back(plan.n_tasks);
+  plan.n_tasks += std::size_t(n);
+  c.protocol.duration = n * (b.settle + b.measure) + (std::abs(b.from - b.start_omega) + 2.0 * std::abs(b.to - b.from)) / b.step_rate;
+  plan.total_duration += c.protocol.duration;
+  plan.setups.push_back(std::move(c));
 }
 
 }  // namespace
@@ -77,6 +101,11 @@ SweepPlan make_plan(const std::vector<PlanPart>& parts) {
   physics::State level_orbit;  // a cloud's orbit, found at sample 0 of each level (its samples are consecutive)
   for (std::size_t i = 0; i < plan.points.size(); ++i) {
     const PlanPart& part = parts[plan.part[i]];
+    plan.bisect.push_back(part.spec.bisect);
+    if (part.spec.bisect) {
+      add_probes(plan, part, i);
+      continue;
+    }
     ChainSetup c;
     c.model = plan.points[i].model;
     ChainStart& start = plan.starts[i];
@@ -104,7 +133,15 @@ SweepPlan make_plan(const std::vector<PlanPart>& parts) {
     plan.total_duration += c.protocol.duration;
     plan.setups.push_back(std::move(c));
   }
+  // The file's layout needs one window and one sample at least (a sweep of bisections alone
+  // stores no window).
+  plan.max_windows = std::max<std::size_t>(plan.max_windows, 1);
+  plan.max_samples = std::max<std::size_t>(plan.max_samples, 1);
   return plan;
+}
+
+bool SweepPlan::has_bisection() const {
+  return std::any_of(bisect.begin(), bisect.end(), [](const auto& b) { return b.has_value(); });
 }
 
 physics::State SweepPlan::start_state(std::size_t c) const {

@@ -39,6 +39,11 @@ struct SweepPlan {
   std::vector<GridPoint> points;     // per chain: parameters and protocol segments
   std::vector<ChainStart> starts;         // per chain
   std::vector<ChainSetup> setups;         // per chain
+  // Per chain: its bisection (a [bisect] part), whose tasks are probes with no /windows rows
+  // (sweep/bisection.hpp); none for a protocol or hold chain.
+  // Its setup has no windows and protocol.duration is an estimate (the holds and the ramps
+  // between the levels).
+  std::vector<std::optional<BisectSpec>> bisect;
   std::vector<std::vector<TaskSpan>> spans;  // per chain: its tasks in order
   std::vector<std::size_t> first_task;    // per chain: the global id of its task 0
   std::size_t n_tasks = 0;
@@ -47,6 +52,7 @@ struct SweepPlan {
   double total_duration = 0.0;            // simulated seconds of all chains [s]
 
   std::size_t chains() const { return setups.size(); }
+  bool has_bisection() const;
   // The state chain c starts from at t = 0.
   physics::State start_state(std::size_t c) const;
 };

@@ -1,0 +1,164 @@
+#include "sweep/bisection.hpp"
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+
+#include "physics/state_row.hpp"
+#include "sweep/codec.hpp"
+#include "sweep/protocol.hpp"
+#include "sweep/seeds.hpp"
+
+namespace ajx::sweep {
+
+namespace {
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+}
+
+bool on_known_side(Threshold t, OrbitClass c) {
+  switch (t) {
+    case Threshold::Rise: return c == OrbitClass::Fallen;
+    case Threshold::Fall: return c != OrbitClass::Fallen && c != OrbitClass::Failed;  // not-settled: still falling
+    case Threshold::Omega1: return c == OrbitClass::LockedCircular;
+    case Threshold::Omega2: return circular(c);
+  }
+  return false;
+}
+
+int bisect_direction(Threshold t) { return t == Threshold::Fall ? -1 : +1; }
+
+int probe_count(const BisectSpec& s) {
+  // Halvings of Δ = |to − from| down to w (counted, not log2, so that rounding cannot leave one out).
+  int m = 0;
+  for (double d = std::abs(s.to - s.from); d > s.width && m < 60; d *= 0.5) ++m;
+  return 2 + m;
+}
+
+double min_width(const BisectSpec& s, const ClassifierSettings& settings) {
+  return 2.0 * std::numbers::pi / (settings.min_samples_per_turn * s.measure);
+}
+
+std::string_view to_string(BisectStatus s) {
+  switch (s) {
+    case BisectStatus::Running: return "running";
+    case BisectStatus::Converged: return "converged";
+    case BisectStatus::StartOffSide: return "start not on the known side";
+    case BisectStatus::NoCrossing: return "no crossing in the range";
+    case BisectStatus::Failed: return "a probe failed";
+  }
+  return "?";
+}
+
+std::vector<std::byte> encode(const BisectCarry& c) {
+  ByteWriter w;
+  w.put_vector(physics::state_row(c.known));
+  w.put_vector(c.history);
+  w.put(c.known_omega);
+  w.put(c.other_omega);
+  w.put(c.known_class);
+  w.put(c.other_class);
+  w.put(std::int32_t(c.status));
+  return w.take();
+}
+
+BisectCarry decode_carry(const std::vector<std::byte>& bytes) {
+  ByteReader r(bytes.data(), bytes.size());
+  BisectCarry c;
+  const auto row = r.get_vector<double>();
+  if (row.size() != physics::kStateCols) throw std::runtime_error("bisection carry: wrong number of state columns");
+  c.known = physics::state_from_row(row);
+  c.history = r.get_vector<physics::DriveSegment>();
+  c.known_omega = r.get<double>();
+  c.other_omega = r.get<double>();
+  c.known_class = r.get<std::int32_t>();
+  c.other_class = r.get<std::int32_t>();
+  const auto status = r.get<std::int32_t>();
+  if (status < 0 || status > kMaxBisectStatus) throw std::runtime_error("bisection carry: bad status");
+  c.status = BisectStatus(status);
+  if (!r.done()) throw std::runtime_error("bisection carry: trailing bytes");
+  return c;
+}
+
+namespace {
+
+// The probe's chain: the carried history, then ω_m ramped from omega0 to the level at step_rate,
+// held for settle, and one window of measure.
+ChainSetup probe_chain(const BisectSpec& spec, const physics::Model& model, const sim::RunOptions& run,
+                       double sample_rate, const std::vector<physics::DriveSegment>& history, double omega0,
+                       double level) {
+  const Steps hold{level, level, 1, spec.settle, spec.measure, spec.step_rate};
+  const CompiledProtocol tail = compile({Segment{Segment::Kind::Steps, {}, hold}}, omega0);
+  double t0 = 0.0;
+  for (const physics::DriveSegment& s : history) t0 += s.duration;  // as MotorSchedule sums them
+  ChainSetup c;
+  c.model = model;
+  c.run = run;
+  c.sample_rate = sample_rate;
+  c.protocol.schedule = history;
+  c.protocol.schedule.insert(c.protocol.schedule.end(), tail.schedule.begin(), tail.schedule.end());
+  Window w = tail.windows.front();
+  w.t_begin += t0;
+  w.t_end += t0;
+  c.protocol.windows = {w};
+  c.protocol.duration = t0 + tail.duration;
+  return c;
+}
+
+}  // namespace
+
+Probe run_probe(const BisectSpec& spec, const physics::Model& model, const sim::RunOptions& run, double sample_rate,
+                int k, const BisectCarry& in, const ClassifierSettings& settings) {
+  Probe p;
+  BisectCarry c = k == 0 ? BisectCarry{} : in;
+  if (k >= 2 && c.status == BisectStatus::Running && c.width() <= spec.width) c.status = BisectStatus::Converged;
+  if (c.status != BisectStatus::Running) {  // settled before this probe: nothing to integrate
+    p.omega = nan;
+    p.out.final_state = c.known;
+    p.next = std::move(c);
+    return p;
+  }
+  p.ran = true;
+  p.omega = k == 0 ? spec.from : k == 1 ? spec.to : 0.5 * (c.known_omega + c.other_omega);
+  const ChainSetup chain = probe_chain(spec, model, run, sample_rate, k == 0 ? std::vector<physics::DriveSegment>{} : c.history,
+                                       k == 0 ? spec.start_omega : c.known_omega, p.omega);
+  const physics::State start =
+      k == 0 ? seed_state(model, chain.motor(), spec.start_seed, spec.start_omega, 0, 0.0)
+             : c.known;
+  const TaskSpan span{start.t, chain.protocol.duration, 0, 1};
+  p.out = run_task(chain, span, start);
+  p.classification = classify_windows(chain, p.out, settings).front();
+  const auto cls = std::int32_t(p.classification.cls);
+  if (!p.out.ok) {
+    c.status = BisectStatus::Failed;
+    p.next = std::move(c);
+    return p;
+  }
+  p.known_side = on_known_side(spec.threshold, p.classification.cls);
+  const auto take_known = [&] {
+    c.known = p.out.final_state;
+    c.history = chain.protocol.schedule;
+    c.known_omega = p.omega;
+    c.known_class = cls;
+  };
+  if (k == 0) {
+    c.known = start;
+    c.known_omega = c.other_omega = nan;
+    if (p.known_side) take_known(); else {
+      c.other_omega = p.omega;
+      c.other_class = cls;
+      c.status = BisectStatus::StartOffSide;
+    }
+  } else if (p.known_side) {
+    take_known();
+    if (k == 1) c.status = BisectStatus::NoCrossing;
+  } else {
+    c.other_omega = p.omega;
+    c.other_class = cls;
+  }
+  if (c.status == BisectStatus::Running && k >= 1 && c.width() <= spec.width) c.status = BisectStatus::Converged;
+  p.next = std::move(c);
+  return p;
+}
+
+}  // namespace ajx::sweep

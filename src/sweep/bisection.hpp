@@ -1,0 +1,95 @@
+// A threshold found by bisection on held levels, one farm task per probe (docs/guide/maps.md).
+//
+// A chain of a [bisect] sweep brackets one threshold at one grid point. Probe 0 holds the
+// start level `from` (reached from the seed at start_omega), which must lie on the
+// threshold's known side; probe 1 holds the far end `to`, which must not; every later probe
+// holds the middle of the bracket. Each probe restarts from the state left by the last probe on
+// the known side (the staircase's own history up to there: its motor schedule is carried
+// along), ramps ω_m to its level at step_rate, settles and measures one window, classified as
+// every sweep window is. The bracket [known, other] halves with every probe, so a range Δ
+// is brought to a width w in 2 + ceil(log2(Δ/w)) probes instead of Δ/step levels of a ladder.
+//
+// The known side, per threshold (the definitions of thresholds.hpp on held levels):
+//   ω_rise  (rising)   fallen;       ω_fall (falling)  not fallen;
+//   ω1      (rising)   locked;       ω2     (rising)   circular (locked or lagging).
+// A probe carries everything the next needs (BisectCarry), so the farm, which knows no
+// physics, runs a bisection as it runs any chain: in order, on any rank, and a resumed sweep
+// goes on from the carry the last finished probe left.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "physics/drive.hpp"
+#include "physics/model.hpp"
+#include "physics/state.hpp"
+#include "sim/simulation.hpp"
+#include "sweep/orbit_classifier.hpp"
+#include "sweep/task.hpp"
+#include "sweep/thresholds.hpp"
+
+namespace ajx::sweep {
+
+struct BisectSpec {
+  Threshold threshold = Threshold::Fall;
+  std::string start_seed = "circular_high";  // the state at t = 0: a seed of seeds.hpp at start_omega
+  double start_omega = 0.0;  // ω_m of the seed [rad/s]
+  double from = 0.0;         // the first level, on the known side [rad/s]
+  double to = 0.0;           // the far end of the range, past the threshold [rad/s]
+  double width = 0.0;        // the bracket's width at the end, w [rad/s]
+  double settle = 100.0;     // transient at each level, not measured [s]
+  double measure = 20.0;     // the classified window at each level [s]
+  double step_rate = 0.1;    // |dω_m/dt| on the way to a level [rad/s²]
+};
+
+// Whether a held level's class is on the threshold's known side.
+bool on_known_side(Threshold t, OrbitClass c);
+// +1: the threshold is found with rising ω_m (from < to), −1 falling.
+int bisect_direction(Threshold t);
+// Probes per chain: 2 + the halvings that bring |to − from| to at most w.
+int probe_count(const BisectSpec& s);
+// The narrowest bracket a window resolves: two levels w apart drift apart in phase by w·T_m over
+// the window T_m; below 2π/min_samples_per_turn (the classifier's largest azimuth step, a quarter
+// turn by default) one window cannot tell their orbits apart. w_min = 2π/(n_turn T_m) [rad/s].
+double min_width(const BisectSpec& s, const ClassifierSettings& settings = {});
+
+enum class BisectStatus : std::int32_t {
+  Running = 0,       // the bracket is still wider than w
+  Converged = 1,     // known and other at most w apart
+  StartOffSide = 2,  // the start level is not on the known side: no bracket
+  NoCrossing = 3,    // the far end is still on the known side: the threshold lies beyond the range
+  Failed = 4,        // a probe's integration failed
+};
+inline constexpr std::int32_t kMaxBisectStatus = 4;
+inline constexpr const char* kBisectStatusNames =
+    "0 running,1 converged,2 start not on the known side,3 no crossing in the range,4 a probe failed";
+std::string_view to_string(BisectStatus s);
+
+// What a probe hands the next: the bracket and the state on its known side.
+struct BisectCarry {
+  physics::State known;                        // at the end of the last probe on the known side
+  std::vector<physics::DriveSegment> history;  // the motor schedule from t = 0 to known.t
+  double known_omega = 0.0, other_omega = 0.0;  // the bracket [rad/s]
+  std::int32_t known_class = -1, other_class = -1;  // the classes measured there (-1: none yet)
+  BisectStatus status = BisectStatus::Running;
+  double width() const { return other_omega > known_omega ? other_omega - known_omega : known_omega - other_omega; }
+};
+std::vector<std::byte> encode(const BisectCarry& c);
+BisectCarry decode_carry(const std::vector<std::byte>& bytes);
+
+struct Probe {
+  bool ran = false;          // false: the bracket was settled before this probe (nothing integrated)
+  double omega = 0.0;        // the held level [rad/s] (NaN when not run)
+  TaskOutput out;            // the integration; out.windows holds the measured window
+  OrbitClassification classification;
+  bool known_side = false;
+  BisectCarry next;          // the bracket after this probe
+};
+
+// Probe k (0, 1, ...) of a chain at `model`, from the carry probe k − 1 left (ignored for k = 0,
+// which starts from the seed).
+Probe run_probe(const BisectSpec& spec, const physics::Model& model, const sim::RunOptions& run, double sample_rate,
+                int k, const BisectCarry& in, const ClassifierSettings& settings = {});
+
+}  // namespace ajx::sweep

@@ -1,0 +1,127 @@
+#!/usr/bin/env bash
+# Benchmark (not a test): a map of ω_fall and ω1 over (R, d) by bisection to 0.05π against the
+# fixed 0.1π ladder of held levels for the same grid, run side by side, and the bisection map's
+# wall time on 2, 4 and 8 ranks with the master's share of the CPU. Prints ratios.
+#
+#   tests/bench/map_bisection.sh build/astrojax [N] [RANKS...]
+#
+# N × N grid points (default 4: a subgrid; the 16 × 16 map's CPU is extrapolated as 256/N² times
+# the subgrid's, which holds as long as every point costs about the same: the printed per-point
+# spread says how far). Both runs use one process (the CPU is the integration's, summed); then
+# the bisection map runs under mpirun -n RANKS (default 2 4 8, oversubscribed), timing rank 0
+# (the master) on its own. Both maps start on the locked orbit at 4π (seed locked_orbit), hold
+# each level 100 s + 20 s (the staircases of sweeps/paper.toml) and reach it at 0.1 rad/s².
+set -u
+bin=$(realpath "$1"); n=${2:-4}; shift; [ $# -gt 0 ] && shift; ranks=${*:-2 4 8}
+work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+pi=3.141592653589793
+grid=$(python3 -c "
+n=$n
+R=[0.005+0.025*i/(n-1) for i in range(n)]; d=[0.02+0.03*i/(n-1) for i in range(n)]
+print('[grid]\ndrive_radius = %s\ncontact_distance = %s' % (R, d))")
+common="[model]
+drive_radius = 0.015
+contact_distance = 0.035
+[layers]
+friction = \"stick_slip\"
+[integrator]
+method = \"dop853\"
+rtol = 1e-9
+atol = 1e-11
+$grid
+[output]
+path = \"$work/x.h5\""
+w() { python3 -c "print($1*$pi)"; }
+cat > "$work/bisect.toml" <<TOML
+$common
+[bisect]
+start_seed = "locked_orbit"
+start_omega = $(w 4)
+from = $(w 4)
+width = $(w 0.05)
+settle = 100.0
+measure = 20.0
+step_rate = 0.1
+sample_rate = 50.0
+[[group]]
+name = "fall"
+purpose = "omega_fall by bisection"
+bisect = { threshold = "omega_fall", to = $(w 2.5) }
+[[group]]
+name = "omega1"
+purpose = "omega_1 by bisection"
+bisect = { threshold = "omega_1", to = $(w 6.5) }
+TOML
+cat > "$work/ladder.toml" <<TOML
+$common
+[protocol]
+start_seed = "locked_orbit"
+start_omega = $(w 4)
+windows_per_task = 4
+sample_rate = 50.0
+[[group]]
+name = "fall"
+purpose = "omega_fall on the 0.1 pi ladder: 4 pi down to 2.5 pi"
+[[group.protocol.segment]]
+kind = "steps"
+from = $(w 4)
+to = $(w 2.5)
+num = 16
+settle = 100.0
+measure = 20.0
+step_rate = 0.1
+[[group]]
+name = "omega1"
+purpose = "omega_1 on the 0.1 pi ladder: 4 pi up to 6.5 pi"
+[[group.protocol.segment]]
+kind = "steps"
+from = $(w 4)
+to = $(w 6.5)
+num = 26
+settle = 100.0
+measure = 20.0
+step_rate = 0.1
+TOML
+cpu() {  # user + sys seconds of a command, from /usr/bin/time
+  /usr/bin/time -f "%U %S %e" -o "$work/t" "$@" > "$work/out" 2>&1 || { cat "$work/out"; exit 1; }
+  awk '{ printf "%.2f %.2f", $1 + $2, $3 }' "$work/t"
+}
+read cb wb < <(cpu "$bin" sweep "$work/bisect.toml" -o "$work/bisect.h5" -q)
+read cl wl < <(cpu "$bin" sweep "$work/ladder.toml" -o "$work/ladder.h5" -q)
+"$bin" thresholds "$work/bisect.h5" --csv "$work/b.csv" > /dev/null
+"$bin" thresholds "$work/ladder.h5" --no-hold --csv "$work/l.csv" > /dev/null
+probes=$(h5dump -d /brackets/probes/ran "$work/bisect.h5" | grep -o '\b1\b' | wc -l)
+pts=$((n * n))
+echo "map of ω_fall and ω1 over (R, d), $n × $n points, one process ($(nproc) cores, load $(cut -d' ' -f1 /proc/loadavg))"
+printf "  %-34s %10s %10s %12s %14s\n" "" "CPU [s]" "wall [s]" "per point" "16×16 (×$((256 / pts)))"
+printf "  %-34s %10.2f %10.2f %12.3f %14.1f\n" "bisection to 0.05π ($probes probes)" "$cb" "$wb" \
+  "$(python3 -c "print($cb/$pts)")" "$(python3 -c "print($cb*256/$pts)")"
+printf "  %-34s %10.2f %10.2f %12.3f %14.1f\n" "ladder of 0.1π (42 levels a point)" "$cl" "$wl" \
+  "$(python3 -c "print($cl/$pts)")" "$(python3 -c "print($cl*256/$pts)")"
+echo "  CPU ratio bisection/ladder: $(python3 -c "print(f'{$cb/$cl:.3f}')") (target ≤ 0.2)"
+python3 - "$work/b.csv" "$work/l.csv" <<'PY'
+import csv, sys, math
+def rows(p):
+    return [r for r in csv.DictReader(open(p)) if r["threshold"] in ("omega_fall", "omega_1")]
+b = {(r["parameters"], r["threshold"]): r for r in rows(sys.argv[1])}
+agree = n = 0
+for r in rows(sys.argv[2]):
+    k = (r["parameters"], r["threshold"])
+    if k not in b or not r["before_rad_s"] or not b[k]["after_rad_s"] or not b[k]["before_rad_s"]:
+        continue
+    lo_l, hi_l = sorted(float(r[c]) for c in ("before_rad_s", "after_rad_s"))
+    lo_b, hi_b = sorted(float(b[k][c]) for c in ("before_rad_s", "after_rad_s"))
+    n += 1
+    agree += lo_b <= hi_l + 1e-9 and lo_l <= hi_b + 1e-9
+print(f"  brackets that overlap the ladder's: {agree} of {n} points with both (history differs: the ladder "
+      f"visits every level, a probe jumps from the known side)")
+PY
+echo "bisection map on the farm (mpirun --oversubscribe; rank 0 timed on its own)"
+printf "  %6s %10s %14s %18s\n" "ranks" "wall [s]" "master CPU [s]" "master CPU / wall"
+for r in $ranks; do
+  OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 mpirun --oversubscribe -n "$r" sh -c \
+    "if [ \"\$OMPI_COMM_WORLD_RANK\" = 0 ]; then exec /usr/bin/time -f '%U %S %e' -o '$work/m' '$bin' sweep '$work/bisect.toml' -o '$work/r$r.h5' -q; else exec '$bin' sweep '$work/bisect.toml' -o '$work/r$r.h5' -q; fi" \
+    > "$work/mpi.out" 2>&1 || { cat "$work/mpi.out"; exit 1; }
+  awk -v r="$r" '{ printf "  %6d %10.2f %14.2f %18.3f\n", r, $3, $1 + $2, ($1 + $2) / $3 }' "$work/m"
+  h5diff -q "$work/bisect.h5" "$work/r$r.h5" /brackets || echo "  /brackets differs on $r ranks"
+done

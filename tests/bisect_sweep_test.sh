@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# A map by bisection ([bisect], sweep/bisection.hpp) on the farm: the file from 1 rank and from
+# 3 ranks is the same, a sweep stopped part-way and resumed gives the same file as one run
+# straight through, thresholds --csv prints one row per grid point, and bad input is refused
+# naming the file and the key before any work, leaving nothing behind.
+# Usage: bisect_sweep_test.sh ASTROJAX MPIEXEC SOURCE_DIR
+set -u
+bin=$1; mpiexec=$2; src=$3
+source "$(dirname "$0")/check.sh"
+map="$src/tests/data/bisect_map.toml"
+
+"$mpiexec" --oversubscribe -n 1 "$bin" sweep "$map" -o "$work/one.h5" -q > "$work/one.out" 2>&1
+check "1 rank: exit 0" "[ $? -eq 0 ]"
+"$mpiexec" --oversubscribe -n 3 "$bin" sweep "$map" -o "$work/three.h5" -q > "$work/three.out" 2>&1
+check "3 ranks: exit 0" "[ $? -eq 0 ]"
+for g in /chains /brackets /tasks; do
+  check "$g identical for 1 and 3 ranks" "h5diff '$work/one.h5' '$work/three.h5' $g > '$work/diff' 2>&1"
+done
+"$mpiexec" --oversubscribe -n 3 "$bin" sweep "$map" -o "$work/resumed.h5" -q --max-tasks 9 > "$work/part.out" 2>&1
+check "stopped after 9 probes: exit 4, a .part left" "[ $? -eq 4 ] && [ -s '$work/resumed.h5.part' ]"
+"$mpiexec" --oversubscribe -n 2 "$bin" sweep "$map" -o "$work/resumed.h5" -q --resume > "$work/resume.out" 2>&1
+check "resumed on 2 ranks: exit 0" "[ $? -eq 0 ] && [ -s '$work/resumed.h5' ]"
+for g in /chains /brackets /tasks; do
+  check "$g of the resumed map identical to the straight run" "h5diff '$work/one.h5' '$work/resumed.h5' $g > '$work/diff' 2>&1"
+done
+"$bin" verify "$work/one.h5" > "$work/verify.out" 2>&1
+check "verify: ok" "[ $? -eq 0 ]"
+"$bin" thresholds "$work/one.h5" --csv "$work/th.csv" > "$work/th.out" 2>&1
+check "thresholds: exit 0" "[ $? -eq 0 ]"
+check "thresholds --csv: a header and one row per grid point (4)" "[ \$(wc -l < '$work/th.csv') -eq 5 ]"
+check "thresholds --csv: columns for both axes, rows by bisection, converged within 0.1π" \
+  "head -1 '$work/th.csv' | grep -q 'contact_distance,drive_radius,method,width_rad_s' &&
+   [ \$(grep -c ',bisection,' '$work/th.csv') -eq 4 ] && [ \$(grep -c '\"converged\"' '$work/th.csv') -eq 4 ] &&
+   awk -F, 'NR > 1 { w = \$4 - \$5; if (w < 0) w = -w; if (w > 0.3141592654) exit 1 }' '$work/th.csv'"
+check "thresholds: the table of bisections" "grep -q 'omega_fall' '$work/th.out' && grep -q 'converged' '$work/th.out'"
+
+# Bad input: exit 2, the file and the key named, nothing written.
+bad() {  # NAME EXPECTED-KEY OVERRIDE...
+  local name=$1 key=$2; shift 2
+  "$bin" sweep "$map" -o "$work/bad.h5" "$@" > "$work/bad.out" 2>&1
+  local rc=$?
+  check "$name: exit 2 naming bisect_map.toml and '$key' (got $rc: $(head -c 300 "$work/bad.out"))" \
+    "[ $rc -eq 2 ] && grep -q 'bisect_map.toml' '$work/bad.out' && grep -q \"key '$key'\" '$work/bad.out' && [ ! -e '$work/bad.h5' ] && [ ! -e '$work/bad.h5.part' ]"
+}
+bad "a width below what a 20 s window resolves" "bisect.width" --set bisect.width=0.01
+bad "a width as wide as the range" "bisect.width" --set bisect.width=5
+bad "a grid with one point on an axis" "grid.contact_distance" --set "grid.contact_distance=[0.03]"
+bad "a ramp_rate axis" "grid.ramp_rate" --set "grid.ramp_rate=[0.1,0.2]"
+bad "ω_fall with to above from" "bisect.to" --set bisect.to=15.0
+bad "an unknown threshold" "bisect.threshold" --set bisect.threshold=omega_3
+bad "an unknown key" "bisect.widht" --set bisect.widht=0.3
+bad "[bisect] beside [protocol]" "bisect" --set protocol.start_omega=1.0
+finish bisect_sweep_test

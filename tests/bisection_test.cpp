@@ -1,0 +1,133 @@
+// Thresholds by bisection on held levels (sweep/bisection.hpp): the count of probes, the
+// carry's codec, bad specs, and the physics: an ω_fall bracketed by bisection at the documented
+// set holds the locked orbit's cone exit downwards (orbits/threshold_curves.hpp, the
+// continuation's ω_fall) at the bead's stuck position of the bracket's known side.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "orbits/threshold_curves.hpp"
+#include "sweep/bisection.hpp"
+
+using namespace ajx;
+using namespace ajx::sweep;
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+physics::Model documented() {
+  physics::Model m;
+  m.p.drive_radius = 0.015;   // R [m], sweeps/paper.toml
+  m.p.contact_distance = 0.035;  // d [m]
+  return m;
+}
+
+sim::RunOptions run_options() {
+  sim::RunOptions r;
+  r.method = "dop853";
+  r.integ.tol.rtol = 1e-9;  // as sweeps/paper.toml
+  r.integ.tol.atol = 1e-11;
+  return r;
+}
+
+BisectSpec fall_spec(double width) {
+  BisectSpec b;
+  b.threshold = Threshold::Fall;
+  b.start_seed = "circular_high";
+  b.start_omega = b.from = 4 * kPi;
+  b.to = 2.5 * kPi;
+  b.width = width;
+  return b;
+}
+
+// Every probe of one chain in order, each from the carry the previous left.
+std::vector<Probe> bisect(const BisectSpec& spec, const physics::Model& m) {
+  std::vector<Probe> out;
+  BisectCarry carry;
+  for (int k = 0; k < probe_count(spec); ++k) {
+    out.push_back(run_probe(spec, m, run_options(), 50.0, k, carry));
+    carry = out.back().next;
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST(Bisection, ProbeCountIsTwoPlusTheHalvingsToTheWidth) {
+  BisectSpec b = fall_spec(0.05 * kPi);
+  // Δ = 1.5π: 1.5/0.05 = 30 ≤ 2^5, so 5 halvings; the fixed 0.05π ladder has 31 levels.
+  EXPECT_EQ(probe_count(b), 7);
+  b.width = 1.5 * kPi / 32;  // exactly 5 halvings
+  EXPECT_EQ(probe_count(b), 7);
+  b.width = 1.5 * kPi / 32 * (1 - 1e-12);
+  EXPECT_EQ(probe_count(b), 8);
+}
+
+TEST(Bisection, MinimumWidthIsAQuarterTurnOverTheWindow) {
+  BisectSpec b = fall_spec(0.05 * kPi);
+  b.measure = 20.0;
+  // w_min T_m = 2π / 4: over the window two levels w_min apart drift a quarter turn apart.
+  EXPECT_DOUBLE_EQ(min_width(b) * b.measure, kPi / 2);
+}
+
+TEST(Bisection, CarryRoundTripsExactly) {
+  BisectCarry c;
+  c.known.t = 123.456;
+  c.known.y.setLinSpaced(physics::idx::dim, 0.1, 1.5);
+  c.known.contact = physics::Contact(physics::Mode::Stuck, 1, 0.4589);
+  c.history = {{12.5, 12.5, 60.0}, {12.5, 11.0, 15.0}};
+  c.known_omega = 11.0;
+  c.other_omega = 10.2;
+  c.known_class = 1;
+  c.other_class = 0;
+  c.status = BisectStatus::Running;
+  const BisectCarry d = decode_carry(encode(c));
+  EXPECT_EQ(d.known.t, c.known.t);
+  EXPECT_EQ(d.known.y, c.known.y);
+  EXPECT_EQ(d.known.contact.s_star, c.known.contact.s_star);
+  ASSERT_EQ(d.history.size(), 2u);
+  EXPECT_EQ(d.history[1].omega_end, 11.0);
+  EXPECT_EQ(d.known_omega, c.known_omega);
+  EXPECT_EQ(d.other_omega, c.other_omega);
+  EXPECT_EQ(d.status, c.status);
+}
+
+TEST(Bisection, KnownSidePerThreshold) {
+  EXPECT_TRUE(on_known_side(Threshold::Fall, OrbitClass::NotSettled));  // still falling: not yet fallen
+  EXPECT_FALSE(on_known_side(Threshold::Fall, OrbitClass::Fallen));
+  EXPECT_TRUE(on_known_side(Threshold::Omega2, OrbitClass::LaggingCircular));
+  EXPECT_FALSE(on_known_side(Threshold::Omega1, OrbitClass::LaggingCircular));
+  EXPECT_TRUE(on_known_side(Threshold::Rise, OrbitClass::Fallen));
+}
+
+// The bracket halves with every probe; each midpoint probe restarts from the known side.
+TEST(Bisection, FallBracketAtTheDocumentedSetHoldsTheContinuationsConeExit) {
+  const physics::Model m = documented();
+  const BisectSpec spec = fall_spec(0.05 * kPi);
+  const std::vector<Probe> probes = bisect(spec, m);
+  const BisectCarry& end = probes.back().next;
+  ASSERT_EQ(end.status, BisectStatus::Converged);
+  EXPECT_LE(end.width(), spec.width);
+  EXPECT_EQ(OrbitClass(end.other_class), OrbitClass::Fallen);
+  for (std::size_t k = 2; k < probes.size(); ++k)
+    if (probes[k].ran) EXPECT_NEAR(probes[k].omega, 0.5 * (probes[k - 1].next.known_omega + probes[k - 1].next.other_omega), 1e-12);
+  // Held at the known side the bead is stuck at s*; the stuck orbit there leaves its friction cone
+  // downwards at ω_cd(s*) (the continuation's cone_down point at s*). Held above the bracket the
+  // orbit stays, held below it falls, so ω_cd(s*) lies in the bracket, to within the bracket's
+  // width w (the probe below starts from the state above, whose bead is at s* only to the
+  // classifier's resolution).
+  ASSERT_EQ(end.known.contact.mode, physics::Mode::Stuck);
+  const double s = end.known.contact.s_star;
+  orbits::CurveOptions opt;
+  const auto starts = orbits::curve_starts(m, orbits::CurveKind::ConeDown, s, opt);
+  ASSERT_FALSE(starts.empty());
+  double nearest = starts.front().omega;
+  for (const auto& st : starts)
+    if (std::abs(st.omega - end.known_omega) < std::abs(nearest - end.known_omega)) nearest = st.omega;
+  RecordProperty("s_star", std::to_string(s));
+  RecordProperty("cone_down_pi", std::to_string(nearest / kPi));
+  EXPECT_GE(nearest, end.other_omega - spec.width) << "s* = " << s << ", ω_cd = " << nearest / kPi << "π";
+  EXPECT_LE(nearest, end.known_omega + spec.width) << "s* = " << s << ", ω_cd = " << nearest / kPi << "π";
+}
