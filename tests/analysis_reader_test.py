@@ -29,7 +29,7 @@ C, W, CAP, T = 2, 3, 4, 2
 CLASSES = [("fallen", 0, "#999999"), ("locked-circular", 1, "#0072B2"), ("lagging-circular", 1, "#009E73"),
            ("flower", 0, "#CC79A7"), ("not-settled", 0, "#E69F00"), ("failed", 0, "#000000")]
 STR = h5py.string_dtype("utf-8")
-NEWEST = 4
+NEWEST = 5
 FINAL_STATE_COLUMNS = {1: 20, 2: 20, 3: 25, 4: 27, 5: 27}  # t, mode, σ, s*, impact_loss, y (15); tie (5); ledger (2)
 POWERS = {"motor_power": 2, "drag_power": 2, "friction_impact_power": 2, "energy_rate": 2, "string_power": 4,
           "clutch_power": 4}  # each from the format that first always writes it
@@ -235,6 +235,39 @@ class reader_formats(unittest.TestCase):
         with h5py.File(self.path("d.h5"), "r+") as f:
             edit(f)
         return self.path("d.h5")
+
+    def test_basins(self):
+        """/basins (format 5): read when consistent; refused naming the dataset when a sample's class
+        is not its chain's window 0, a count or a fraction does not follow from the samples, or the
+        file is older than basins."""
+        def add(f, cls=(1, 0), frac=None):
+            g = f.create_group("basins")
+            g.create_dataset("chain", data=np.arange(C, dtype=np.int64))
+            g.create_dataset("level", data=np.zeros(C, np.int32))
+            g.create_dataset("sample", data=np.arange(C, dtype=np.int32))
+            g.create_dataset("class", data=np.array(cls, np.int32))
+            g.create_dataset("start", data=np.zeros((C, 27)))
+            g.create_dataset("features", data=np.full((C, 4), 0.1))
+            lv = g.create_group("levels")
+            for name, v in (("part", [0]), ("first", [0]), ("samples", [C]), ("family", [0]), ("done", [C])):
+                lv.create_dataset(name, data=np.array(v, np.int32))
+            lv.create_dataset("omega_m", data=np.array([4 * np.pi]))
+            lv.create_dataset("match_tolerance", data=np.array([0.25]))
+            count = np.zeros((1, len(CLASSES)), np.int32)
+            count[0, 0] = count[0, 1] = 1
+            lv.create_dataset("count", data=count)
+            lo, hi = reader.wilson_interval(count, np.array([[C]]))
+            lv.create_dataset("fraction", data=frac if frac is not None else count / C)
+            lv.create_dataset("lower", data=lo)
+            lv.create_dataset("upper", data=hi)
+        s = ajx.Sweep(self.damaged(add))
+        self.assertEqual(s.basins["levels"]["count"][0, :2].tolist(), [1, 1])
+        self.assertAlmostEqual(s.basins["levels"]["lower"][0, 0], 0.0945, places=4)  # 1 of 2: [0.0945, 0.9055]
+        refused(self, self.damaged(lambda f: add(f, cls=(0, 0))), "/basins/class", ["at [0]", "/windows/class"])
+        bad = np.zeros((1, len(CLASSES)))
+        bad[0, 0] = 1.0
+        refused(self, self.damaged(lambda f: add(f, frac=bad)), "/basins/levels/fraction", ["count / done"])
+        refused(self, self.damaged(add, version=4), "/basins", ["format_version 4"])
 
     def test_each_dataset_of_the_layout_is_required(self):
         for name in ("windows/class", "windows/t_begin", "windows/omega_m_end", "windows/phi_begin", "windows/direction",

@@ -13,6 +13,7 @@ line `error: ...` and exit 2.
 Install: `python3 -m venv --system-site-packages VENV && VENV/bin/pip install -e analysis`
 (docs/guide/analysis/), or run the scripts in place: they sit next to this package.
 """
+from . import basins
 from .classes import CLASS_COLOURS, FALLBACK as FALLBACK_CLASSES, STEADY_CLASSES, OrbitClass
 from .cli import float_list, parser, run
 from .errors import SweepFileError, fail

@@ -22,7 +22,8 @@ from .errors import SweepFileError
 # motor_work and motor_power the motor's at its rod with a clutch (the string's side moved to
 # string_work and string_power; clutch_loss, clutch_power, tie_energy and /trajectory/chi new)
 # and added the motor's ledger, two columns, to /tasks/final_state; 5 added /brackets, the
-# bisections of a sweep with [bisect] chains (laid out as format 4 otherwise).
+# bisections of a sweep with [bisect] chains, and /basins, a sweep's basin chains (laid out as
+# format 4 otherwise).
 FORMAT_VERSION = 5
 THRESHOLD_NAMES = ("omega_rise", "omega_fall", "omega_1", "omega_2")  # /brackets/threshold codes
 BISECT_STATUS = ("running", "converged", "start not on the known side", "no crossing in the range", "a probe failed")
@@ -275,6 +276,7 @@ class SweepFile:
             self._read_chains(f)
             self._read_brackets(f)
             self._read_tasks(f)
+            self.basins = _read_basins(f, self.path, self.version, self.cls, len(self.classes))
             self.config, self.overrides = read_config(f, self.path, self.version)
             self.config_source = text_attr(f["config"], self.path, "source", "")
             prov = f.get("provenance")
@@ -554,6 +556,82 @@ class SweepFile:
 
 
 # ---- run files ----------------------------------------------------------------------------
+
+# ---- /basins (format 5) --------------------------------------------------------------
+
+BASIN_FEATURES = ("omega_ball", "radius_bead_mean", "radius_bottom_mean", "L1_mean")
+BASIN_FAMILIES = ("hanging", "hand", "cloud")
+
+
+def _read_basins(f, p, version, cls, n_classes):
+    """/basins as a dict of arrays, checked as the C++ reader checks it (each sample's class is
+    its chain's window 0; counts, fractions and Wilson intervals recomputed); None without."""
+    if "basins" not in f:
+        return None
+    if version < 5:
+        raise SweepFileError(p, "/basins", f"present in a file of format_version {version} (basins came with 5)")
+    chain = dataset(f, p, "basins/chain", "i", (None,))
+    S = chain.shape[0]
+    b = {"chain": read(chain, p).astype(int)}
+    for name in ("level", "sample", "class"):
+        b[name] = read(dataset(f, p, "basins/" + name, "i", (S,)), p).astype(int)
+    b["start"] = read(dataset(f, p, "basins/start", "f", (S, FINAL_STATE_COLUMNS)), p)
+    b["features"] = read(dataset(f, p, "basins/features", "f", (S, len(BASIN_FEATURES))), p)
+    L = dataset(f, p, "basins/levels/omega_m", "f", (None,)).shape[0]
+    lv = {}
+    for name in ("omega_m", "match_tolerance"):
+        lv[name] = read(dataset(f, p, "basins/levels/" + name, "f", (L,)), p)
+    for name in ("part", "first", "samples", "family", "done"):
+        lv[name] = read(dataset(f, p, "basins/levels/" + name, "i", (L,)), p).astype(int)
+    K = n_classes
+    lv["count"] = read(dataset(f, p, "basins/levels/count", "i", (L, K)), p).astype(int)
+    for name in ("fraction", "lower", "upper"):
+        lv[name] = read(dataset(f, p, "basins/levels/" + name, "f", (L, K)), p)
+    check_range(b["chain"], p, "basins/chain", 0, cls.shape[0] - 1, "chain index")
+    check_range(b["level"], p, "basins/level", 0, L - 1, "level")
+    check_range(lv["family"], p, "basins/levels/family", 0, len(BASIN_FAMILIES) - 1, "family")
+    check_range(lv["samples"], p, "basins/levels/samples", 1, 2 ** 31 - 1, "N")
+    check_finite(lv["omega_m"], p, "basins/levels/omega_m")
+    if not np.all(lv["match_tolerance"] > 0):
+        raise SweepFileError(p, "/basins/levels/match_tolerance", "a tolerance that is not > 0")
+    if np.any(np.isinf(b["start"])) or np.any(np.isinf(b["features"])):
+        raise SweepFileError(p, "/basins/start" if np.any(np.isinf(b["start"])) else "/basins/features", "an infinite value")
+    bad = np.flatnonzero(b["class"] != cls[b["chain"], 0])
+    if len(bad):
+        i = int(bad[0])
+        raise SweepFileError(p, "/basins/class", f"at [{i}]: class {b['class'][i]}, but its chain {b['chain'][i]} has "
+                             f"class {cls[b['chain'][i], 0]} in /windows/class")
+    done = b["class"] >= 0
+    count = np.zeros((L, K), dtype=int)
+    np.add.at(count, (b["level"][done], b["class"][done]), 1)
+    if not np.array_equal(count, lv["count"]):
+        raise SweepFileError(p, "/basins/levels/count", "differs from the samples' classes")
+    if not np.array_equal(count.sum(axis=1), lv["done"]):
+        raise SweepFileError(p, "/basins/levels/done", "differs from the samples with a class")
+    n = lv["done"][:, None]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        frac = np.where(n > 0, count / np.maximum(n, 1), np.nan)
+    lo, hi = wilson_interval(count, n)
+    for name, want in (("fraction", frac), ("lower", lo), ("upper", hi)):
+        if not np.allclose(lv[name], want, rtol=0, atol=1e-12, equal_nan=True):
+            raise SweepFileError(p, "/basins/levels/" + name, "differs from the counts (fraction = count / done, the "
+                                 "95 % Wilson interval)")
+    b["levels"] = lv
+    return b
+
+
+def wilson_interval(k, n, z=1.959963984540054):
+    """The Wilson score interval of k successes in n trials (arrays broadcast), NaN where n = 0:
+    centre (k + z²/2)/(n + z²), half-width z √(k(n−k)/n + z²/4)/(n + z²)."""
+    k = np.asarray(k, dtype=float)
+    n = np.asarray(n, dtype=float)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        centre = (k + z * z / 2) / (n + z * z)
+        half = z / (n + z * z) * np.sqrt(k * (n - k) / n + z * z / 4)
+        lo = np.where(n > 0, np.maximum(0.0, centre - half), np.nan)
+        hi = np.where(n > 0, np.minimum(1.0, centre + half), np.nan)
+    return lo, hi
+
 
 def read_run(path, columns=None):
     """A run file's trajectory, validated: dict of t, omega_m, phi, L1, mode (n), r1, r2 (n × 3),

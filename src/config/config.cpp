@@ -615,6 +615,10 @@ double chain_count(const SweepConfig& c, std::vector<std::string>* factors = nul
       factors->push_back(fmt::format("hold.omega: {}, hold.seeds: {}, hold.perturbations + 1: {}", c.hold->omega.size(),
                                      c.hold->seeds.size(), c.hold->perturbations + 1));
   }
+  if (c.basin) {
+    chains *= double(c.basin->omega.size()) * double(c.basin->samples);
+    if (factors) factors->push_back(fmt::format("basin.omega: {}, basin.samples: {}", c.basin->omega.size(), c.basin->samples));
+  }
   return chains;
 }
 
@@ -623,7 +627,7 @@ double chain_count(const SweepConfig& c, std::vector<std::string>* factors = nul
 void check_chain_count(const SweepConfig& c, double before) {
   std::vector<std::string> factors;
   const double chains = chain_count(c, &factors);
-  const std::string_view key = c.grid.empty() ? "hold" : "grid";
+  const std::string_view key = !c.grid.empty() ? "grid" : c.basin ? "basin" : "hold";
   if (chains > double(kMaxChains))
     throw ConfigError(fmt::format("{}: key '{}': the sweep has {:.0f} chains ({}); allowed at most {}", c.source_name,
                                   key, chains, fmt::join(factors, ", "), kMaxChains));
@@ -635,12 +639,84 @@ void check_chain_count(const SweepConfig& c, double before) {
 }
 
 
+// [basin] (sweep/basin.hpp): the levels, N starts per level and their family, checked against
+// the model's bounds before any work.
+sweep::BasinSpec read_basin(const toml::table& root, SweepConfig& c) {
+  const std::string_view file = c.source_name;
+  const toml::table& bt = subtable(root, "basin", file);
+  Reader r(bt, "basin", file);
+  sweep::BasinSpec b;
+  if (!r.has("omega")) r.fail("omega", "missing: the ω_m levels [rad/s], a list or {start, stop, num}");
+  r.known("omega");
+  b.omega = value_list(*bt.get("omega"), "basin.omega", file);
+  for (std::size_t i = 0; i < b.omega.size(); ++i)
+    if (!(b.omega[i] >= 0.0 && b.omega[i] <= kOmegaMax))
+      throw ConfigError(fmt::format("{}: key 'basin.omega[{}]': {} is out of range; allowed [0, {}]", file, i,
+                                    b.omega[i], kOmegaMax));
+  if (!r.has("samples")) r.fail("samples", "missing: the starts drawn at each level (N >= 1)");
+  b.samples = int(r.count("samples", b.samples, 1.0, 100000.0));
+  const std::string family = r.word("family", "", {"hanging", "hand", "cloud"});
+  if (family.empty()) r.fail("family", "missing; allowed: hanging, hand, cloud");
+  b.family = *sweep::parse_basin_family(family);
+  b.seed = std::uint64_t(r.count("seed", 1, 0.0, 9007199254740992.0));
+  b.settle = r.number("settle", b.settle, 0.0, 1e6);
+  b.measure = r.number("measure", b.measure, 0.0, 1e6, true);
+  b.match_tolerance = r.number("match_tolerance", b.match_tolerance, 0.0, 10.0, true);
+  const auto only = [&](const char* key, sweep::BasinFamily f) {
+    if (r.has(key) && b.family != f) r.fail(key, fmt::format("belongs to family = \"{}\", not \"{}\"", sweep::to_string(f), family));
+  };
+  only("s", sweep::BasinFamily::Hanging);
+  only("swing", sweep::BasinFamily::Hanging);
+  for (const char* k : {"hand_omega", "hand_duration", "hand_knots", "step_rate"}) only(k, sweep::BasinFamily::Hand);
+  for (const char* k : {"orbit", "epsilon"}) only(k, sweep::BasinFamily::Cloud);
+  if (const toml::node* n = bt.get("s")) {
+    r.known("s");
+    const toml::array* a = n->as_array();
+    const auto lo = a && a->size() == 2 ? (*a)[0].value<double>() : std::nullopt;
+    const auto hi = a && a->size() == 2 ? (*a)[1].value<double>() : std::nullopt;
+    if (!lo || !hi || !std::isfinite(*lo) || !std::isfinite(*hi) || *lo > *hi)
+      r.fail("s", "expected [lo, hi] with lo <= hi, the bead's positions along the string [m]");
+    b.s_lo = *lo;
+    b.s_hi = *hi;
+  }
+  b.swing = r.number("swing", b.swing, 0.0, 1.5707963267948966);
+  b.hand_omega = r.number("hand_omega", b.hand_omega, 0.0, kOmegaMax, true);
+  b.hand_duration = r.number("hand_duration", b.hand_duration, 0.0, 600.0, true);
+  b.hand_knots = int(r.count("hand_knots", b.hand_knots, 1.0, 100.0));
+  b.step_rate = r.number("step_rate", b.step_rate, 0.0, 1e4, true);
+  b.orbit = r.word("orbit", b.orbit, {"locked_orbit", "circular_high"});
+  b.epsilon = r.number("epsilon", b.epsilon, 0.0, 1.0, true);
+  c.sample_rate = r.number("sample_rate", 100.0, 0.0, 1e5, true);
+  r.reject_unknown();
+  try {
+    sweep::check_basin(c.model, b, file);
+  } catch (const sweep::BasinError& e) {
+    throw ConfigError(e.what());
+  }
+  if (b.family == sweep::BasinFamily::Cloud)  // the orbit at every level, before any work
+    for (std::size_t i = 0; i < b.omega.size(); ++i) try {
+        const sweep::CompiledProtocol p = sweep::basin_protocol(b, b.omega[i], int(i), 0);
+        (void)sweep::basin_orbit(c.model, physics::MotorSchedule(c.model.p.drive_radius, p.schedule), b, b.omega[i]);
+      } catch (const sweep::BasinError& e) {
+        throw ConfigError(fmt::format("{}: key 'basin.orbit': at basin.omega[{}] = {} rad/s: {}; allowed: a level "
+                                      "where the orbit exists, or orbit = \"circular_high\"", file, i, b.omega[i], e.what()));
+      }
+  c.windows_per_task = 1;
+  return b;
+}
+
 // The tables of one sweep (a plain file, or one part of a grouped one) after [model],
 // [layers], [integrator] and [initial]: [protocol] or [hold], [grid], [output].
 // `chains_before`: the chains of the parts of a grouped sweep read before this one.
 void read_sweep_tables(const toml::table& root, SweepConfig& c, double chains_before = 0.0) {
   const std::string_view file = c.source_name;
-  if (root.contains("hold")) {
+  if (root.contains("basin")) {
+    for (const char* other : {"protocol", "hold", "bisect"})
+      if (root.contains(other))
+        throw ConfigError(fmt::format("{}: key 'basin': a sweep has one of [protocol], [hold], [bisect] and [basin], not {} beside it",
+                                      file, other));
+    c.basin = read_basin(root, c);
+  } else if (root.contains("hold")) {
     if (root.contains("protocol"))
       throw ConfigError(fmt::format("{}: key 'hold': a sweep has either [protocol] (ramps) or [hold], not both", file));
     const toml::table& ht = subtable(root, "hold", file);
@@ -701,7 +777,7 @@ void read_sweep_tables(const toml::table& root, SweepConfig& c, double chains_be
   } catch (const sweep::GridError& e) {
     throw ConfigError(e.what());
   }
-  if (c.hold || c.bisect) return;
+  if (c.hold || c.basin || c.bisect) return;
   try {
     sweep::compile(c.protocol, c.start_omega);
   } catch (const std::invalid_argument& e) {
@@ -710,10 +786,10 @@ void read_sweep_tables(const toml::table& root, SweepConfig& c, double chains_be
 }
 
 
-const std::set<std::string> kSweepTables{"model", "layers", "integrator", "initial", "protocol", "grid", "hold", "bisect", "output"};
+const std::set<std::string> kSweepTables{"model", "layers", "integrator", "initial", "protocol", "grid", "hold", "basin", "bisect", "output"};
 // The tables a variant or a group may set over the file's.
 const std::set<std::string> kVariantTables{"model", "layers", "integrator", "initial"};
-const std::set<std::string> kGroupTables{"model", "layers", "integrator", "initial", "protocol", "hold", "bisect", "grid"};
+const std::set<std::string> kGroupTables{"model", "layers", "integrator", "initial", "protocol", "hold", "basin", "bisect", "grid"};
 
 // src's keys over dst's, table by table; anything else (numbers, arrays such as the segments
 // of a protocol or a grid axis) replaces what dst had.
@@ -847,6 +923,8 @@ std::vector<GroupSpec> read_groups(const toml::table& root, const std::vector<Va
     reject_unknown_part_keys(r, {"name", "purpose", "variants"}, kGroupTables);
     if (g.tables.contains("protocol") && g.tables.contains("hold"))
       r.fail("hold", "a group has either [group.protocol] (ramps, steps) or [group.hold], not both");
+    if (g.tables.contains("basin") && (g.tables.contains("protocol") || g.tables.contains("hold")))
+      r.fail("basin", "a group has one of [group.protocol], [group.hold] and [group.basin]");
     if (g.tables.contains("bisect") && (g.tables.contains("protocol") || g.tables.contains("hold")))
       r.fail("bisect", "a group has one of [group.protocol], [group.hold] or [group.bisect]");
     out.push_back(std::move(g));
@@ -861,9 +939,13 @@ toml::table part_root(const toml::table& base, const VariantSpec& v, const Group
   // A group's [hold] replaces the file's [protocol] and the other way round.
   if (g.tables.contains("hold")) root.erase("protocol");
   if (g.tables.contains("protocol")) root.erase("hold");
+  if (g.tables.contains("basin")) root.erase("protocol"), root.erase("hold");
+  if (g.tables.contains("protocol") || g.tables.contains("hold")) root.erase("basin");
   // And a group's [bisect] replaces both, as either replaces the file's [bisect].
   if (g.tables.contains("bisect")) root.erase("protocol"), root.erase("hold");
   if (g.tables.contains("protocol") || g.tables.contains("hold")) root.erase("bisect");
+  if (g.tables.contains("basin")) root.erase("bisect");
+  if (g.tables.contains("bisect")) root.erase("basin");
   merge_into(root, g.tables);
   return root;
 }

@@ -205,6 +205,36 @@ void hold_keys(std::vector<KeyInfo>& k) {
                   "ε: the settling ends when the distance left to the fixed point, or the drift over the periods skipped of a periodic orbit, is at most ε l"));
 }
 
+// [basin] (astrojax sweep, instead of [protocol]; sweep/basin.hpp)
+void basin_keys(std::vector<KeyInfo>& k) {
+  k.push_back(other("basin", "omega", "list", "rad/s", fmt::format("each in [0, {}]", kOmegaMax), "",
+                    "the ω_m levels: a list or {start, stop, num}"));
+  k.push_back(whole("basin", "samples", 1, 100000, "", "N, the starts drawn at each level"));
+  k.push_back(other("basin", "family", "word", "", "hanging, hand, cloud", "",
+                    "the distribution of the starts (guide: basin sweeps)"));
+  k.push_back(whole("basin", "seed", 0, 9007199254740992.0, "1", "the draws' stream: another seed draws other starts"));
+  k.push_back(num("basin", "settle", "s", 0.0, 1e6, false, false, "60", "held at the level before the measured window"));
+  k.push_back(num("basin", "measure", "s", 0.0, 1e6, true, false, "10", "the measured window"));
+  k.push_back(num("basin", "match_tolerance", "", 0.0, 10.0, true, false, "0.25",
+                  "orbits of one class at neighbouring levels are one attractor within this scaled feature distance"));
+  k.push_back(other("basin", "s", "[lo, hi]", "m", "within the stops [s_min, l − d]", "l − d (on the bottom ball)",
+                    "family hanging: the bead's position along the string, uniform in [lo, hi]"));
+  k.push_back(num("basin", "swing", "rad", 0.0, 1.5707963267948966, false, false, "0.3",
+                  "family hanging: each segment's angle from the vertical, uniform in [0, swing]"));
+  k.push_back(num("basin", "hand_omega", "rad/s", 0.0, kOmegaMax, true, false, "20",
+                  "family hand: the top's ω_m at each knot of the hand's motion, uniform in [0, hand_omega]"));
+  k.push_back(num("basin", "hand_duration", "s", 0.0, 600.0, true, false, "3", "family hand: the hand's motion lasts this long"));
+  k.push_back(whole("basin", "hand_knots", 1, 100, "4", "family hand: knots of the hand's piecewise linear ω_m"));
+  k.push_back(num("basin", "step_rate", "rad/s^2", 0.0, 1e4, true, false, "5",
+                  "family hand: the motor's ramp from the hand's last ω_m to the level"));
+  k.push_back(other("basin", "orbit", "word", "", "locked_orbit, circular_high", "locked_orbit",
+                    "family cloud: the orbit the starts surround, at each level"));
+  k.push_back(num("basin", "epsilon", "m", 0.0, 1.0, true, false, "0.01",
+                  "family cloud: ε, each ball moved across the string by up to ε, each velocity component by up to ε ω_m "
+                  "(at most a tenth of l)"));
+  k.push_back(num("basin", "sample_rate", "1/s", 0.0, 1e5, true, false, "100", "samples stored per second of every window"));
+}
+
 // [bisect] (astrojax sweep, instead of [protocol] or [hold]): sweep/bisection.hpp.
 void bisect_keys(std::vector<KeyInfo>& k) {
   k.push_back(other("bisect", "threshold", "word", "", "omega_rise, omega_fall, omega_1, omega_2", "",
@@ -273,7 +303,7 @@ void classifier_keys(std::vector<KeyInfo>& k) {
 // Every section's keys, in the order of a file's tables.
 std::vector<KeyInfo> build() {
   std::vector<KeyInfo> k = physics_keys();
-  for (auto add : {integrator_keys, initial_keys, schedule_keys, output_keys, protocol_keys, hold_keys, bisect_keys, grid_keys,
+  for (auto add : {integrator_keys, initial_keys, schedule_keys, output_keys, protocol_keys, hold_keys, basin_keys, bisect_keys, grid_keys,
                    group_keys, orbits_keys, classifier_keys})
     add(k);
   return k;
@@ -292,7 +322,7 @@ std::string generic_section(std::string_view prefix) {
     const std::size_t dot = s.find('.', 8);
     return dot == std::string::npos ? "variant" : s.substr(dot + 1);
   }
-  if (s.rfind("grid.", 0) == 0 || s.rfind("hold.omega", 0) == 0 || s.rfind("orbits.", 0) == 0) return "grid.*";
+  if (s.rfind("grid.", 0) == 0 || s.rfind("hold.omega", 0) == 0 || s.rfind("basin.omega", 0) == 0 || s.rfind("orbits.", 0) == 0) return "grid.*";
   return s;
 }
 

@@ -30,6 +30,7 @@ namespace ajx::results {
 //      /trajectory/chi and tie_energy new; /trajectory/phi is the motor's phase.
 //   5  sweeps with [bisect] chains hold /brackets (each bisection's bracket and every probe);
 //      files without bisections are laid out as in format 4.
+//      A sweep with basin chains holds /basins (results/basin_file.hpp), also since 5.
 inline constexpr std::int64_t kFileFormatVersion = 5;
 
 inline void write_format(io::File& f, std::string_view kind) {

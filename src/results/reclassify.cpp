@@ -1,5 +1,7 @@
 #include "results/reclassify.hpp"
 
+#include "results/basin_file.hpp"
+
 #include <unistd.h>
 
 #include <fmt/format.h>
@@ -75,6 +77,7 @@ ReclassifySummary reclassify_file(const std::filesystem::path& input, const std:
     }
     io::Group wg = out.file().open_group("windows");
     wg.set_attribute("classifier_settings", used.empty() ? std::string("defaults") : fmt::format("{}", fmt::join(used, "\n")));
+    write_basin_results(out.file());  // the basins' classes and fractions follow the windows'
     out.close();
     fs::rename(tmp, output);
   } catch (...) {

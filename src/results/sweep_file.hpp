@@ -17,6 +17,7 @@
 
 #include <sstream>
 #include <stdexcept>
+#include "results/basin_file.hpp"
 #include "results/provenance.hpp"
 #include "config/config.hpp"
 #include "physics/parameter_table.hpp"
@@ -131,6 +132,7 @@ class SweepFile {
     tg.create_filled("steps", {T_}, io::DType::Int64, 0.0, {T_});
     tg.create_filled("final_state", {T_, kStateCols}, io::DType::Float64, kNotComputed, {1, kStateCols})
         .set_attribute("columns", std::span<const std::string>(physics::state_column_names()));
+    write_basin_layout(f_, cfg, plan);
     brackets_.emplace(plan);
     create_brackets(f_, plan, *brackets_);
     f_.flush();
@@ -186,6 +188,7 @@ class SweepFile {
     std::sort(failures.begin(), failures.end());
     failures.erase(std::unique(failures.begin(), failures.end()), failures.end());
     tg.set_attribute("failures", std::span<const std::string>(failures));
+    write_basin_results(f_);  // the fractions of the samples done
     io::Group prov = f_.require_group("provenance");
     write_run_record(prov, run);
     close();

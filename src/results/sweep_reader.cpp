@@ -9,6 +9,8 @@
 #include <utility>
 
 #include "physics/state_row.hpp"
+#include "results/basin_file.hpp"
+#include "sweep/basin.hpp"
 #include "sweep/orbit_classes.hpp"
 #include "sweep/orbit_classifier.hpp"
 
@@ -167,6 +169,8 @@ SweepReader::SweepReader(const std::filesystem::path& path) : path_(path.string(
     read_tasks();
     step = "classes";
     read_classes();
+    step = "basins";
+    read_basins();
     step = "brackets";
     read_brackets();
   } catch (const io::Hdf5Error& e) {
@@ -433,6 +437,85 @@ const Array<double>& SweepReader::stat(std::string_view name) const {
   const auto it = stats_.find(name);
   if (it == stats_.end()) throw std::logic_error(fmt::format("no window statistic named {}", name));
   return it->second;
+}
+
+}  // namespace ajx::results
+
+namespace ajx::results {
+
+// Format 5: /basins, when present, consistent with /windows (each sample's class is its chain's
+// window 0) and with itself (counts, fractions and Wilson intervals recomputed to rounding).
+void SweepReader::read_basins() {
+  if (!f_.exists("basins")) return;
+  if (version_ < 5) fail("basins", fmt::format("present in a file of format_version {} (basins came with 5)", version_));
+  const io::Dataset cd = dataset("basins/chain", 1, io::TypeClass::Integer);
+  const std::size_t S = cd.dims()[0];
+  const auto chain = cd.read_int64s().data;
+  basin_level_ = ints("basins/level", {S}).data;
+  (void)ints("basins/sample", {S});
+  basin_class_ = ints("basins/class", {S}).data;
+  const Array<double> start = doubles("basins/start", {S, physics::kStateCols});
+  const Array<double> features = doubles("basins/features", {S, kNumBasinFeatures});
+  const std::size_t L = dataset("basins/levels/omega_m", 1, io::TypeClass::Float).dims()[0];
+  basin_omega_ = doubles("basins/levels/omega_m", {L}).data;
+  const Array<double> tol = doubles("basins/levels/match_tolerance", {L});
+  const auto first = dataset("basins/levels/first", 1, io::TypeClass::Integer).read_int64s();
+  if (first.dims != io::Dims{L}) fail("basins/levels/first", fmt::format("has shape {}, expected [{}]", dims_text(first.dims), L));
+  const auto samples = ints("basins/levels/samples", {L}).data;
+  const auto family = ints("basins/levels/family", {L}).data;
+  (void)ints("basins/levels/part", {L});
+  basin_done_ = ints("basins/levels/done", {L}).data;
+  const std::size_t K = sweep::kNumOrbitClasses;
+  basin_count_ = ints("basins/levels/count", {L, K});
+  basin_fraction_ = doubles("basins/levels/fraction", {L, K});
+  basin_lower_ = doubles("basins/levels/lower", {L, K});
+  basin_upper_ = doubles("basins/levels/upper", {L, K});
+  for (std::size_t i = 0; i < S; ++i) {
+    if (chain[i] < 0 || std::size_t(chain[i]) >= C_)
+      fail("basins/chain", fmt::format("at [{}]: chain {} is not one of 0 to {}", i, chain[i], std::int64_t(C_) - 1));
+    if (basin_level_[i] < 0 || std::size_t(basin_level_[i]) >= L)
+      fail("basins/level", fmt::format("at [{}]: level {} is not one of 0 to {}", i, basin_level_[i], std::int64_t(L) - 1));
+    const std::int32_t window_class = cls_.data[std::size_t(chain[i]) * W_];
+    if (basin_class_[i] != window_class)
+      fail("basins/class", fmt::format("at [{}]: class {}, but its chain {} has class {} in /windows/class", i,
+                                       basin_class_[i], chain[i], window_class));
+    for (std::size_t k = 0; k < physics::kStateCols; ++k)
+      if (std::isinf(start(i, k))) fail("basins/start", fmt::format("at [{}, {}]: {}", i, k, start(i, k)));
+    for (std::size_t k = 0; k < kNumBasinFeatures; ++k)
+      if (std::isinf(features(i, k))) fail("basins/features", fmt::format("at [{}, {}]: {}", i, k, features(i, k)));
+  }
+  // Counts and fractions recomputed from the samples.
+  std::vector<std::int32_t> done(L, 0), count(L * K, 0);
+  for (std::size_t i = 0; i < S; ++i)
+    if (basin_class_[i] >= 0) ++done[std::size_t(basin_level_[i])], ++count[std::size_t(basin_level_[i]) * K + std::size_t(basin_class_[i])];
+  for (std::size_t l = 0; l < L; ++l) {
+    if (samples[l] < 1) fail("basins/levels/samples", fmt::format("at [{}]: N = {}, not >= 1", l, samples[l]));
+    if (first.data[l] < 0 || std::size_t(first.data[l]) + std::size_t(samples[l]) > S)
+      fail("basins/levels/first", fmt::format("at [{}]: rows {} to {} are not inside the {} samples", l, first.data[l],
+                                              first.data[l] + samples[l] - 1, S));
+    if (family[l] < 0 || family[l] > 2) fail("basins/levels/family", fmt::format("at [{}]: {} is not one of 0 to 2", l, family[l]));
+    if (!(tol.data[l] > 0.0)) fail("basins/levels/match_tolerance", fmt::format("at [{}]: {} is not > 0", l, tol.data[l]));
+    if (basin_done_[l] != done[l])
+      fail("basins/levels/done", fmt::format("at [{}]: {}, but {} of its samples have a class", l, basin_done_[l], done[l]));
+    for (std::size_t k = 0; k < K; ++k) {
+      const std::size_t i = l * K + k;
+      if (basin_count_.data[i] != count[i])
+        fail("basins/levels/count", fmt::format("at [{}, {}]: {}, but {} of its samples have class {}", l, k,
+                                                basin_count_.data[i], count[i], k));
+      const double p = basin_fraction_.data[i], lo = basin_lower_.data[i], hi = basin_upper_.data[i];
+      if (done[l] == 0) {
+        if (!std::isnan(p)) fail("basins/levels/fraction", fmt::format("at [{}, {}]: {} of no sample done", l, k, p));
+        continue;
+      }
+      const sweep::Interval ci = sweep::wilson_interval(count[i], done[l]);
+      if (!(std::abs(p - double(count[i]) / done[l]) <= 1e-12))
+        fail("basins/levels/fraction", fmt::format("at [{}, {}]: {}, but count / done = {}", l, k, p, double(count[i]) / done[l]));
+      if (!(std::abs(lo - ci.lo) <= 1e-12 && std::abs(hi - ci.hi) <= 1e-12))
+        fail("basins/levels/lower", fmt::format("at [{}, {}]: [{}, {}] is not the Wilson interval [{}, {}]", l, k, lo, hi,
+                                                ci.lo, ci.hi));
+    }
+  }
+  basin_chain_ = chain;
 }
 
 }  // namespace ajx::results

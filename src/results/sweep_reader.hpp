@@ -113,6 +113,19 @@ class SweepReader {
   const Array<std::int32_t>& count() const { return count_; }
   Array<double> samples(std::string_view column) const;
 
+  // /basins (format 5, a sweep with basin chains): per sample its chain, level row and class;
+  // per level its ω_m, samples done and class counts. Empty without basins.
+  bool has_basins() const { return !basin_chain_.empty(); }
+  const std::vector<std::int64_t>& basin_chain() const { return basin_chain_; }
+  const std::vector<std::int32_t>& basin_level() const { return basin_level_; }
+  const std::vector<std::int32_t>& basin_class() const { return basin_class_; }
+  const std::vector<double>& basin_level_omega() const { return basin_omega_; }
+  const std::vector<std::int32_t>& basin_done() const { return basin_done_; }
+  const Array<std::int32_t>& basin_count() const { return basin_count_; }  // levels × classes
+  const Array<double>& basin_fraction() const { return basin_fraction_; }
+  const Array<double>& basin_lower() const { return basin_lower_; }
+  const Array<double>& basin_upper() const { return basin_upper_; }
+
   // /tasks
   const std::vector<TaskStatus>& status() const { return status_; }
   physics::State final_state(std::size_t task) const;
@@ -137,6 +150,7 @@ class SweepReader {
   void read_samples();
   void read_tasks();
   void read_classes() const;
+  void read_basins();
   void read_brackets();  // sweep_reader_brackets.cpp
 
   std::string path_;
@@ -154,6 +168,11 @@ class SweepReader {
   std::map<std::string, Array<double>, std::less<>> stats_;
   std::vector<TaskStatus> status_;
   Array<double> final_states_;
+  std::vector<std::int64_t> basin_chain_;
+  std::vector<std::int32_t> basin_level_, basin_class_, basin_done_;
+  std::vector<double> basin_omega_;
+  Array<std::int32_t> basin_count_;
+  Array<double> basin_fraction_, basin_lower_, basin_upper_;
   std::optional<BracketTable> brackets_;
 };
 

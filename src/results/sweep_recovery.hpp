@@ -69,7 +69,7 @@ inline void check_sweep_memory(const config::SweepConfig& cfg, const sweep::Swee
   const double per_task = double(std::min<std::size_t>(std::size_t(cfg.windows_per_task), plan.max_windows));
   const double task_bytes = 3.0 * per_task * double(plan.max_samples) * 12 * 8;
   const double plan_bytes = 1024.0 * double(plan.chains()) + 128.0 * windows + 256.0 * double(plan.n_tasks);
-  check_memory(cfg.source_name, cfg.hold ? "hold.sample_rate" : "protocol.sample_rate",
+  check_memory(cfg.source_name, cfg.hold ? "hold.sample_rate" : cfg.basin ? "basin.sample_rate" : "protocol.sample_rate",
                fmt::format("a task of {:.0f} windows of up to {} samples, with a plan of {} chains and {} tasks",
                            per_task, plan.max_samples, plan.chains(), plan.n_tasks),
                task_bytes + plan_bytes, memory_budget(max_memory_mb), max_memory_mb);

@@ -31,7 +31,10 @@ constexpr const char* kLayout[] = {"chains/grid_values", "chains/model",      "c
                                    "chains/seed",        "chains/perturbation", "windows/t_begin", "windows/t_end",
                                    "windows/omega_m_begin", "windows/omega_m_end", "windows/phi_begin",
                                    "windows/direction",  "windows/segment",   "tasks/chain",       "tasks/index",
-                                   "tasks/t_begin",      "tasks/t_end"};
+                                   "tasks/t_begin",      "tasks/t_end",
+                                   "basins/chain", "basins/level", "basins/sample", "basins/start",
+                                   "basins/levels/part", "basins/levels/omega_m", "basins/levels/first",
+                                   "basins/levels/samples", "basins/levels/family", "basins/levels/match_tolerance"};
 
 // "[c, k]" of element i of a dims array.
 std::string at(const io::Dims& d, std::size_t i) {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "physics/model.hpp"
+#include "sweep/basin.hpp"
 #include "sweep/bisection.hpp"
 #include "sweep/protocol.hpp"
 
@@ -57,6 +58,7 @@ struct SweepSpec {
   double early_stop_tolerance = 1e-4;
   std::vector<GridAxis> grid;
   std::optional<HoldSpec> hold;
+  std::optional<BasinSpec> basin;  // basin sampling (sweep/basin.hpp); replaces the protocol when present
   std::optional<BisectSpec> bisect;    // [bisect]: a threshold by bisection, instead of the protocol
 };
 

@@ -5,16 +5,35 @@
 #include <limits>
 
 #include "physics/drive.hpp"
+#include "sweep/basin.hpp"
 #include "sweep/seeds.hpp"
 
 namespace ajx::sweep {
 
 namespace {
 
+// A basin part: N chains per level, each one held level whose start is drawn (sweep/basin.hpp).
+void add_basin_chains(SweepPlan& plan, const SweepSpec& cfg, const GridPoint& g, std::size_t part) {
+  const BasinSpec& b = *cfg.basin;
+  for (std::size_t k = 0; k < b.omega.size(); ++k)
+    for (int n = 0; n < b.samples; ++n) {
+      ChainStart start{std::string(to_string(b.family)), b.omega[k], 0, 0.0};
+      start.level = int(k);
+      start.sample = n;
+      plan.starts.push_back(std::move(start));
+      plan.points.push_back(g);
+      plan.part.push_back(part);
+    }
+}
+
 // The chains of one sweep (a plain file, or one part of a grouped file), appended to the plan.
 void add_chains(SweepPlan& plan, const PlanPart& p, std::size_t part) {
   const SweepSpec& cfg = p.spec;
   for (const GridPoint& g : expand_grid(p.model, cfg, p.source_name)) {
+    if (cfg.basin) {
+      add_basin_chains(plan, cfg, g, part);
+      continue;
+    }
     if (cfg.bisect) {  // one chain of probes per grid point
       plan.starts.push_back({cfg.bisect->start_seed, cfg.bisect->start_omega, 0, 0.0});
       plan.points.push_back(g);
@@ -79,6 +98,7 @@ SweepPlan make_plan(const std::vector<PlanPart>& parts) {
     }
   }
   for (auto& p : plan.points) p.values.resize(plan.axes.size(), std::numeric_limits<double>::quiet_NaN());
+  physics::State level_orbit;  // a cloud's orbit, found at sample 0 of each level (its samples are consecutive)
   for (std::size_t i = 0; i < plan.points.size(); ++i) {
     const PlanPart& part = parts[plan.part[i]];
     plan.bisect.push_back(part.spec.bisect);
@@ -88,7 +108,20 @@ SweepPlan make_plan(const std::vector<PlanPart>& parts) {
     }
     ChainSetup c;
     c.model = plan.points[i].model;
-    c.protocol = compile(plan.points[i].protocol, plan.starts[i].omega);
+    ChainStart& start = plan.starts[i];
+    if (start.sample >= 0) {
+      const BasinSpec& b = *part.spec.basin;
+      c.protocol = basin_protocol(b, start.omega, start.level, start.sample);
+      const physics::MotorSchedule schedule = c.motor();
+      const physics::State* orbit = nullptr;
+      if (b.family == BasinFamily::Cloud) {
+        if (start.sample == 0) level_orbit = basin_orbit(c.model, schedule, b, start.omega);
+        orbit = &level_orbit;
+      }
+      start.state = basin_start(c.model, schedule, b, start.omega, start.level, start.sample, orbit);
+    } else {
+      c.protocol = compile(plan.points[i].protocol, start.omega);
+    }
     c.run = part.run;
     c.sample_rate = part.spec.sample_rate;
     c.settle_tolerance = part.spec.early_stop ? part.spec.early_stop_tolerance : 0.0;
@@ -113,6 +146,7 @@ bool SweepPlan::has_bisection() const {
 }
 
 physics::State SweepPlan::start_state(std::size_t c) const {
+  if (starts[c].state) return *starts[c].state;
   const physics::MotorSchedule schedule = setups[c].motor();
   return seed_state(setups[c].model, schedule, starts[c].seed, starts[c].omega, starts[c].perturbation, starts[c].kick);
 }

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "physics/state.hpp"
@@ -18,10 +19,16 @@ namespace ajx::sweep {
 
 // Where a chain starts: a seed state (see seeds.hpp) at ω_m = omega.
 struct ChainStart {
+  ChainStart() = default;
+  ChainStart(std::string seed_, double omega_, int perturbation_, double kick_)
+      : seed(std::move(seed_)), omega(omega_), perturbation(perturbation_), kick(kick_) {}
   std::string seed = "hanging";
   double omega = 0.0;     // [rad/s]
   int perturbation = 0;   // 0: the seed itself; k >= 1: the seed with velocity kick k
   double kick = 0.0;      // rms of a perturbation's velocity kick [m/s]
+  // A basin chain (sweep/basin.hpp): its level and sample, and the start drawn for it.
+  int level = -1, sample = -1;
+  std::optional<physics::State> state;
 };
 
 struct SweepPlan {

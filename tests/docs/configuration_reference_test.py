@@ -19,7 +19,8 @@ PROBE = "zzz_probe"
 # (command, shipped file, table): the plain tables, probed with --set TABLE.zzz_probe=1.
 PLAIN = [("run", "sweeps/spin_up.toml", t) for t in ("model", "layers", "integrator", "initial", "output")] + \
         [("sweep", "sweeps/quick.toml", t) for t in ("protocol", "grid")] + \
-        [("sweep", "sweeps/hold.toml", "hold"), ("orbits", "sweeps/orbits.toml", "orbits")]
+        [("sweep", "sweeps/hold.toml", "hold"), ("sweep", "sweeps/basins.toml", "basin"),
+         ("orbits", "sweeps/orbits.toml", "orbits")]
 # (command, shipped file, array-of-tables header): probed by a line added to each entry.
 ARRAYS = [("run", "sweeps/spin_up.toml", "schedule"),
           ("sweep", "sweeps/quick.toml", "protocol.segment"),

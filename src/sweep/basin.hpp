@@ -1,0 +1,108 @@
+// Basin sampling: a chain group whose start is a distribution instead of a seed. At every
+// ω_m level N initial conditions are drawn, each held at its level (settle, then one measured
+// window) and classified as any window is, so that the fraction of starts ending on each orbit
+// estimates the size of its basin under that distribution. Three families of starts:
+//   hanging  both balls hanging below the top, the bead at s ~ U[s_lo, s_hi] along the string,
+//            each segment swung from the vertical by an angle ~ U[0, θ_max] in a uniform
+//            azimuth, released at rest; the motor at the level from t = 0;
+//   hand     the hanging rest state (bead on the bottom ball), the top then turned through a short
+//            random motion, ω_m piecewise linear through K random knots in [0, ω_hand] over
+//            T_hand, before the motor ramps to the level at `step_rate` and holds it;
+//   cloud    an orbit (a seed of seeds.hpp at the level: locked_orbit or circular_high) with each
+//            ball moved across the string by a displacement uniform in a disc of radius ε (s and
+//            l − s kept, so the stops are kept) and each velocity component moved by ε ω_m × U[−1, 1].
+// Every draw comes from a counter-based generator keyed by (family, seed, level, sample): the
+// same start on any number of ranks, any platform, in any order.
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "physics/drive.hpp"
+#include "physics/model.hpp"
+#include "physics/state.hpp"
+
+namespace ajx::sweep {
+
+struct CompiledProtocol;
+
+enum class BasinFamily { Hanging, Hand, Cloud };
+inline constexpr const char* kBasinFamilyNames[] = {"hanging", "hand", "cloud"};
+std::string_view to_string(BasinFamily f);
+std::optional<BasinFamily> parse_basin_family(std::string_view name);
+
+// [basin] of a sweep or of a [[group]]: the levels, the samples per level and the family.
+struct BasinSpec {
+  std::vector<double> omega;       // ω_m levels [rad/s]
+  int samples = 100;               // N starts per level, >= 1
+  BasinFamily family = BasinFamily::Hanging;
+  std::uint64_t seed = 1;          // the draws' stream; another seed, other starts
+  double settle = 60.0;            // held before the measured window [s]
+  double measure = 10.0;           // the measured window [s]
+  double step_rate = 5.0;          // hand: the motor's ramp to the level [rad/s²]
+  double match_tolerance = 0.25;   // orbits matched across levels within this feature distance [1]
+  // hanging
+  double s_lo = 0.0, s_hi = 0.0;   // bead position range [m]; both 0: l − d (on the bottom ball)
+  double swing = 0.3;              // θ_max from the vertical [rad], hanging
+  // hand
+  double hand_omega = 20.0;        // ω_hand, the knots' bound [rad/s]
+  double hand_duration = 3.0;      // T_hand [s]
+  int hand_knots = 4;              // K
+  // cloud
+  std::string orbit = "locked_orbit";
+  double epsilon = 0.01;           // ε [m]
+};
+
+// A basin that cannot be run (a draw that can leave the model's bounds, no orbit to surround);
+// the message names the file and the key.
+class BasinError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+// The bead's allowed positions s in the model: [s_min or 0, l − d or l].
+struct StopRange {
+  double lo, hi;  // [m]
+};
+StopRange stop_range(const physics::Model& m);
+
+// Checks that every draw of the family stays inside the model's bounds; throws BasinError
+// naming `source_name` and the key ("basin.s", ...).
+void check_basin(const physics::Model& m, const BasinSpec& b, std::string_view source_name);
+
+// The chain's protocol: held at `omega` from t = 0 (hanging, cloud), or the hand's motion from
+// ω_m = 0 then a ramp to `omega` (hand); one measured window at the end.
+CompiledProtocol basin_protocol(const BasinSpec& b, double omega, int level, int sample);
+
+// The orbit a cloud surrounds at omega, on a chain's schedule; throws BasinError when there is none.
+physics::State basin_orbit(const physics::Model& m, const physics::MotorSchedule& schedule, const BasinSpec& b,
+                           double omega);
+
+// The start of sample `sample` of level `level` (at ω_m = omega), on the chain's schedule; a
+// cloud's `orbit` from basin_orbit (the same for every sample of a level: found once).
+physics::State basin_start(const physics::Model& m, const physics::MotorSchedule& schedule, const BasinSpec& b,
+                           double omega, int level, int sample, const physics::State* orbit = nullptr);
+
+// The draws' generator: uniform doubles in [0, 1) from a 64-bit key by SplitMix64 (Steele,
+// Lea, Flood 2014), whose output depends on nothing but the key and the counter.
+class BasinDraws {
+ public:
+  BasinDraws(const BasinSpec& b, int level, int sample);
+  double uniform();                       // [0, 1)
+  double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
+
+ private:
+  std::uint64_t state_;
+};
+
+// The 95 % Wilson score interval of k successes in n trials (z = 1.959963984540054):
+// centre (k + z²/2)/(n + z²), half-width z √(k(n−k)/n + z²/4)/(n + z²). NaN for n = 0.
+struct Interval {
+  double lo, hi;
+};
+Interval wilson_interval(long k, long n);
+
+}  // namespace ajx::sweep
