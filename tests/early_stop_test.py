@@ -47,10 +47,10 @@ def cpu_of(cmd):
     return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime), out
 
 
-def off_key(path):
+def stop_key(path, on):
     with open(path, "rb") as f:
         root = tomllib.load(f)
-    return "hold.early_stop=false" if "hold" in root else "protocol.early_stop=false"
+    return f"{'hold' if 'hold' in root else 'protocol'}.early_stop={'true' if on else 'false'}"
 
 
 def thresholds(exe, h5, work, tag):
@@ -64,7 +64,8 @@ def compare(exe, src, work, sweep, baseline):
     name = os.path.splitext(os.path.basename(sweep))[0]
     path = os.path.join(src, sweep)
     runs = {}
-    for tag, cmd in (("early", [exe]), ("full", [baseline] if baseline else [exe, "--set", off_key(path)])):
+    for tag, cmd in (("early", [exe, "--set", stop_key(path, True)]),
+                     ("full", [baseline] if baseline else [exe, "--set", stop_key(path, False)])):
         h5 = os.path.join(work, f"{name}_{tag}.h5")
         cmd = [cmd[0], "sweep", path, "-o", h5, "--force", "-q"] + cmd[1:]
         t0 = time.monotonic()

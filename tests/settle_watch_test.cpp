@@ -123,7 +123,7 @@ Ran run_chain(const std::string& text, std::size_t chain, const std::vector<std:
 
 TEST(SettleWatch, AFixedPointEndsItsSettleEarlyAndIsMeasuredFromWithinTolerance) {
   const double eps = 1e-3, l = 0.826;
-  const Ran early = run_chain(kFixed, 0, {});
+  const Ran early = run_chain(kFixed, 0, {"hold.early_stop=true"});
   const Ran full = run_chain(kFixed, 0, {"hold.early_stop=false"});
   ASSERT_TRUE(early.out.ok && full.out.ok);
   EXPECT_EQ(full.out.skipped, 0.0);
@@ -147,7 +147,7 @@ TEST(SettleWatch, AFixedPointEndsItsSettleEarlyAndIsMeasuredFromWithinTolerance)
 }
 
 TEST(SettleWatch, APeriodicOrbitSkipsWholePeriodsAndIsMeasuredAsTheSameOrbit) {
-  const Ran early = run_chain(kPeriodic, 0, {});
+  const Ran early = run_chain(kPeriodic, 0, {"protocol.early_stop=true"});
   const Ran full = run_chain(kPeriodic, 0, {"protocol.early_stop=false"});
   ASSERT_TRUE(early.out.ok && full.out.ok);
   EXPECT_GT(early.out.skipped, 10.0);
@@ -172,7 +172,7 @@ TEST(SettleWatch, APeriodicOrbitSkipsWholePeriodsAndIsMeasuredAsTheSameOrbit) {
 
 TEST(SettleWatch, ASettleThatNeverConvergesIsIntegratedAsWithoutIt) {
   // Chain 1: the kicked copy of the hanging seed.
-  const Ran on = run_chain(kSwing, 1, {});
+  const Ran on = run_chain(kSwing, 1, {"hold.early_stop=true"});
   const Ran off = run_chain(kSwing, 1, {"hold.early_stop=false"});
   ASSERT_TRUE(on.out.ok && off.out.ok);
   EXPECT_EQ(on.out.skipped, 0.0);

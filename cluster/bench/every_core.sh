@@ -45,9 +45,9 @@ awk -v a="$wall_p2" -v b="$wall_p1" 'BEGIN { printf "  wall ratio 2 threads / 1 
 echo "== 3. the demo's sweep, sweeps/paper.toml, as ./setup.sh demo runs it"
 ranks=$(( cores < 2 ? 2 : cores ))
 if [ "$(id -u)" -eq 0 ]; then
-  demo=("$exe" sweep sweeps/paper.toml -q --force -o "$out/demo.h5" --threads "$ranks")
+  demo=("$exe" sweep sweeps/paper.toml -q --force -o "$out/demo.h5" --threads "$ranks" --set protocol.early_stop=true)
 else
-  demo=(mpirun -n "$ranks" "$exe" sweep sweeps/paper.toml -q --force -o "$out/demo.h5")
+  demo=(mpirun -n "$ranks" "$exe" sweep sweeps/paper.toml -q --force -o "$out/demo.h5" --set protocol.early_stop=true)
 fi
 if [ -n "$baseline" ]; then
   before=("$baseline" sweep sweeps/paper.toml -q --force -o "$out/before.h5")

@@ -51,8 +51,11 @@ struct SweepSpec {
   int windows_per_task = 10;           // granularity of the farm's tasks
   double sample_rate = 100.0;          // samples per second stored for every window [1/s]
   // Settling that stops once its orbit is a fixed point or a periodic orbit of the frame turning
-  // with the top, to within early_stop_tolerance × l (sim/settle_watch.hpp).
-  bool early_stop = true;
+  // with the top, to within early_stop_tolerance × l (sim/settle_watch.hpp). Off by default:
+  // a lag just past its Hopf point, still within ε l of the circle, is taken as known and its
+  // slow growth skipped, which moves the amplitudes the Hopf fit reads (docs/reports/
+  // early-stop-and-every-core.md).
+  bool early_stop = false;
   // ε: a hundredth of the classifier's tightest drift tolerance, L1_drift_tol (a tenth moved the
   // main job's ω2: docs/reports/early-stop-and-every-core.md).
   double early_stop_tolerance = 1e-4;
