@@ -38,9 +38,7 @@ void write_table(io::Group& g, const Table& t) {
 
 io::File open_output(const std::filesystem::path& out, const std::string& command_line,
                      const config::OrbitsConfig& cfg) {
-  std::error_code ec;
-  if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path(), ec);
-  io::File f = io::File::create_temporary(out);
+  io::File f = create_output(out);
   write_format(f, "orbits");
   write_provenance(f, command_line, cfg);
   return f;

@@ -9,6 +9,7 @@
 #include <string>
 
 #include <cstdint>
+#include <filesystem>
 #include <stdexcept>
 #include <variant>
 
@@ -32,6 +33,14 @@ namespace ajx::results {
 //      files without bisections are laid out as in format 4.
 //      A sweep with basin chains holds /basins (results/basin_file.hpp), also since 5.
 inline constexpr std::int64_t kFileFormatVersion = 5;
+
+// A new output file written as "<path>.part" (its folder made if missing), renamed to <path> by
+// commit(); destroyed uncommitted, it leaves nothing behind.
+inline io::File create_output(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
+  return io::File::create_temporary(path);
+}
 
 inline void write_format(io::File& f, std::string_view kind) {
   f.set_attribute("format", kind);

@@ -27,27 +27,16 @@ void put_row(io::Group g, const WindowRow& row) {
 
 void write_replay(const std::filesystem::path& path, const std::string& command_line, const config::CommonConfig& cfg,
                   const Trajectory& traj, const ReplayInfo& info, const sim::RunSummary& sum) {
-  std::error_code ec;
-  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
-  io::File f = io::File::create_temporary(path);
+  io::File f = create_output(path);
   write_format(f, "run");
   write_provenance(f, command_line, cfg);
   io::Group tg = f.create_group("trajectory");
   traj.write(tg);
 
   io::Group sg = f.create_group("summary");
-  sg.set_attribute("status", sum.ok() ? std::string("ok") : sum.failure);
-  sg.set_attribute("t_end", sum.t_end);
+  write_summary_common(sg, sum);
   sg.set_attribute("omega_ball", row_stat(info.replayed, "omega_ball"));
   sg.set_attribute("omega_window", info.t_end - info.t_begin);
-  sg.set_attribute("motor_work", sum.energy.motor_work);
-  sg.set_attribute("string_work", sum.energy.string_work);
-  sg.set_attribute("clutch_loss", sum.energy.clutch_loss);
-  sg.set_attribute("steps", sum.steps);
-  sg.set_attribute("rhs_evaluations", sum.rhs_evals);
-  sg.set_attribute("impacts", sum.impacts);
-  sg.set_attribute("sticks", sum.sticks);
-  sg.set_attribute("slack_phases", sum.slack_phases);
 
   io::Group rg = f.create_group("replay");
   rg.set_attribute("description", "one window of a sweep file re-run from its task's stored start state with the "

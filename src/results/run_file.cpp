@@ -83,6 +83,19 @@ void Trajectory::write(io::Group& g) const {
   col("impact_loss", impact_loss, "J", "cumulative dissipation in impacts");
 }
 
+void write_summary_common(io::Group& sg, const sim::RunSummary& sum) {
+  sg.set_attribute("status", sum.ok() ? std::string("ok") : sum.failure);
+  sg.set_attribute("t_end", sum.t_end);
+  sg.set_attribute("motor_work", sum.energy.motor_work);
+  sg.set_attribute("string_work", sum.energy.string_work);
+  sg.set_attribute("clutch_loss", sum.energy.clutch_loss);
+  sg.set_attribute("steps", sum.steps);
+  sg.set_attribute("rhs_evaluations", sum.rhs_evals);
+  sg.set_attribute("impacts", sum.impacts);
+  sg.set_attribute("sticks", sum.sticks);
+  sg.set_attribute("slack_phases", sum.slack_phases);
+}
+
 // The trajectory, the summary and the provenance into the run's file, then committed.
 // `start_projection`: with the paper's scheme, |L1 + L2 - l| of its starting pair before projection.
 void write_run(io::File& f, const std::string& command_line, const config::RunConfig& cfg,
@@ -94,25 +107,16 @@ void write_run(io::File& f, const std::string& command_line, const config::RunCo
   io::Group tg = f.create_group("trajectory");
   traj.write(tg);
   io::Group sg = f.create_group("summary");
-  sg.set_attribute("status", sum.ok() ? std::string("ok") : sum.failure);
+  write_summary_common(sg, sum);
   sg.set_attribute("final_mode", std::string(physics::to_string(state.contact.mode)));
-  sg.set_attribute("t_end", sum.t_end);
   sg.set_attribute("omega_ball", sum.omega_ball);
   sg.set_attribute("omega_window", cfg.run.omega_window);
   sg.set_attribute("energy_residual_relative", sum.energy.relative());
-  sg.set_attribute("motor_work", sum.energy.motor_work);
-  sg.set_attribute("string_work", sum.energy.string_work);
-  sg.set_attribute("clutch_loss", sum.energy.clutch_loss);
   sg.set_attribute("max_constraint_drift", sum.max_drift);
   sg.set_attribute("max_sample_drift", sum.max_sample_drift);
-  sg.set_attribute("steps", sum.steps);
   sg.set_attribute("rejected_steps", sum.rejected);
-  sg.set_attribute("rhs_evaluations", sum.rhs_evals);
   sg.set_attribute("mode_switches", sum.mode_switches);
-  sg.set_attribute("impacts", sum.impacts);
-  sg.set_attribute("sticks", sum.sticks);
   sg.set_attribute("first_stick", sum.first_stick);
-  sg.set_attribute("slack_phases", sum.slack_phases);
   sg.set_attribute("tie_slips", sum.tie_slips);
   sg.set_attribute("first_tie_slip", sum.first_tie_slip);
   sg.set_attribute("chatter_episodes", sum.chatter);
@@ -143,10 +147,8 @@ void write_run(io::File& f, const std::string& command_line, const config::RunCo
 }
 
 RunFile::RunFile(const std::filesystem::path& out) {
-  std::error_code ec;
-  if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path(), ec);
   try {
-    f_ = io::File::create_temporary(out);
+    f_ = create_output(out);
   } catch (const io::Hdf5Error& e) {
     throw OutputError(e.what());
   }

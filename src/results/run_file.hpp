@@ -51,6 +51,10 @@ class RunFile {
   io::File f_;
 };
 
+// The /summary attributes every run file has, a replayed window's too: status, t_end, the
+// motor's work, the string's and the clutch's share, and the counts of steps and events.
+void write_summary_common(io::Group& sg, const sim::RunSummary& sum);
+
 // The trajectory, the summary and the provenance into the run's file, then committed.
 // `start_projection`: with the paper's scheme, |L1 + L2 - l| of its starting pair before
 // projection; `raw_pair`: a two-step start's pair as given, before projection.
