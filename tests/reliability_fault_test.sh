@@ -176,7 +176,7 @@ check "disk full under mpirun: the resume completes and equals the uninterrupted
 # at least 2 s) gives it up and hands its task to the other worker.
 start_mpi stop.h5 100000 --min-task-timeout 2
 stop_rank2 60
-check "stopped worker: the master ends within 60 s ($waited s)" "[ $master_ended -eq 1 ]"
+check "stopped worker: the master ends the sweep within 60 s ($waited s)" "[ $master_ended -eq 1 ]"
 check "stopped worker: exit 0 (got $rc), the rank named" "[ $rc -eq 0 ] && grep -q 'rank 2: no result after' stop.h5.out"
 check "stopped worker: the file is complete and equals the uninterrupted one" "[ ! -e stop.h5.part ] && same stop.h5 straight.h5"
 

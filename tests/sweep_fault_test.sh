@@ -76,7 +76,7 @@ check "disk full: resumed file equals the uninterrupted one" "[ $? -eq 0 ] && sa
 # ends instead of waiting, with the file complete and equal to the uninterrupted one.
 start_mpi hang.h5 100000 --task-timeout 2
 stop_rank2 30
-check "hung worker: the master ends within 30 s ($waited s)" "[ $master_ended -eq 1 ]"
+check "hung worker: the master ends the sweep within 30 s ($waited s)" "[ $master_ended -eq 1 ]"
 check "hung worker: the job's exit code is the master's, 0: every task done (got $rc)" "[ $rc -eq 0 ]"
 check "hung worker: the master names the rank given up" "grep -q 'rank 2: no result after .* given up, its task handed to another' hang.h5.out"
 check "hung worker: the file equals the uninterrupted one" "same hang.h5 straight.h5"

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <deque>
 #include <exception>
+#include <list>
 #include <mutex>
 #include <optional>
 #include <set>
@@ -175,6 +176,67 @@ class FarmComm {
 
  private:
   MPI_Comm comm_ = MPI_COMM_NULL;
+};
+
+// The master's sends, non-blocking: a task message larger than the transport's eager limit
+// (a few kB on shared memory) is sent by rendezvous, so a blocking MPI_Send to a stopped or
+// hung rank would hold the master, and with it every other worker and the task bound that
+// should give that rank up, until the rank runs again. Each message stays here until MPI is
+// done with it.
+class Outbox {
+ public:
+  explicit Outbox(const FarmComm& comm) : comm_(comm) {}
+  Outbox(const Outbox&) = delete;
+  Outbox& operator=(const Outbox&) = delete;
+  // On an error's way out: nothing is waited for (a rank may be hung); the buffers are kept.
+  ~Outbox() { close([](int) { return true; }); }
+
+  // The end: what is in flight to a live rank is waited for; what is in flight to a rank given
+  // up (lost(rank)) may never be received, so its buffer is kept for the life of the process
+  // (the caller then ends the job with MPI_Abort: FarmOptions::task_timeout).
+  template <class Lost>
+  void close(const Lost& lost) {
+    for (Pending& p : pending_) {
+      if (p.request == MPI_REQUEST_NULL) continue;  // done, or never started
+      if (lost(p.dest)) {
+        MPI_Request_free(&p.request);
+        kept().push_back(std::move(p.msg));
+      } else {
+        check_mpi(MPI_Wait(&p.request, MPI_STATUS_IGNORE), "MPI_Wait");
+      }
+    }
+    pending_.clear();
+  }
+
+  void post(Bytes msg, int dest, int tag) {
+    if (msg.size() > static_cast<std::size_t>(INT_MAX))
+      throw MpiError("MPI_Isend failed: farm message of " + std::to_string(msg.size()) + " bytes exceeds 2 GiB");
+    pending_.push_back(Pending{std::move(msg), dest, MPI_REQUEST_NULL});
+    Pending& p = pending_.back();
+    check_mpi(MPI_Isend(p.msg.data(), static_cast<int>(p.msg.size()), MPI_BYTE, dest, tag, comm_.get(), &p.request),
+              "MPI_Isend");
+  }
+  // Forgets the messages MPI is done with (one MPI_Test each).
+  void progress() {
+    for (auto it = pending_.begin(); it != pending_.end();) {
+      int done = 0;
+      check_mpi(MPI_Test(&it->request, &done, MPI_STATUS_IGNORE), "MPI_Test");
+      it = done ? pending_.erase(it) : std::next(it);
+    }
+  }
+
+ private:
+  struct Pending {
+    Bytes msg;
+    int dest;
+    MPI_Request request;
+  };
+  static std::deque<Bytes>& kept() {
+    static std::deque<Bytes> k;
+    return k;
+  }
+  const FarmComm& comm_;
+  std::list<Pending> pending_;  // a list: a request's address must not move while MPI holds it
 };
 
 // Runs the work function on one task, timing it and turning exceptions into a failed task.
@@ -525,7 +587,7 @@ void give_up_late(const FarmOptions& options, double bound, Workers& ws, std::ve
 }
 
 // Ready tasks to idle workers, in the order the workers asked; returns the bytes sent.
-std::uint64_t hand_out(const FarmComm& comm, std::deque<int>& idle, Scheduler& sched, Workers& ws,
+std::uint64_t hand_out(Outbox& outbox, std::deque<int>& idle, Scheduler& sched, Workers& ws,
                        LocalWorkers& local) {
   std::uint64_t sent = 0;
   while (!idle.empty() && sched.has_ready()) {
@@ -543,9 +605,9 @@ std::uint64_t hand_out(const FarmComm& comm, std::deque<int>& idle, Scheduler& s
     h.task_id = t.id;
     h.chain = t.chain;
     h.index = t.index;
-    const Bytes msg = pack(h, t.input, sched.carry(c));
-    comm.send(msg, w, kTagTask);
+    Bytes msg = pack(h, t.input, sched.carry(c));
     sent += msg.size();
+    outbox.post(std::move(msg), w, kTagTask);
   }
   return sent;
 }
@@ -568,15 +630,16 @@ TaskResult result_of(const Message& m) {
 
 // The end of the master's loop: every worker rank told to stop, the summary with the lost ranks
 // and the bytes sent (rethrows the error that stopped the farm, if any).
-FarmSummary wind_up(const FarmComm& comm, int size, const Scheduler& sched, const Workers& ws, std::uint64_t sent) {
+FarmSummary wind_up(Outbox& outbox, int size, const Scheduler& sched, const Workers& ws, std::uint64_t sent) {
   FarmSummary s = sched.summary(size);
   Header stop;
   stop.code = static_cast<std::int32_t>(s.status);
-  const Bytes msg = pack(stop);
   for (int w = 1; w < size; ++w) {
-    comm.send(msg, w, kTagStop);
+    Bytes msg = pack(stop);
     sent += msg.size();
+    outbox.post(std::move(msg), w, kTagStop);
   }
+  outbox.close([&](int w) { return bool(ws.lost[static_cast<std::size_t>(w)]); });
   sched.rethrow_if_failed();
   for (int w = 1; w < size; ++w)
     if (ws.lost[static_cast<std::size_t>(w)]) s.lost_ranks.push_back(w);
@@ -589,6 +652,7 @@ FarmSummary wind_up(const FarmComm& comm, int size, const Scheduler& sched, cons
 FarmSummary run_master(const FarmComm& comm, int size, std::vector<Chain> chains, const WorkFunction& work,
                        const FarmOptions& options, Clock::time_point start) {
   Scheduler sched(std::move(chains), options, start);
+  Outbox outbox(comm);
   LocalWorkers local(std::max(0, options.threads), work);
   const int workers = size - 1 + local.size();
   std::vector<double> busy(static_cast<std::size_t>(size), 0.0);
@@ -621,7 +685,8 @@ FarmSummary run_master(const FarmComm& comm, int size, std::vector<Chain> chains
   while (true) {
     // A stop request or an error: no new task; results in flight still come back.
     if (!stopping && (stop_requested(options) || sched.failed())) stopping = true;
-    if (!stopping) sent += hand_out(comm, idle, sched, ws, local);
+    if (!stopping) sent += hand_out(outbox, idle, sched, ws, local);
+    outbox.progress();
     // Done when every worker is waiting (so none has a message still on its way) and there is
     // nothing more to hand out.
     // Lost workers never ask again: with none left, what is still ready never starts.
@@ -669,7 +734,7 @@ FarmSummary run_master(const FarmComm& comm, int size, std::vector<Chain> chains
     sched.tick();
   }
 
-  FarmSummary s = wind_up(comm, size, sched, ws, sent);
+  FarmSummary s = wind_up(outbox, size, sched, ws, sent);
   s.busy_seconds = std::move(busy);
   s.tasks_per_rank = std::move(ran);
   s.bytes_received = received;
