@@ -245,6 +245,7 @@ struct SweepOutput {
           throw io::JournalError(fmt::format("{}: record {} names task {} of {}", journal_path.string(), k, id, plan.n_tasks));
         commit(std::size_t(id), replay.records[k].payload);
       }
+      file->write_pending();  // a .part that cannot be written says so here, and is rebuilt
     };
     try {
       replay_all();
