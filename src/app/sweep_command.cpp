@@ -378,6 +378,7 @@ results::SweepRunRecord run_record(const SweepArgs& args, int ranks, const std::
                             fs.bytes_received, 0.0, fs.result_seconds};
   for (double b : fs.busy_seconds) r.work_seconds += b;
   r.threads = args.threads;
+  r.master_cpu_seconds = fs.master_cpu_seconds;
   return r;
 }
 
