@@ -117,16 +117,20 @@ def basins(one_rank, two_ranks, tput, farm):
     tau = h["work"] / h["tasks"]
     m = h["master"] / h["tasks"]
     s = m + 1.0 / mu
-    s_cpu = h2["master_cpu"] / h2["tasks"]
+    s_cpu = h2["master_cpu"] / h2["tasks"]  # 0: a file from before master_cpu_seconds
     print(f"\nbasin tasks on 1 rank ({one_rank}): {h['tasks']} chains of one task, integration {tau * 1e3:.1f} ms "
           f"and master {m * 1e3:.3f} ms per task; messages {1e3 / mu:.3f} ms per task "
           f"({h2['bytes_in'] / h2['tasks']:.0f} B back, best of {', '.join(f'{r} ranks {v:.0f}/s' for r, v in sorted(rates.items()))})")
-    print(f"  under mpirun -n 2 ({two_ranks}): the master's loop took {s_cpu * 1e3:.3f} ms of CPU per task "
-          f"(polling included), against s = {s * 1e3:.3f} ms of the model")
+    if s_cpu > 0:
+        print(f"  under mpirun -n 2 ({two_ranks}): the master's loop took {s_cpu * 1e3:.3f} ms of CPU per task "
+              f"(polling included), against s = {s * 1e3:.3f} ms of the model")
+    else:
+        print(f"  ({two_ranks} does not record the master's CPU: the model's s alone)")
     print("projection: 10^4 such chains; efficiency by ranks, with the model's s and with the master's CPU per task")
     for R in (2, 8, 16, 64, 128, 512):
         print(f"  {R:5d} ranks: E = {farm(10_000, R, 1, tau, s):.2f}  ({farm(10_000, R, 1, tau, max(s, s_cpu)):.2f})")
-    print(f"  (the master saturates at {(tau + s) / s:.0f} busy workers with s, {(tau + s_cpu) / s_cpu:.0f} with its CPU)")
+    print(f"  (the master saturates at {(tau + s) / s:.0f} busy workers with s"
+          + (f", {(tau + s_cpu) / s_cpu:.0f} with its CPU)" if s_cpu > 0 else ")"))
 
 
 if __name__ == "__main__":

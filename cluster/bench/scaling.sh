@@ -9,11 +9,14 @@
 #  4. the projection to 64, 512 and 4096 ranks (cluster/bench/project.py), and for 10^4 chains
 #     of one short task each, as a basin sweep has: sweeps/basins.toml at 4 starts per level (256
 #     chains) on 1 rank and under mpirun -n 2, and the farm's message rate with their outputs.
-# Usage: cluster/bench/scaling.sh [BUILD_DIR]   (MPIRUN_FLAGS=--allow-run-as-root as root)
+#  With BASELINE_ASTROJAX (another build, such as main's), step 2b and the basin projection are
+#  also made with it, side by side.
+# Usage: cluster/bench/scaling.sh [BUILD_DIR] [BASELINE_ASTROJAX]   (MPIRUN_FLAGS=--allow-run-as-root as root)
 # Some 3 minutes on 2 cores.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 build=${1:-build}
+baseline=${2:-}
 mpirun=(mpirun --oversubscribe ${MPIRUN_FLAGS:-})
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
@@ -30,6 +33,11 @@ echo "== 2b. basin tasks (sweeps/basins.toml, 4 starts per level: 256 chains of 
 basin=(sweeps/basins.toml -q --set basin.samples=4)
 "$build/astrojax" sweep "${basin[@]}" -o "$out/basin1.h5" || [ $? -eq 3 ]  # exit 3: a start that fails is a result
 "${mpirun[@]}" -n 2 "$build/astrojax" sweep "${basin[@]}" -o "$out/basin2.h5" || [ $? -eq 3 ]
+if [ -n "$baseline" ]; then
+  echo "   the same with $baseline"
+  "$baseline" sweep "${basin[@]}" -o "$out/base1.h5" || [ $? -eq 3 ]
+  "${mpirun[@]}" -n 2 "$baseline" sweep "${basin[@]}" -o "$out/base2.h5" || [ $? -eq 3 ]
+fi
 bytes=$(/usr/bin/python3 -c "import h5py; f=h5py.File('$out/w2.h5'); p=f['provenance'].attrs; print(int(p['bytes_from_workers'] / len(f['tasks/status'])))")
 echo "== 1b. master throughput with outputs of a quick-sweep task ($bytes B)"
 for n in 2 3 5 9 17; do "${mpirun[@]}" -n $n "$build/farm_throughput" 64 100 "$bytes"; done | tee "$out/tput.txt"
@@ -39,3 +47,8 @@ for n in 2 3 5 9 17; do "${mpirun[@]}" -n $n "$build/farm_throughput" 64 100 "$b
 echo "== 4. projection"
 /usr/bin/python3 cluster/bench/project.py "$out/paper1.h5" "$out/w1.h5" "$out/w2.h5" "$out/tput.txt" \
   "$out/basin1.h5" "$out/basin2.h5" "$out/tput_basin.txt"
+if [ -n "$baseline" ]; then
+  echo "== 4b. the basin projection with $baseline"
+  /usr/bin/python3 cluster/bench/project.py "$out/paper1.h5" "$out/w1.h5" "$out/w2.h5" "$out/tput.txt" \
+    "$out/base1.h5" "$out/base2.h5" "$out/tput_basin.txt" | sed -n '/^basin tasks/,$p'
+fi
