@@ -53,15 +53,19 @@ wait_mpi() {
     echo "mpirun still waiting 10 s after its ranks exited: killed, the code read from the summary"
     kill -KILL "$pid" 2> /dev/null; wait "$pid" 2> /dev/null
     mpirun_hung=1
-    case "$(grep -oE '^(ok|FAILED|INTERRUPTED)  ' "$out" | tail -1)" in
-      "ok  ") rc=0 ;; "FAILED  ") rc=3 ;; "INTERRUPTED  ") rc=4 ;; *) rc=99 ;;
-    esac
+    rc=$(code_from_summary "$out")
   else
     echo "still running after $limit s: killed"
     local kids; kids=$(pgrep -P "$pid")
     kill -KILL $kids "$pid" 2> /dev/null; wait "$pid" 2> /dev/null
     rc=124
   fi
+}
+# The exit code the master's summary line in $1 stands for (ok 0, FAILED 3, INTERRUPTED 4, none 99).
+code_from_summary() {
+  case "$(grep -oE '^(ok|FAILED|INTERRUPTED)  ' "$1" | tail -1)" in
+    "ok  ") echo 0 ;; "FAILED  ") echo 3 ;; "INTERRUPTED  ") echo 4 ;; *) echo 99 ;;
+  esac
 }
 # Waits for a background process that is not a launcher ($1) for at most $2 s and sets rc (124
 # and killed if it still runs).
@@ -95,5 +99,12 @@ stop_rank2() {
   for _ in $(seq 100); do kill -0 "$mp" 2> /dev/null || break; sleep 0.1; done
   kill -CONT "$rank2" 2> /dev/null
   wait_mpi "$mp" 60 "$out"
+  # Open MPI 4's mpirun now and then dies by a signal (SIGSEGV seen) while it carries out the
+  # master's MPI_Abort; the master had printed its summary and closed the file by then, so its
+  # code is read from the summary.
+  if [ $rc -ge 128 ] && [ $rc -ne 137 ] && grep -q "ending the job" "$out"; then
+    echo "mpirun died by signal $((rc - 128)) while ending the job: the code read from the master's summary"
+    rc=$(code_from_summary "$out")
+  fi
   gone $rank2
 }
