@@ -1,8 +1,9 @@
 #!/usr/bin/python3
 """Windows that stop once their orbit is known change no class and no threshold.
 
-Each sweep file given is run twice: with its settling stopped once the orbit is a fixed point
-of the frame turning with the top (the default, sim/settle_watch.hpp) and with every settle at
+Each sweep file given is run twice: with its settling stopped once the orbit is seen to converge
+at a rate that holds to a fixed point or a periodic orbit of the frame turning with the top (the
+default, sim/settle_watch.hpp) and with every settle at
 its full length (`--set protocol.early_stop=false`, or `hold.early_stop=false`; or, with
 --baseline, another build of the program, e.g. main's, which has no early stop). Asserted, per
 file: the same class in every window of every chain (the class sequence), and the same

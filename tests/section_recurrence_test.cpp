@@ -2,8 +2,9 @@
 // whose distance to their periodic orbit is known: an exact period of k crossings is found with
 // its T, turn and integrals once the crossings span the history; an orbit converging onto a
 // periodic one is recognised only where skipping the periods that fit moves it by less than
-// ε l; a steady drift counts with the periods skipped; a second frequency beside the orbit (a
-// quasi-periodic motion) is never taken for a period, nor are crossings in the other direction.
+// ε l; a steady drift counts with the periods skipped; a deviation that grows (a lag just past
+// its Hopf point) is never taken for a period however small; a second frequency beside the orbit
+// (a quasi-periodic motion) is never taken for a period, nor are crossings in the other direction.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -77,6 +78,20 @@ TEST(SectionRecurrence, ASteadyDriftCountsWithThePeriodsSkipped) {
     for (int j = 0; j < 40; ++j) found = rec.add(point(j, 1, T, drift * j), time_left);
     const double n = std::floor(time_left / T);
     EXPECT_EQ(found.has_value(), n * drift <= kTol) << time_left;
+  }
+}
+
+TEST(SectionRecurrence, AGrowingDeviationIsNeverTakenForAPeriodHoweverSmall) {
+  // Offsets a e^{γ t}, γ = 0.1/s (the growth of the lag at 16π, 0.65π past its Hopf point), from
+  // a = 1e-9 m: over 400 crossings the drift times the periods that fit stays below ε l, which
+  // the linear bound alone would take for a periodic orbit; the growth over the history is not.
+  const double a = 1e-9, gamma = 0.1, T = 0.25, time_left = 50.0;
+  SectionRecurrence rec(kTol, kHistory);
+  const double n = std::floor(time_left / T);
+  for (int j = 0; j < 400; ++j) {
+    const double drift = a * std::exp(gamma * T * j) * (std::exp(gamma * T) - 1.0);
+    ASSERT_LT(n * drift, kTol) << j;  // the linear bound would hold
+    EXPECT_FALSE(rec.add(point(j, 1, T, a * std::exp(gamma * T * j)), time_left)) << j;
   }
 }
 

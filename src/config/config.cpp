@@ -483,10 +483,12 @@ std::vector<double> value_list(const toml::node& n, const std::string& key, std:
   return out;
 }
 
-// [protocol] or [hold]: early_stop and its tolerance ε (sim/settle_watch.hpp), at most the
-// classifier's tightest drift tolerance (L1_drift_tol = 0.01): a larger ε could move a class.
+// [protocol] or [hold]: early_stop (on unless set false) and its tolerance ε
+// (sim/settle_watch.hpp), at most the classifier's tightest drift tolerance (L1_drift_tol =
+// 0.01): a larger ε could move a class. [basin] and [bisect] have no such key: their settles run
+// in full (SweepSpec::early_stop).
 void read_early_stop(Reader& r, SweepConfig& c) {
-  c.early_stop = r.boolean("early_stop", c.early_stop);
+  c.early_stop = r.boolean("early_stop", true);
   c.early_stop_tolerance = r.number("early_stop_tolerance", c.early_stop_tolerance, 0.0, 0.01, true);
 }
 

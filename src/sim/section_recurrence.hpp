@@ -11,8 +11,11 @@
 // turn of the frame Δψ over it are read off the crossings. The drift per period is the largest
 // shift s = |p_i − p_{i−k}| over every crossing of the last `history` seconds (several periods
 // of the slowest swing, 2π/ω0, so that a swing beside the orbit, or a second frequency, shows
-// in it); if it does not grow, the state after n more periods is within D = n s of where a skip
-// of n periods leaves it. The orbit is known once D ≤ ε l for the n periods that fit.
+// in it). If it does not grow (the newest shift no larger than the oldest of the history), the
+// state after n more periods is within D = n s of where a skip of n periods leaves it: a drift
+// that decays as e^{−γ t} moves it by s (1 − e^{−γ n T})/(γ T) ≤ n s. A growing drift, e^{+γ t}
+// (a deviation from an unstable orbit, as a lag just past its Hopf point), would outrun n s and
+// is never taken. The orbit is known once D ≤ ε l for the n periods that fit.
 #pragma once
 #include <Eigen/Core>
 #include <array>

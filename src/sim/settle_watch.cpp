@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "physics/rotating_axes.hpp"
+#include "sim/step.hpp"
 
 namespace ajx::sim {
 
@@ -61,6 +62,8 @@ SettleWatch::Record SettleWatch::record(double t, const numerics::Vec& y) const 
 void SettleWatch::restart(double t) {
   block_end_ = t + kBlock;
   blocks_ = 0;
+  grid_count_ = 0;
+  dist_.fill(0.0);
   pending_ = false;
   mode_ = ctx_.s.contact.mode;
   tie_slip_ = ctx_.s.contact.tie.slip;
@@ -73,6 +76,19 @@ void SettleWatch::open_block(double t, const numerics::Vec& y) {
   lo_ = hi_ = in_top_frame(t, y);
   block_start_ = record(t, y);
   block_end_ = t + kBlock;
+}
+
+// The state as lengths at the block's boundary t_b, read off the step's interpolant: the
+// boundaries lie exactly B apart while no step is longer than a block.
+void SettleWatch::sample_grid(const numerics::StepView& step) {
+  const double tb = block_end_;
+  if (grid_count_ > 0 && std::abs(tb - grid_t_ - kBlock) > 1e-9 * kBlock) grid_count_ = 0;
+  numerics::Vec y(yend_.size());
+  step.at(tb, y);
+  std::rotate(grid_.begin(), grid_.begin() + 1, grid_.end());
+  grid_.back() = section_point(tb, y, 0).p;
+  grid_t_ = tb;
+  grid_count_ = std::min(grid_count_ + 1, int(grid_.size()));
 }
 
 bool SettleWatch::observe(const numerics::StepView& step) {
@@ -103,12 +119,15 @@ bool SettleWatch::observe(const numerics::StepView& step) {
     }
   }
   if (t < block_end_) return true;
+  sample_grid(step);
   if (recognised(t) && spans[span_].second - t > kBlock) {
     pending_ = true;
     return false;
   }
   if (section_axis_ < 0) choose_section(x);
+  const double next = block_end_ + kBlock;
   open_block(t, yend_);
+  if (next > t) block_end_ = next;  // the boundaries stay B apart
   return true;
 }
 
@@ -124,20 +143,42 @@ void SettleWatch::choose_section(const Vec6& x) {
   section_g_ = x(i) - section_level_;
 }
 
-// D = a_j + s_j q/(1 − q), q = s_j/s_{j−1} < 1, a_j ≤ a_{j−1}: at most ε l.
+// The distance d_j = a_j + s_j of each closed block (its swing and the shift of its centre),
+// over the last kRateBlocks blocks: Λ_j = ln(d_{j−1}/d_j) = σ B, σ the deviation's decay rate.
+// The orbit is known when every Λ_j > 0 (the deviation decreased at every block), the newest
+// Λ is not below the smallest before it (the rate has not slowed: a slower mode has not
+// surfaced), a_j ≤ a_{j−1}, and D = a_j + s_j q/(1 − q) ≤ ε l with q = exp(−min Λ), the slowest
+// contraction seen. A deviation that grows, stalls or decays ever more slowly (a lag near its
+// Hopf point, where σ → 0 and then < 0) never ends its stretch.
 bool SettleWatch::recognised(double t) {
   const Vec6 centre = 0.5 * (lo_ + hi_);
   const double spread = 0.5 * (hi_ - lo_).norm();
   const double shift = blocks_ > 0 ? (centre - centre_).norm() : 0.0;
+  if (blocks_ > 0) {  // block 0 has no shift: its distance is not comparable
+    std::rotate(dist_.begin(), dist_.begin() + 1, dist_.end());
+    dist_.back() = spread + shift;
+  }
   bool known = false;
-  if (blocks_ >= 2 && spread <= spread_prev_ && shift < shift_prev_) {
-    const double q = shift / shift_prev_;
-    known = spread + shift * q / (1.0 - q) <= ctx_.opt.settle_tolerance * ctx_.model.p.string_length;
+  if (blocks_ >= kRateBlocks && spread <= spread_prev_) {
+    double slowest = std::numeric_limits<double>::infinity(), before = slowest, newest = 0.0;
+    bool falling = true;
+    for (int j = 1; j < kRateBlocks; ++j) {
+      const double d0 = dist_[std::size_t(j - 1)], d1 = dist_[std::size_t(j)];
+      falling = falling && d1 < d0 && d1 > 0.0;
+      if (!falling) break;
+      newest = std::log(d0 / d1);
+      if (j < kRateBlocks - 1) before = std::min(before, newest);
+      slowest = std::min(slowest, newest);
+    }
+    if (falling && newest >= before) {
+      const double q = std::exp(-slowest);
+      distance_ = spread + shift * q / (1.0 - q);
+      known = distance_ <= ctx_.opt.settle_tolerance * ctx_.model.p.string_length;
+    }
   }
   ++blocks_;
   centre_ = centre;
   spread_prev_ = spread;
-  shift_prev_ = shift;
   if (known) {
     const Record now = record(t, yend_);
     const double len = t - block_start_.t;
@@ -151,10 +192,12 @@ void SettleWatch::jump() {
   pending_ = false;
   State& s = ctx_.s;
   const double end = ctx_.opt.settle_spans[span_].second, dt = end - s.t;
-  const double Omega = top_rate(s.t, s.y);
-  // The lab state turns by Ω Δ; the integrator's axes turn by their own angle meanwhile.
-  physics::rotate_about_z(s.y, Omega * dt - (ctx_.axes.angle(end) - ctx_.axes.angle(s.t)));
-  if (physics::has_tie(s.y)) s.y(idx::chi) += Omega * dt;  // the held tie keeps χ − φ
+  if (!land_on_fixed_point(end)) {
+    const double Omega = top_rate(s.t, s.y);
+    // The lab state turns by Ω Δ; the integrator's axes turn by their own angle meanwhile.
+    physics::rotate_about_z(s.y, Omega * dt - (ctx_.axes.angle(end) - ctx_.axes.angle(s.t)));
+    if (physics::has_tie(s.y)) s.y(idx::chi) += Omega * dt;  // the held tie keeps χ − φ
+  }
   for (int k = 0; k < 5; ++k)
     if (kWorks[k] < s.y.size()) s.y(kWorks[k]) += rate_[k] * dt;
   s.impact_loss += rate_[5] * dt;
@@ -163,6 +206,51 @@ void SettleWatch::jump() {
   ++ctx_.sum.settle_stops;
   ++span_;
   restart(-std::numeric_limits<double>::infinity());
+}
+
+// The deviation of a single decaying mode, w(t) − w* = e^{−σ (t − t_b)} (w_b − w*), w the state
+// in the turning frame as lengths (section_recurrence.hpp), read at three boundaries B apart:
+// Δ_b = w_b − w_{b−1} = q Δ_{b−1}, q = e^{−σ B}, so w* = w_b + Δ_b q/(1 − q), up to
+// E = |Δ_b − q Δ_{b−1}|/(1 − q)² for what the single mode leaves out. Where E < D (the plain
+// stop's distance), the stretch ends where the full settle would: w(end) = w* + e^{−σ Δ}(w − w*),
+// the frame's turn the integral of its rate Ω(t) = Ω* + e^{−σ t}(Ω − Ω*), then projected onto
+// the mode's constraints; the window then starts within E + D e^{−σ Δ} of the full settle's
+// state instead of D. Otherwise (an oscillating deviation, sampled at any phase) false.
+bool SettleWatch::land_on_fixed_point(double end) {
+  if (grid_count_ < 3 || grid_[0].size() != grid_[2].size() || grid_[1].size() != grid_[2].size()) return false;
+  State& s = ctx_.s;
+  const Eigen::VectorXd d1 = grid_[1] - grid_[0], d2 = grid_[2] - grid_[1];
+  const double nn = d1.squaredNorm();
+  if (!(nn > 0.0)) return false;
+  const double q = d2.dot(d1) / nn;
+  if (!(q > 0.0 && q < 1.0)) return false;
+  const double E = (d2 - q * d1).norm() / ((1.0 - q) * (1.0 - q));
+  if (!(E < distance_)) return false;
+  const Eigen::VectorXd wstar = grid_[2] + d2 * (q / (1.0 - q));
+  const double sigma = -std::log(q) / kBlock, dt = end - s.t, decay = std::exp(-sigma * dt);
+  const Eigen::VectorXd w = wstar + (section_point(s.t, s.y, 0).p - wstar) * decay;
+  const physics::Parameters& p = ctx_.model.p;
+  const double omega0 = std::sqrt(p.gravity / p.string_length);
+  const bool tie = physics::has_tie(s.y);
+  double psi;  // the frame's azimuth at the end, in the integrator's axes
+  if (tie) {
+    const double rate = s.y(idx::chi_dot), rate_star = wstar(12) * omega0 / p.drive_radius;
+    s.y(idx::chi) += rate_star * dt + (rate - rate_star) * (1.0 - decay) / sigma;
+    s.y(idx::chi_dot) = w(12) * omega0 / p.drive_radius;
+    psi = s.y(idx::chi) - ctx_.axes.angle(end);
+  } else {
+    psi = top_azimuth(end, s.y);
+  }
+  const double c = std::cos(psi), sn = std::sin(psi);
+  for (int b = 0; b < 4; ++b) {  // r1, r2, v1, v2 turned back by ψ
+    const int k = 3 * b;
+    const double f = b < 2 ? 1.0 : omega0;
+    s.y(k) = f * (c * w(k) - sn * w(k + 1));
+    s.y(k + 1) = f * (sn * w(k) + c * w(k + 1));
+    s.y(k + 2) = f * w(k + 2);
+  }
+  project_after_step(ctx_, end, s.y);
+  return true;
 }
 
 // The section point at t (the state in the turning frame as lengths, section_recurrence.hpp).

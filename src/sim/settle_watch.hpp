@@ -7,23 +7,35 @@
 // χ), keeps both balls' positions in that frame, x = Rz(−ψ) (r1, r2), constant. The watch
 // follows x over blocks of B seconds: each block's box of x (its centre m_j, its half-diagonal
 // a_j, what an oscillation about the centre spans) and the shift of the centre from the last
-// block, s_j = |m_j − m_{j−1}|. When the shifts contract, q = s_j/s_{j−1} < 1, and the
-// oscillation does not grow, a_j ≤ a_{j−1}, the distance left to the fixed point is at most
-// D = a_j + s_j q/(1 − q) (the oscillation, and the geometric sum of the shifts to come); once
-// D ≤ ε l the stretch ends: its end state is taken to be the present one turned by Ω Δ (Δ the
-// time left), with the work integrals advanced at their rates over the last block. The end
-// state then lies within D of the one a full integration reaches (which is nearer the fixed
-// point).
+// block, s_j = |m_j − m_{j−1}|; d_j = a_j + s_j measures the deviation from the fixed point.
+//
+// Being near the fixed point is not enough: past a Hopf point (the lag at ω_m > ω_H) the
+// deviation is the sum of a mode that decays and one that grows from far below it, and the
+// first hides the second until it has decayed. So the orbit is known only where it is seen to
+// converge at a rate that holds: over the last kRateBlocks blocks every contraction
+// Λ_j = ln(d_{j−1}/d_j) = σ B is positive, the newest is no smaller than the smallest before it
+// (a slower mode surfacing, or σ → 0 at a Hopf point, shows as a falling Λ), a_j ≤ a_{j−1}, and
+// with q = e^{−min Λ}, the slowest contraction seen, the distance left is at most
+// D = a_j + s_j q/(1 − q) ≤ ε l. The full settle would end within D e^{−σ Δ} of the fixed
+// point (Δ the time left); the stretch ends:
+//  - where the deviation is one decaying mode (three block boundaries B apart in line, see
+//    land_on_fixed_point), on the state the full settle reaches, extrapolated by that mode,
+//    within E + D e^{−σ Δ} of it (E the part the single mode leaves out, used only when E < D);
+//  - otherwise on the present state turned by Ω Δ, within D of it.
+// The work integrals advance at their rates over the last block.
 //
 // An orbit that returns to a periodic orbit of that frame (lagging behind a held tie, a flower)
 // is recognised by its recurrence on a Poincaré section (sim/section_recurrence.hpp): once the
 // distance left to the periodic orbit is at most ε l, the stretch skips the n whole periods T
 // that fit before its end, the state turned by n Δψ (the frame's turn over a period) and the
 // integrals advanced by n times their increase over a period; the rest of the stretch is
-// integrated. Orbits that neither converge nor recur (slow slides, escapes from a saddle, a
-// quasi-periodic flower) run the full stretch, bit for bit as without the watch.
+// integrated; a drift that grows over the history (a flower still growing from the lag) is not
+// taken. Orbits that neither converge nor recur (slow slides, escapes from a saddle, a
+// quasi-periodic flower, a lag near its Hopf point) run the full stretch, bit for bit as
+// without the watch.
 #pragma once
 #include <Eigen/Core>
+#include <array>
 #include <cstddef>
 #include <limits>
 
@@ -37,6 +49,9 @@ class SettleWatch {
  public:
   // Block length B [s]: several periods of the slowest swing, 2π/√(g/l) ≈ 1.8 s for l = 0.826 m.
   static constexpr double kBlock = 5.0;
+  // Distances d_j compared for the decay rate: three contractions Λ, so that a rate that slows
+  // (the second of two modes surfacing) is seen before the stop; 20 s of blocks after the first.
+  static constexpr int kRateBlocks = 4;
 
   explicit SettleWatch(RunContext& ctx);
 
@@ -72,6 +87,8 @@ class SettleWatch {
   bool crossed(const numerics::StepView& step, double g_begin);
   SectionPoint section_point(double t, const numerics::Vec& y, int direction) const;
   void jump_periods();
+  void sample_grid(const numerics::StepView& step);
+  bool land_on_fixed_point(double end);  // the state at end from the decaying mode, or false
 
   RunContext& ctx_;
   std::size_t span_ = 0;  // the first settle span not yet behind the run
@@ -79,7 +96,12 @@ class SettleWatch {
   double block_end_ = 0.0;
   int blocks_ = 0;                  // blocks closed in this run of the span
   Vec6 lo_, hi_, centre_;           // this block's box of x, the last block's centre
-  double spread_prev_ = 0.0, shift_prev_ = 0.0;
+  double spread_prev_ = 0.0;        // a_{j−1} [m]
+  std::array<double, kRateBlocks> dist_{};  // d of the last kRateBlocks blocks, oldest first [m]
+  double distance_ = 0.0;                   // D of the last recognition [m]
+  std::array<Eigen::VectorXd, 3> grid_;     // w at the last three block boundaries, oldest first
+  int grid_count_ = 0;                      // how many of them lie B apart
+  double grid_t_ = 0.0;                     // the last boundary [s]
   Record block_start_;
   double rate_[6] = {0, 0, 0, 0, 0, 0};  // d/dt of the work integrals and the impact loss over the last block
   SectionRecurrence recurrence_;

@@ -51,10 +51,9 @@ struct SweepSpec {
   int windows_per_task = 10;           // granularity of the farm's tasks
   double sample_rate = 100.0;          // samples per second stored for every window [1/s]
   // Settling that stops once its orbit is a fixed point or a periodic orbit of the frame turning
-  // with the top, to within early_stop_tolerance × l (sim/settle_watch.hpp). Off by default:
-  // a lag just past its Hopf point, still within ε l of the circle, is taken as known and its
-  // slow growth skipped, which moves the amplitudes the Hopf fit reads (docs/reports/
-  // early-stop-and-every-core.md).
+  // with the top, converging at a measured rate, to within early_stop_tolerance × l
+  // (sim/settle_watch.hpp). [protocol] and [hold] turn it on unless their early_stop = false
+  // (config.cpp); a chain group without that key ([basin], [bisect]) settles in full.
   bool early_stop = false;
   // ε: a hundredth of the classifier's tightest drift tolerance, L1_drift_tol (a tenth moved the
   // main job's ω2: docs/reports/early-stop-and-every-core.md).
