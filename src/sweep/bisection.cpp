@@ -27,6 +27,8 @@ bool on_known_side(Threshold t, OrbitClass c) {
   return false;
 }
 
+bool far_end_last(Threshold t) { return t == Threshold::Fall || t == Threshold::Omega1; }
+
 int bisect_direction(Threshold t) { return t == Threshold::Fall ? -1 : +1; }
 
 int probe_count(const BisectSpec& s) {
@@ -129,9 +131,10 @@ Probe run_probe(const BisectSpec& spec, const physics::Model& model, const sim::
                 int k, const BisectCarry& in, const ClassifierSettings& settings) {
   Probe p;
   BisectCarry c = k == 0 ? BisectCarry{} : in;
-  // The far end is assumed on the other side (other_class −1) until the bracket has shrunk to w
-  // with every middle on the known side; only then is it held, to tell a crossing from none.
-  const bool at_far_end = k >= 1 && c.status == BisectStatus::Running && c.width() <= spec.width && c.other_class < 0;
+  // The far end is assumed on the other side (other_class −1) until it is held: first (probe 1),
+  // or, for ω_fall and ω1, once the bracket has shrunk to w with every middle on the known side.
+  const bool unheld = k >= 1 && c.status == BisectStatus::Running && c.other_class < 0;
+  const bool at_far_end = unheld && (far_end_last(spec.threshold) ? c.width() <= spec.width : k == 1);
   if (k >= 1 && c.status == BisectStatus::Running && c.width() <= spec.width && !at_far_end)
     c.status = BisectStatus::Converged;
   if (c.status != BisectStatus::Running) {  // settled before this probe: nothing to integrate

@@ -8,11 +8,12 @@
 // schedule is carried along), ramps ω_m to its level at step_rate, settles and measures one
 // window, classified as every sweep window is, or stops as soon as its class is decided
 // (sweep/probe_verdict.hpp). The bracket halves with every probe, so a range Δ is brought to
-// a width w in 1 + ceil(log2(Δ/w)) probes instead of Δ/step levels of a ladder; one more, at
-// `to`, runs only when every middle fell on the known side (it tells a crossing in the last
-// width from none in the range). The middles are those of [from, to] either way, so holding
-// the far end last moves no bracket; it saves the far end's probe, a fall or a loss of lock
-// and the most expensive of a chain, wherever a middle finds the other side.
+// a width w in 2 + ceil(log2(Δ/w)) probes instead of Δ/step levels of a ladder, one of them at
+// `to`. For ω_fall and ω1 the probe at `to` runs last, and only when every middle fell on the
+// known side (it tells a crossing in the last width from none in the range); for ω2 and ω_rise
+// it runs first (far_end_last). The middles are those of [from, to] either way, so the order
+// moves no bracket; holding it last saves the far end's probe, a fall or a loss of lock and the
+// most expensive of a chain, wherever a middle finds the other side.
 //
 // The known side, per threshold (the definitions of thresholds.hpp on held levels):
 //   ω_rise  (rising)   fallen;       ω_fall (falling)  not fallen;
@@ -54,6 +55,10 @@ struct BisectSpec {
 
 // Whether a held level's class is on the threshold's known side.
 bool on_known_side(Threshold t, OrbitClass c);
+// Whether the far end is held last (ω_fall, ω1: past them a probe falls or loses its lock, the
+// costly side, and before them it locks, decided early) or first (ω2, ω_rise: where the range
+// often holds no crossing, which the far end tells in one probe).
+bool far_end_last(Threshold t);
 // +1: the threshold is found with rising ω_m (from < to), −1 falling.
 int bisect_direction(Threshold t);
 // Probes per chain, at most: 2 + the halvings that bring |to − from| to at most w.

@@ -132,11 +132,11 @@ for r in rows(sys.argv[2]):
 print(f"  brackets that overlap the ladder's: {agree} of {n} points with both (history differs: the ladder "
       f"visits every level, a probe jumps from the known side)")
 PY
-echo "bisection map on the farm (mpirun --oversubscribe; rank 0 timed on its own)"
+echo "bisection map on the farm (mpirun --oversubscribe, --threads 0: rank 0 the master alone, timed on its own)"
 printf "  %6s %10s %14s %18s\n" "ranks" "wall [s]" "master CPU [s]" "master CPU / wall"
 for r in $ranks; do
   OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 mpirun --oversubscribe -n "$r" sh -c \
-    "if [ \"\$OMPI_COMM_WORLD_RANK\" = 0 ]; then exec /usr/bin/time -f '%U %S %e' -o '$work/m' '$bin' sweep '$work/bisect.toml' -o '$work/r$r.h5' -q; else exec '$bin' sweep '$work/bisect.toml' -o '$work/r$r.h5' -q; fi" \
+    "if [ \"\$OMPI_COMM_WORLD_RANK\" = 0 ]; then exec /usr/bin/time -f '%U %S %e' -o '$work/m' '$bin' sweep '$work/bisect.toml' -o '$work/r$r.h5' -q --threads 0; else exec '$bin' sweep '$work/bisect.toml' -o '$work/r$r.h5' -q --threads 0; fi" \
     > "$work/mpi.out" 2>&1 || { cat "$work/mpi.out"; exit 1; }
   awk -v r="$r" '{ printf "  %6d %10.2f %14.2f %18.3f\n", r, $3, $1 + $2, ($1 + $2) / $3 }' "$work/m"
   h5diff -q "$work/bisect.h5" "$work/r$r.h5" /brackets || echo "  /brackets differs on $r ranks"
