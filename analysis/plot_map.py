@@ -231,8 +231,7 @@ def main(argv=None):
         if any(np.isfinite(r["before"]) and not np.isfinite(r["after"]) for rows in brackets.values() for r in rows):
             handles.append(plt.Line2D([], [], marker="^", mfc="none", mec="k", ls="", label="no crossing up to here (▼: down to)"))
         if any(np.isfinite(r["after"]) and not np.isfinite(r["before"]) for rows in brackets.values() for r in rows):
-            handles.append(plt.Line2D([], [], marker="x", color="k", ls="",
-                                      label="start already past the threshold (at the panel's edge)"))
+            handles.append(plt.Line2D([], [], marker="x", color="k", ls="", label="start past it (at the edge)"))
     legend(leg, handles)
     fig.suptitle(f"Thresholds over {symbol}, bead stuck at s = {', '.join(f'{s:g}' for s in s_values)} m "
                  f"(continuation, astrojax orbits --map {param})", fontsize=9)
