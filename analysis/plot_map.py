@@ -85,9 +85,11 @@ def draw_curves(ax, curves, kinds):
 def draw_brackets(ax, sym, rows, span):
     """A sweep's brackets of one threshold: a bar from before to after [rad/s] at each p, the
     brackets sharing a p side by side (span: the x range, for the offsets); a triangle where the
-    bisection found no crossing, an × where its start was already past the threshold."""
+    bisection found no crossing. Returns the values the y-range must hold [π rad/s] and the
+    starts already past the threshold (x, start level, colour), drawn by set_range."""
     if not rows:
-        return
+        return [], []
+    span_y, starts_past = [], []  # what the y-range must hold [π rad/s]; the × markers, placed after it is set
     at_p = {}
     for r in rows:
         at_p.setdefault(r["p"], []).append(r)
@@ -99,10 +101,38 @@ def draw_brackets(ax, sym, rows, span):
             b, a = r["before"], r["after"]
             if np.isfinite(b) and np.isfinite(a):
                 ax.vlines(x, b / PI, a / PI, zorder=3, **style)
+                span_y += [b / PI, a / PI]
             elif np.isfinite(b):
                 ax.plot(x, b / PI, "^" if DIRECTION[sym] > 0 else "v", ms=4, mfc="none", mec=style["color"], zorder=3)
+                span_y.append(b / PI)
             elif np.isfinite(a):
-                ax.plot(x, a / PI, "x", ms=4, color=style["color"], zorder=3)
+                starts_past.append((x, a / PI, style["color"]))
+    return span_y, starts_past
+
+
+def curve_values(curves, kinds):
+    """ω_m [π rad/s] of the curves of the given kinds where they are the threshold."""
+    out = []
+    for cid in curves.curve_ids(kinds):
+        c = curves.curve(cid)
+        m = threshold_mask(c, Curves.KINDS[int(c["kind"][0])])
+        out += list(c["omega_m"][m] / PI)
+    return out
+
+
+def set_range(ax, values, starts_past):
+    """The y-range over the thresholds drawn (brackets, the curves where they are the threshold,
+    the paper's value), with a margin; a start already past the threshold (an ×, at the start
+    level, which can lie far from it) is drawn at the panel's edge on the known side instead."""
+    v = np.asarray([x for x in values if np.isfinite(x)])
+    if v.size:
+        lo, hi = v.min(), v.max()
+        pad = max(0.08 * (hi - lo), 0.1)
+        ax.set_ylim(lo - pad, hi + pad)
+    lo, hi = ax.get_ylim()
+    for x, y, colour in starts_past:
+        edge = min(max(y, lo), hi)
+        ax.plot(x, edge, "x", ms=4, color=colour, zorder=3, clip_on=False)
 
 
 def _number(text):
@@ -167,7 +197,8 @@ def main(argv=None):
         if kinds:
             draw_curves(ax, curves, kinds)
         xs = [r["p"] for rows in brackets.values() for r in rows] + list(curves.points["p"])
-        draw_brackets(ax, sym, brackets.get(sym, []), (max(xs) - min(xs)) if xs else 1.0)
+        span_y, starts_past = draw_brackets(ax, sym, brackets.get(sym, []), (max(xs) - min(xs)) if xs else 1.0)
+        set_range(ax, span_y + (curve_values(curves, kinds) if kinds else []) + [paper], starts_past)
         ax.axhline(paper, **PAPER_LINE)
         ax.text(1.0, paper, f" paper {paper:.2f}π", transform=ax.get_yaxis_transform(), fontsize=7, va="center",
                 ha="left", clip_on=False)
@@ -200,7 +231,7 @@ def main(argv=None):
         if any(np.isfinite(r["before"]) and not np.isfinite(r["after"]) for rows in brackets.values() for r in rows):
             handles.append(plt.Line2D([], [], marker="^", mfc="none", mec="k", ls="", label="no crossing up to here (▼: down to)"))
         if any(np.isfinite(r["after"]) and not np.isfinite(r["before"]) for rows in brackets.values() for r in rows):
-            handles.append(plt.Line2D([], [], marker="x", color="k", ls="", label="start already past the threshold"))
+            handles.append(plt.Line2D([], [], marker="x", color="k", ls="", label="start past it (at the edge)"))
     legend(leg, handles)
     fig.suptitle(f"Thresholds over {symbol}, bead stuck at s = {', '.join(f'{s:g}' for s in s_values)} m "
                  f"(continuation, astrojax orbits --map {param})", fontsize=9)

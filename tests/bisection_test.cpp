@@ -131,3 +131,43 @@ TEST(Bisection, FallBracketAtTheDocumentedSetHoldsTheContinuationsConeExit) {
   EXPECT_GE(nearest, end.other_omega - spec.width) << "s* = " << s << ", ω_cd = " << nearest / kPi << "π";
   EXPECT_LE(nearest, end.known_omega + spec.width) << "s* = " << s << ", ω_cd = " << nearest / kPi << "π";
 }
+
+// A probe stopped once its class is decided (sweep/probe_verdict.hpp) decides what the probe held
+// through its window decides: both thresholds of sweeps/maps/example.toml at two of its grid
+// points, bisected with and without the early verdicts, end in the same brackets with the same
+// classes on either side, and the early verdicts integrate fewer steps.
+TEST(Bisection, ProbesDecidedEarlyGiveTheBracketsOfFullProbes) {
+  long steps[2] = {0, 0};
+  for (const double R : {0.01, 0.02}) {
+    physics::Model m;
+    m.p.drive_radius = R;
+    m.p.contact_distance = 0.03;
+    for (const Threshold th : {Threshold::Fall, Threshold::Omega1}) {
+      BisectSpec spec;
+      spec.threshold = th;
+      spec.start_seed = "locked_orbit";
+      spec.start_omega = spec.from = 4 * kPi;
+      spec.to = th == Threshold::Fall ? 2.5 * kPi : 6.5 * kPi;
+      spec.width = 0.1 * kPi;
+      BisectCarry ends[2];
+      for (int early = 0; early < 2; ++early) {
+        spec.decide_early = early == 1;
+        const std::vector<Probe> probes = bisect(spec, m);
+        ends[early] = probes.back().next;
+        for (const Probe& p : probes) steps[early] += p.out.steps;
+        if (early == 0)
+          for (const Probe& p : probes) EXPECT_FALSE(p.decided);
+      }
+      const std::string at = "R = " + std::to_string(R) + ", " + std::string(to_string(th));
+      ASSERT_EQ(ends[0].status, BisectStatus::Converged) << at;
+      EXPECT_EQ(ends[1].status, ends[0].status) << at;
+      EXPECT_EQ(ends[1].known_omega, ends[0].known_omega) << at;
+      EXPECT_EQ(ends[1].other_omega, ends[0].other_omega) << at;
+      EXPECT_EQ(ends[1].known_class, ends[0].known_class) << at;
+      EXPECT_EQ(ends[1].other_class, ends[0].other_class) << at;
+    }
+  }
+  RecordProperty("steps_full", std::to_string(steps[0]));
+  RecordProperty("steps_early", std::to_string(steps[1]));
+  EXPECT_LT(steps[1], steps[0] / 2);
+}

@@ -570,6 +570,7 @@ sweep::BisectSpec parse_bisect(const toml::table& root, std::string_view file, S
   b.measure = r.number("measure", b.measure, 0.0, 1e6, true);
   b.step_rate = r.number("step_rate", b.step_rate, 0.0, 1e4, true);
   c.sample_rate = r.number("sample_rate", 100.0, 0.0, 1e5, true);
+  b.decide_early = r.boolean("decide_early", b.decide_early);
   r.reject_unknown();
   const double range = std::abs(b.to - b.from), w_min = sweep::min_width(b);
   if (b.width >= range)

@@ -251,6 +251,9 @@ void bisect_keys(std::vector<KeyInfo>& k) {
   k.push_back(num("bisect", "measure", "s", 0.0, 1e6, true, false, "20", "the classified window at each probed level"));
   k.push_back(num("bisect", "step_rate", "rad/s^2", 0.0, 1e4, true, false, "0.1", "|dω_m/dt| on the way to a level"));
   k.push_back(num("bisect", "sample_rate", "1/s", 0.0, 1e5, true, false, "100", "samples per second of every probe's window"));
+  k.push_back(other("bisect", "decide_early", "boolean", "", "true, false", "true",
+                    "stop an omega_fall or omega_1 probe once its class is decided: the bead down on the ball, or "
+                    "stuck and converged to the locked orbit (false: every probe runs through its window)"));
 }
 
 // [grid]: each axis a list of values or {start, stop, num}.

@@ -72,7 +72,12 @@ TaskResult probe_result(sweep::Probe p) {
   rec.omega = p.omega;
   rec.known_side = p.known_side ? 1 : 0;
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  if (p.ran) {
+  if (p.ran && p.decided) {  // decided before its window (sweep/probe_verdict.hpp): a class, no statistics
+    rec.row.cls = static_cast<std::int32_t>(p.classification.cls);
+    rec.row.stats.fill(nan);
+    rec.row.mode_fraction.fill(nan);
+    rec.powers.fill(nan);
+  } else if (p.ran) {
     rec.row = window_row(p.classification);
     const sweep::WindowPowers w = sweep::window_powers(p.out.windows.front());
     for (std::size_t k = 0; k < kNumPowers; ++k) rec.powers[k] = kPowers[k].of(w);

@@ -7,6 +7,7 @@
 
 #include "physics/state_row.hpp"
 #include "sweep/codec.hpp"
+#include "sweep/probe_verdict.hpp"
 #include "sweep/protocol.hpp"
 #include "sweep/seeds.hpp"
 
@@ -25,6 +26,8 @@ bool on_known_side(Threshold t, OrbitClass c) {
   }
   return false;
 }
+
+bool far_end_last(Threshold t) { return t == Threshold::Fall || t == Threshold::Omega1; }
 
 int bisect_direction(Threshold t) { return t == Threshold::Fall ? -1 : +1; }
 
@@ -105,13 +108,35 @@ ChainSetup probe_chain(const BisectSpec& spec, const physics::Model& model, cons
   return c;
 }
 
+// The motor schedule from t = 0 to t: the segments before it, the one it falls in cut there.
+std::vector<physics::DriveSegment> schedule_until(const std::vector<physics::DriveSegment>& schedule, double t) {
+  std::vector<physics::DriveSegment> out;
+  double t0 = 0.0;
+  for (const physics::DriveSegment& s : schedule) {
+    if (t <= t0) break;
+    physics::DriveSegment cut = s;
+    if (t < t0 + s.duration) {  // ω_m linear over the segment
+      cut.duration = t - t0;
+      cut.omega_end = s.omega_begin + (s.omega_end - s.omega_begin) * cut.duration / s.duration;
+    }
+    out.push_back(cut);
+    t0 += s.duration;
+  }
+  return out;
+}
+
 }  // namespace
 
 Probe run_probe(const BisectSpec& spec, const physics::Model& model, const sim::RunOptions& run, double sample_rate,
                 int k, const BisectCarry& in, const ClassifierSettings& settings) {
   Probe p;
   BisectCarry c = k == 0 ? BisectCarry{} : in;
-  if (k >= 2 && c.status == BisectStatus::Running && c.width() <= spec.width) c.status = BisectStatus::Converged;
+  // The far end is assumed on the other side (other_class −1) until it is held: first (probe 1),
+  // or, for ω_fall and ω1, once the bracket has shrunk to w with every middle on the known side.
+  const bool unheld = k >= 1 && c.status == BisectStatus::Running && c.other_class < 0;
+  const bool at_far_end = unheld && (far_end_last(spec.threshold) ? c.width() <= spec.width : k == 1);
+  if (k >= 1 && c.status == BisectStatus::Running && c.width() <= spec.width && !at_far_end)
+    c.status = BisectStatus::Converged;
   if (c.status != BisectStatus::Running) {  // settled before this probe: nothing to integrate
     p.omega = nan;
     p.out.final_state = c.known;
@@ -119,15 +144,23 @@ Probe run_probe(const BisectSpec& spec, const physics::Model& model, const sim::
     return p;
   }
   p.ran = true;
-  p.omega = k == 0 ? spec.from : k == 1 ? spec.to : 0.5 * (c.known_omega + c.other_omega);
+  p.omega = k == 0 ? spec.from : at_far_end ? spec.to : 0.5 * (c.known_omega + c.other_omega);
   const ChainSetup chain = probe_chain(spec, model, run, sample_rate, k == 0 ? std::vector<physics::DriveSegment>{} : c.history,
                                        k == 0 ? spec.start_omega : c.known_omega, p.omega);
   const physics::State start =
       k == 0 ? seed_state(model, chain.motor(), spec.start_seed, spec.start_omega, 0, 0.0)
              : c.known;
-  const TaskSpan span{start.t, chain.protocol.duration, 0, 1};
-  p.out = run_task(chain, span, start);
-  p.classification = classify_windows(chain, p.out, settings).front();
+  if (spec.decide_early) {
+    ProbePath path = run_probe_path(chain, start, spec.threshold, settings);
+    p.out = std::move(path.out);
+    if ((p.decided = path.decided.has_value())) {
+      p.classification = std::move(*path.decided);
+      p.decided_at = path.decided_at;
+    }
+  } else {
+    p.out = run_task(chain, TaskSpan{start.t, chain.protocol.duration, 0, 1}, start);
+  }
+  if (!p.decided) p.classification = classify_windows(chain, p.out, settings).front();
   const auto cls = std::int32_t(p.classification.cls);
   if (!p.out.ok) {
     c.status = BisectStatus::Failed;
@@ -137,26 +170,34 @@ Probe run_probe(const BisectSpec& spec, const physics::Model& model, const sim::
   p.known_side = on_known_side(spec.threshold, p.classification.cls);
   const auto take_known = [&] {
     c.known = p.out.final_state;
-    c.history = chain.protocol.schedule;
+    c.history = p.decided ? schedule_until(chain.protocol.schedule, p.decided_at) : chain.protocol.schedule;
     c.known_omega = p.omega;
     c.known_class = cls;
   };
   if (k == 0) {
     c.known = start;
-    c.known_omega = c.other_omega = nan;
-    if (p.known_side) take_known(); else {
-      c.other_omega = p.omega;
-      c.other_class = cls;
+    c.known_omega = nan;
+    c.other_omega = p.omega;
+    c.other_class = cls;
+    if (p.known_side) {
+      take_known();
+      c.other_omega = spec.to;  // assumed, not yet held
+      c.other_class = -1;
+    } else {
       c.status = BisectStatus::StartOffSide;
     }
   } else if (p.known_side) {
     take_known();
-    if (k == 1) c.status = BisectStatus::NoCrossing;
+    if (at_far_end) {
+      c.status = BisectStatus::NoCrossing;
+      c.other_omega = nan;
+    }
   } else {
     c.other_omega = p.omega;
     c.other_class = cls;
   }
-  if (c.status == BisectStatus::Running && k >= 1 && c.width() <= spec.width) c.status = BisectStatus::Converged;
+  if (c.status == BisectStatus::Running && c.other_class >= 0 && c.width() <= spec.width)
+    c.status = BisectStatus::Converged;
   p.next = std::move(c);
   return p;
 }

@@ -2,12 +2,18 @@
 //
 // A chain of a [bisect] sweep brackets one threshold at one grid point. Probe 0 holds the
 // start level `from` (reached from the seed at start_omega), which must lie on the
-// threshold's known side; probe 1 holds the far end `to`, which must not; every later probe
-// holds the middle of the bracket. Each probe restarts from the state left by the last probe on
-// the known side (the staircase's own history up to there: its motor schedule is carried
-// along), ramps ω_m to its level at step_rate, settles and measures one window, classified as
-// every sweep window is. The bracket [known, other] halves with every probe, so a range Δ
-// is brought to a width w in 2 + ceil(log2(Δ/w)) probes instead of Δ/step levels of a ladder.
+// threshold's known side; the far end `to` is taken to lie on the other side, and every later
+// probe holds the middle of the bracket [known, other]. Each probe restarts from the state left
+// by the last probe on the known side (the staircase's own history up to there: its motor
+// schedule is carried along), ramps ω_m to its level at step_rate, settles and measures one
+// window, classified as every sweep window is, or stops as soon as its class is decided
+// (sweep/probe_verdict.hpp). The bracket halves with every probe, so a range Δ is brought to
+// a width w in 2 + ceil(log2(Δ/w)) probes instead of Δ/step levels of a ladder, one of them at
+// `to`. For ω_fall and ω1 the probe at `to` runs last, and only when every middle fell on the
+// known side (it tells a crossing in the last width from none in the range); for ω2 and ω_rise
+// it runs first (far_end_last). The middles are those of [from, to] either way, so the order
+// moves no bracket; holding it last saves the far end's probe, a fall or a loss of lock and the
+// most expensive of a chain, wherever a middle finds the other side.
 //
 // The known side, per threshold (the definitions of thresholds.hpp on held levels):
 //   ω_rise  (rising)   fallen;       ω_fall (falling)  not fallen;
@@ -17,6 +23,7 @@
 // goes on from the carry the last finished probe left.
 #pragma once
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -41,13 +48,20 @@ struct BisectSpec {
   double settle = 100.0;     // transient at each level, not measured [s]
   double measure = 20.0;     // the classified window at each level [s]
   double step_rate = 0.1;    // |dω_m/dt| on the way to a level [rad/s²]
+  // Stop a probe once its class is decided (sweep/probe_verdict.hpp); false: every probe runs
+  // through its window.
+  bool decide_early = true;
 };
 
 // Whether a held level's class is on the threshold's known side.
 bool on_known_side(Threshold t, OrbitClass c);
+// Whether the far end is held last (ω_fall, ω1: past them a probe falls or loses its lock, the
+// costly side, and before them it locks, decided early) or first (ω2, ω_rise: where the range
+// often holds no crossing, which the far end tells in one probe).
+bool far_end_last(Threshold t);
 // +1: the threshold is found with rising ω_m (from < to), −1 falling.
 int bisect_direction(Threshold t);
-// Probes per chain: 2 + the halvings that bring |to − from| to at most w.
+// Probes per chain, at most: 2 + the halvings that bring |to − from| to at most w.
 int probe_count(const BisectSpec& s);
 // The narrowest bracket a window resolves: two levels w apart drift apart in phase by w·T_m over
 // the window T_m; below 2π/min_samples_per_turn (the classifier's largest azimuth step, a quarter
@@ -80,6 +94,8 @@ BisectCarry decode_carry(const std::vector<std::byte>& bytes);
 
 struct Probe {
   bool ran = false;          // false: the bracket was settled before this probe (nothing integrated)
+  bool decided = false;      // the class decided before the window, which was not integrated
+  double decided_at = std::numeric_limits<double>::quiet_NaN();  // when [s]
   double omega = 0.0;        // the held level [rad/s] (NaN when not run)
   TaskOutput out;            // the integration; out.windows holds the measured window
   OrbitClassification classification;

@@ -6,8 +6,12 @@
 #   tests/bench/map_bisection.sh build/astrojax [N] [RANKS...]
 #
 # N × N grid points (default 4: a subgrid; the 16 × 16 map's CPU is extrapolated as 256/N² times
-# the subgrid's, which holds as long as every point costs about the same: the printed per-point
-# spread says how far). Both runs use one process (the CPU is the integration's, summed); then
+# the subgrid's, which holds as long as every point costs about the same). Three runs in one
+# process each: the bisection with its probes stopped once their class is decided
+# (sweep/probe_verdict.hpp), the same bisection with every probe held through its window
+# (decide_early = false), and the ladder; each row gives its CPU and its integration steps
+# (/tasks/steps summed), the CPU left when the integration is taken out being the locked-orbit
+# seed's (one catalogue of orbits per chain, the same for all three) and the file's. Then
 # the bisection map runs under mpirun -n RANKS (default 2 4 8, oversubscribed), timing rank 0
 # (the master) on its own. Both maps start on the locked orbit at 4π (seed locked_orbit), hold
 # each level 100 s + 20 s (the staircases of sweeps/paper.toml) and reach it at 0.1 rad/s².
@@ -86,21 +90,33 @@ cpu() {  # user + sys seconds of a command, from /usr/bin/time
   /usr/bin/time -f "%U %S %e" -o "$work/t" "$@" > "$work/out" 2>&1 || { cat "$work/out"; exit 1; }
   awk '{ printf "%.2f %.2f", $1 + $2, $3 }' "$work/t"
 }
+sed 's/^step_rate = 0.1$/step_rate = 0.1\ndecide_early = false/' "$work/bisect.toml" > "$work/full.toml"
 read cb wb < <(cpu "$bin" sweep "$work/bisect.toml" -o "$work/bisect.h5" -q)
+read cf wf < <(cpu "$bin" sweep "$work/full.toml" -o "$work/full.h5" -q)
 read cl wl < <(cpu "$bin" sweep "$work/ladder.toml" -o "$work/ladder.h5" -q)
+steps() { /usr/bin/python3 -c "import h5py, sys; print(int(h5py.File(sys.argv[1])['tasks/steps'][:].sum()))" "$1"; }
+sb=$(steps "$work/bisect.h5"); sf=$(steps "$work/full.h5"); sl=$(steps "$work/ladder.h5")
 "$bin" thresholds "$work/bisect.h5" --csv "$work/b.csv" > /dev/null
 "$bin" thresholds "$work/ladder.h5" --no-hold --csv "$work/l.csv" > /dev/null
 probes=$(h5dump -d /brackets/probes/ran "$work/bisect.h5" | grep -o '\b1\b' | wc -l)
 pts=$((n * n))
 echo "map of ω_fall and ω1 over (R, d), $n × $n points, one process ($(nproc) cores, load $(cut -d' ' -f1 /proc/loadavg))"
-printf "  %-34s %10s %10s %12s %14s\n" "" "CPU [s]" "wall [s]" "per point" "16×16 (×$((256 / pts)))"
-printf "  %-34s %10.2f %10.2f %12.3f %14.1f\n" "bisection to 0.05π ($probes probes)" "$cb" "$wb" \
-  "$(python3 -c "print($cb/$pts)")" "$(python3 -c "print($cb*256/$pts)")"
-printf "  %-34s %10.2f %10.2f %12.3f %14.1f\n" "ladder of 0.1π (42 levels a point)" "$cl" "$wl" \
-  "$(python3 -c "print($cl/$pts)")" "$(python3 -c "print($cl*256/$pts)")"
-echo "  CPU ratio bisection/ladder: $(python3 -c "print(f'{$cb/$cl:.3f}')") (target ≤ 0.2)"
+fprobes=$(h5dump -d /brackets/probes/ran "$work/full.h5" | grep -o '\b1\b' | wc -l)
+printf "  %-44s %9s %9s %10s %12s %12s\n" "" "CPU [s]" "wall [s]" "steps" "CPU a point" "16×16 (×$((256 / pts)))"
+row() { printf "  %-44s %9.2f %9.2f %10d %12.3f %12.1f\n" "$1" "$2" "$3" "$4" "$(python3 -c "print($2/$pts)")" "$(python3 -c "print($2*256/$pts)")"; }
+row "bisection to 0.05π, decided early ($probes probes)" "$cb" "$wb" "$sb"
+row "bisection, probes held through ($fprobes probes)" "$cf" "$wf" "$sf"
+row "ladder of 0.1π (42 levels a point)" "$cl" "$wl" "$sl"
+echo "  CPU ratio bisection/ladder: $(python3 -c "print(f'{$cb/$cl:.3f}')") (target ≤ 0.2); held through: $(python3 -c "print(f'{$cf/$cl:.3f}')")"
+echo "  integration steps bisection/ladder: $(python3 -c "print(f'{$sb/$sl:.3f}')"); held through: $(python3 -c "print(f'{$sf/$sl:.3f}')")"
+h5diff -q "$work/bisect.h5" "$work/full.h5" /brackets/known_omega > /dev/null && h5diff -q "$work/bisect.h5" "$work/full.h5" /brackets/other_omega > /dev/null &&
+  h5diff -q "$work/bisect.h5" "$work/full.h5" /brackets/status > /dev/null &&
+  echo "  brackets decided early identical to those of probes held through: yes" ||
+  echo "  brackets decided early identical to those of probes held through: NO"
 python3 - "$work/b.csv" "$work/l.csv" <<'PY'
 import csv, sys, math
+# A ladder's threshold is the pair of neighbouring levels where the class changes; the bisection's
+# bracket holds it when the two intervals overlap (both are the held orbit's, from the same start).
 def rows(p):
     return [r for r in csv.DictReader(open(p)) if r["threshold"] in ("omega_fall", "omega_1")]
 b = {(r["parameters"], r["threshold"]): r for r in rows(sys.argv[1])}
@@ -116,11 +132,11 @@ for r in rows(sys.argv[2]):
 print(f"  brackets that overlap the ladder's: {agree} of {n} points with both (history differs: the ladder "
       f"visits every level, a probe jumps from the known side)")
 PY
-echo "bisection map on the farm (mpirun --oversubscribe; rank 0 timed on its own)"
+echo "bisection map on the farm (mpirun --oversubscribe, --threads 0: rank 0 the master alone, timed on its own)"
 printf "  %6s %10s %14s %18s\n" "ranks" "wall [s]" "master CPU [s]" "master CPU / wall"
 for r in $ranks; do
   OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 mpirun --oversubscribe -n "$r" sh -c \
-    "if [ \"\$OMPI_COMM_WORLD_RANK\" = 0 ]; then exec /usr/bin/time -f '%U %S %e' -o '$work/m' '$bin' sweep '$work/bisect.toml' -o '$work/r$r.h5' -q; else exec '$bin' sweep '$work/bisect.toml' -o '$work/r$r.h5' -q; fi" \
+    "if [ \"\$OMPI_COMM_WORLD_RANK\" = 0 ]; then exec /usr/bin/time -f '%U %S %e' -o '$work/m' '$bin' sweep '$work/bisect.toml' -o '$work/r$r.h5' -q --threads 0; else exec '$bin' sweep '$work/bisect.toml' -o '$work/r$r.h5' -q --threads 0; fi" \
     > "$work/mpi.out" 2>&1 || { cat "$work/mpi.out"; exit 1; }
   awk -v r="$r" '{ printf "  %6d %10.2f %14.2f %18.3f\n", r, $3, $1 + $2, ($1 + $2) / $3 }' "$work/m"
   h5diff -q "$work/bisect.h5" "$work/r$r.h5" /brackets || echo "  /brackets differs on $r ranks"
