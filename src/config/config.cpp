@@ -693,6 +693,7 @@ sweep::BasinSpec read_basin(const toml::table& root, SweepConfig& c) {
   b.seed = std::uint64_t(r.count("seed", 1, 0.0, 9007199254740992.0));
   b.settle = r.number("settle", b.settle, 0.0, 1e6);
   b.measure = r.number("measure", b.measure, 0.0, 1e6, true);
+  r.known("match_tolerance");  // retired: files made before 2026-11-28 carry it; ignored
   const auto only = [&](const char* key, sweep::BasinFamily f) {
     if (r.has(key) && b.family != f) r.fail(key, fmt::format("belongs to family = \"{}\", not \"{}\"", sweep::to_string(f), family));
   };

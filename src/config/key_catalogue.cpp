@@ -215,6 +215,9 @@ void basin_keys(std::vector<KeyInfo>& k) {
   k.push_back(whole("basin", "seed", 0, 9007199254740992.0, "1", "the draws' stream: another seed draws other starts"));
   k.push_back(num("basin", "settle", "s", 0.0, 1e6, false, false, "60", "held at the level before the measured window"));
   k.push_back(num("basin", "measure", "s", 0.0, 1e6, true, false, "10", "the measured window"));
+  k.push_back(other("basin", "match_tolerance", "number", "", "any (ignored)", "",
+                    "retired on 2026-11-28 and ignored: attractors are matched with bands from the features' measured "
+                    "scatter (guide: basin sweeps); still accepted so that sweep files made before read"));
   k.push_back(other("basin", "s", "[lo, hi]", "m", "within the stops [s_min, l − d]", "l − d (on the bottom ball)",
                     "family hanging: the bead's position along the string, uniform in [lo, hi]"));
   k.push_back(num("basin", "swing", "rad", 0.0, 1.5707963267948966, false, false, "0.3",
