@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <limits>
-#include <regex>
 
 #include "numerics/stepper.hpp"
 #include "orbits/continuation.hpp"
@@ -325,7 +324,22 @@ const std::vector<KeyInfo>& key_catalogue() {
 }
 
 std::string generic_section(std::string_view prefix) {
-  std::string s = std::regex_replace(std::string(prefix), std::regex(R"(\[[0-9]+\])"), "");
+  // "group[3].start" -> "group.start": every "[digits]" dropped (a loop, not std::regex: this
+  // runs for every key read, and a regex made the parse of a sweep with many variants cost
+  // seconds under the fuzzer's sanitizers).
+  std::string s;
+  s.reserve(prefix.size());
+  for (std::size_t i = 0; i < prefix.size(); ++i) {
+    if (prefix[i] == '[') {
+      std::size_t j = i + 1;
+      while (j < prefix.size() && prefix[j] >= '0' && prefix[j] <= '9') ++j;
+      if (j > i + 1 && j < prefix.size() && prefix[j] == ']') {
+        i = j;
+        continue;
+      }
+    }
+    s += prefix[i];
+  }
   if (s.rfind("variant.", 0) == 0) {  // variant.NAME or variant.NAME.model
     const std::size_t dot = s.find('.', 8);
     return dot == std::string::npos ? "variant" : s.substr(dot + 1);
