@@ -39,7 +39,7 @@ PY
 }
 "$bin" verify straight.h5 > verify.out 2>&1
 check "astrojax verify of a finished file: exit 0, no dataset without a checksum" "[ $? -eq 0 ] && ! grep -q 'no checksum' verify.out"
-for dk in chains/model:0 chains/grid_values:0 windows/omega_ball:1 windows/class:2 tasks/final_state:5 samples/count:1 \
+for dk in chains/model:0 chains/grid_values:0 windows/omega_ball:0 windows/class:0 tasks/final_state:0 samples/count:0 \
           samples/t:4 samples/r2:7; do
   d=${dk%:*}
   cp straight.h5 flipped.h5

@@ -6,11 +6,14 @@
 #     integrating beside the master (--threads 1, the default) and with the master alone
 #     (--threads 0, the farm before this change); the same file either way (h5diff).
 #  2. The same 16 chains in one process (the root path of ./setup.sh demo): --threads 2 against 1.
-#  3. The demo's sweep (sweeps/paper.toml -> out/paper.h5) as ./setup.sh demo runs it on this
-#     machine, against the same sweep as it ran before (one process, every settle at full
-#     length; or BASELINE, another build such as main's): wall time ratio.
+#  3. The demo's sweep (sweeps/paper.toml) as ./setup.sh demo runs it on this machine (as root one
+#     process with a thread per core, else mpirun -n <cores>), against the same sweep as the demo
+#     ran it before issue 29 (one process with one thread as root, else mpirun with the master
+#     alone, --threads 0), and against BASELINE run as the demo runs it (another build, such as
+#     main's): wall time ratios.
+#  With BASELINE, section 1 also runs it under mpirun -n 2 (its default threads) beside this build.
 # Usage: cluster/bench/every_core.sh [BUILD_DIR] [BASELINE_ASTROJAX]
-#        (MPIRUN_FLAGS=--allow-run-as-root as root)   Some 2 minutes on 2 cores.
+#        (MPIRUN_FLAGS=--allow-run-as-root as root)   Some 3 minutes on 2 cores.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 build=${1:-build}
@@ -33,6 +36,11 @@ for t in 1 0; do
   echo "  --threads $t: wall $w s, user $u s, sys $s s: CPU/wall $(ratio "$w" "$u" "$s")"
 done
 h5diff --exclude-path /provenance "$out/m1.h5" "$out/m0.h5" > /dev/null && echo "  the two files are identical (h5diff, /provenance aside)"
+if [ -n "$baseline" ]; then
+  read -r w u s < <(measure "${mpirun[@]}" -n 2 "$baseline" sweep "${chains[@]}" -o "$out/mb.h5")
+  echo "  $baseline (its default threads): wall $w s, CPU/wall $(ratio "$w" "$u" "$s")"
+  h5diff --exclude-path /provenance "$out/m1.h5" "$out/mb.h5" > /dev/null && echo "  identical to this build's file"
+fi
 echo "== 2. the same 16 chains in one process: --threads 2 against 1"
 for t in 2 1; do
   read -r w u s < <(measure "$exe" sweep "${chains[@]}" -o "$out/p$t.h5" --threads $t)
@@ -44,24 +52,26 @@ awk -v a="$wall_p2" -v b="$wall_p1" 'BEGIN { printf "  wall ratio 2 threads / 1 
 
 echo "== 3. the demo's sweep, sweeps/paper.toml, as ./setup.sh demo runs it"
 ranks=$(( cores < 2 ? 2 : cores ))
-if [ "$(id -u)" -eq 0 ]; then
-  demo=("$exe" sweep sweeps/paper.toml -q --force -o "$out/demo.h5" --threads "$ranks" --set protocol.early_stop=true)
-else
-  demo=(mpirun -n "$ranks" "$exe" sweep sweeps/paper.toml -q --force -o "$out/demo.h5" --set protocol.early_stop=true)
-fi
+paper=(sweep sweeps/paper.toml -q --force)
+# As ./setup.sh demo runs EXE into FILE; OLD=1: as the demo ran before issue 29.
+demo_run() {
+  local exe=$1 file=$2 old=${3:-}
+  if [ "$(id -u)" -eq 0 ]; then
+    measure "$exe" "${paper[@]}" -o "$file" --threads "$([ -n "$old" ] && echo 1 || echo "$ranks")"
+  else
+    measure mpirun -n "$ranks" "$exe" "${paper[@]}" -o "$file" $([ -n "$old" ] && echo --threads 0)
+  fi
+}
+cpu() { awk -v u="$1" -v s="$2" 'BEGIN { print u + s }'; }
+read -r w2 u2 s2 < <(demo_run "$exe" "$out/demo.h5")
+echo "  now ($([ "$(id -u)" -eq 0 ] && echo "one process, --threads $ranks" || echo "mpirun -n $ranks")): wall $w2 s, CPU $(cpu "$u2" "$s2") s"
+read -r w1 u1 s1 < <(demo_run "$exe" "$out/before.h5" old)
+echo "  as before issue 29 ($([ "$(id -u)" -eq 0 ] && echo "one process, one thread" || echo "mpirun -n $ranks, master alone")): wall $w1 s, CPU $(cpu "$u1" "$s1") s"
+awk -v a="$w2" -v b="$w1" 'BEGIN { printf "  demo sweep wall ratio now / before issue 29: %.2f\n", a / b }'
+h5diff --exclude-path /provenance "$out/demo.h5" "$out/before.h5" > /dev/null && echo "  the two files are identical"
 if [ -n "$baseline" ]; then
-  before=("$baseline" sweep sweeps/paper.toml -q --force -o "$out/before.h5")
-  label="$baseline, one process"
-else
-  before=("$exe" sweep sweeps/paper.toml -q --force -o "$out/before.h5" --threads 1 --set protocol.early_stop=false)
-  label="one process, early stop off"
+  read -r w3 u3 s3 < <(demo_run "$baseline" "$out/base.h5")
+  echo "  $baseline as the demo runs it: wall $w3 s, CPU $(cpu "$u3" "$s3") s"
+  awk -v a="$w2" -v b="$w3" 'BEGIN { printf "  demo sweep wall ratio this build / baseline: %.2f\n", a / b }'
+  h5diff --exclude-path /provenance "$out/demo.h5" "$out/base.h5" > /dev/null && echo "  identical to the baseline's file"
 fi
-if [ "$(id -u)" -ne 0 ] && [ -z "$baseline" ]; then
-  before=(mpirun -n "$ranks" "$exe" sweep sweeps/paper.toml -q --force -o "$out/before.h5" --threads 0 --set protocol.early_stop=false)
-  label="mpirun -n $ranks, master alone, early stop off"
-fi
-read -r w1 u1 s1 < <(measure "${before[@]}")
-echo "  before ($label): wall $w1 s, CPU $(awk -v u="$u1" -v s="$s1" 'BEGIN{print u+s}') s"
-read -r w2 u2 s2 < <(measure "${demo[@]}")
-echo "  now (${demo[*]:0:3} ...): wall $w2 s, CPU $(awk -v u="$u2" -v s="$s2" 'BEGIN{print u+s}') s"
-awk -v a="$w2" -v b="$w1" 'BEGIN { printf "  demo sweep wall ratio now / before: %.2f\n", a / b }'

@@ -1,6 +1,7 @@
 """Parallel efficiency of a sweep: measured (1 vs 2 workers) and projected to 64, 512, 4096 ranks.
 
-Usage: project.py PAPER_1RANK.h5 QUICK_1WORKER.h5 QUICK_2WORKERS.h5 THROUGHPUT.txt [HOLD_1RANK.h5]
+Usage: project.py PAPER_1RANK.h5 QUICK_1WORKER.h5 QUICK_2WORKERS.h5 THROUGHPUT.txt
+                  [BASIN_1RANK.h5 BASIN_2RANKS.h5 BASIN_THROUGHPUT.txt]
 
 The model (docs/cluster/index.md, "Scale"). A sweep has C chains of K tasks; a task of g windows
 integrates for tau = g * tau_w on a worker. The master spends s = g * m_w + 1/mu on each task:
@@ -12,8 +13,12 @@ task per tau + s, and W workers run at most C chains at once:
 the second term when the master is saturated. Efficiency E = C * K * tau / (R * T(W)) on R ranks.
 Every rank integrates (rank 0 in a thread beside the master's loop, FarmOptions::threads), so
 W = R - u: the master's own work, a share u = C K s / T of its core, is taken from rank 0's
-worker (solved for u by iteration). HOLD_1RANK.h5, a hold-mode sweep on one rank (one short
-task per chain, as a basin or map sweep has), gives the projection for 10^4 such chains.
+worker (solved for u by iteration). BASIN_1RANK.h5, part of sweeps/basins.toml on one rank (one
+short task per chain), gives tau and the master's m per task, BASIN_THROUGHPUT.txt the message
+rate with a basin task's output (its size from BASIN_2RANKS.h5, the same sweep under mpirun -n
+2), and the projection for 10^4 such chains. BASIN_2RANKS.h5 also gives the CPU time of the
+master's loop per task there (receiving, on_result, handing out and polling, on a core shared
+with rank 0's worker): an upper bound of s, projected beside the model's s.
 """
 import math
 import re
@@ -30,8 +35,18 @@ def prov(path):
         chains = f["windows/class"].shape[0]
     wall = float(p.get("wall_time", p.get("resume_wall_time")))
     return dict(wall=wall, work=float(p["work_seconds"]), master=float(p["master_result_seconds"]), tasks=tasks,
-                windows=windows, chains=chains,
+                windows=windows, chains=chains, master_cpu=float(p.get("master_cpu_seconds", 0.0)),
                 bytes_in=int(p.get("bytes_from_workers", 0)))
+
+
+def message_rate(path):
+    """The farm's best message rate (tasks/s) over the rank counts of a farm_throughput log."""
+    rates = {}
+    for line in open(path):
+        m = re.search(r"ranks (\d+) .* ([\d.]+) tasks/s", line)
+        if m:
+            rates[int(m.group(1))] = float(m.group(2))
+    return max(rates.values()), rates
 
 
 def main():
@@ -51,12 +66,7 @@ def main():
           f"{b['wall']:.2f} s: speed-up {a['wall'] / b['wall']:.2f}, efficiency {e:.2f}")
     print(f"  bytes per task to the master: {b['bytes_in'] / b['tasks']:.0f}")
 
-    rates = {}
-    for line in open(tput):
-        m = re.search(r"ranks (\d+) .* ([\d.]+) tasks/s", line)
-        if m:
-            rates[int(m.group(1))] = float(m.group(2))
-    mu = max(rates.values())  # the master's best message rate with sweep-sized outputs
+    mu, rates = message_rate(tput)  # the master's best message rate with sweep-sized outputs
     print(f"master message throughput with sweep-sized outputs: {', '.join(f'{r} ranks {v:.0f}/s' for r, v in sorted(rates.items()))}")
 
     def farm(C, R, K, tau, s):
@@ -96,18 +106,31 @@ def main():
             print(f"  {R} ranks: E >= 0.9 needs the master's cost per window below {lo * 1e6:.1f} us "
                   f"(now {m_w * 1e3:.2f} ms), with one task per chain")
 
-    if len(sys.argv) > 5:
-        # 10^4 short chains of one task each (a basin or map sweep in the hold mode).
-        h = prov(sys.argv[5])
-        tau_h = h["work"] / h["tasks"]
-        m_h = h["master"] / h["tasks"]
-        s_h = m_h + 1.0 / mu
-        print(f"\nhold mode on 1 rank ({sys.argv[5]}): {h['tasks']} chains of one task, integration "
-              f"{tau_h * 1e3:.1f} ms and master {m_h * 1e3:.3f} ms per task (+ {1e3 / mu:.3f} ms of messages)")
-        print("projection: 10^4 such chains; efficiency by ranks (master saturates at "
-              f"{(tau_h + s_h) / s_h:.0f} busy workers)")
-        for R in (2, 8, 16, 64, 512):
-            print(f"  {R:5d} ranks: E = {farm(10_000, R, 1, tau_h, s_h):.2f}")
+    if len(sys.argv) > 7:
+        basins(*sys.argv[5:8], farm)
+
+
+def basins(one_rank, two_ranks, tput, farm):
+    """10^4 short chains of one task each, as a basin sweep has: the projection by ranks."""
+    h, h2 = prov(one_rank), prov(two_ranks)
+    mu, rates = message_rate(tput)
+    tau = h["work"] / h["tasks"]
+    m = h["master"] / h["tasks"]
+    s = m + 1.0 / mu
+    s_cpu = h2["master_cpu"] / h2["tasks"]  # 0: a file from before master_cpu_seconds
+    print(f"\nbasin tasks on 1 rank ({one_rank}): {h['tasks']} chains of one task, integration {tau * 1e3:.1f} ms "
+          f"and master {m * 1e3:.3f} ms per task; messages {1e3 / mu:.3f} ms per task "
+          f"({h2['bytes_in'] / h2['tasks']:.0f} B back, best of {', '.join(f'{r} ranks {v:.0f}/s' for r, v in sorted(rates.items()))})")
+    if s_cpu > 0:
+        print(f"  under mpirun -n 2 ({two_ranks}): the master's loop took {s_cpu * 1e3:.3f} ms of CPU per task "
+              f"(polling included), against s = {s * 1e3:.3f} ms of the model")
+    else:
+        print(f"  ({two_ranks} does not record the master's CPU: the model's s alone)")
+    print("projection: 10^4 such chains; efficiency by ranks, with the model's s and with the master's CPU per task")
+    for R in (2, 8, 16, 64, 128, 512):
+        print(f"  {R:5d} ranks: E = {farm(10_000, R, 1, tau, s):.2f}  ({farm(10_000, R, 1, tau, max(s, s_cpu)):.2f})")
+    print(f"  (the master saturates at {(tau + s) / s:.0f} busy workers with s"
+          + (f", {(tau + s_cpu) / s_cpu:.0f} with its CPU)" if s_cpu > 0 else ")"))
 
 
 if __name__ == "__main__":

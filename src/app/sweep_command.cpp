@@ -245,6 +245,7 @@ struct SweepOutput {
           throw io::JournalError(fmt::format("{}: record {} names task {} of {}", journal_path.string(), k, id, plan.n_tasks));
         commit(std::size_t(id), replay.records[k].payload);
       }
+      file->write_pending();  // a .part that cannot be written says so here, and is rebuilt
     };
     try {
       replay_all();
@@ -377,6 +378,7 @@ results::SweepRunRecord run_record(const SweepArgs& args, int ranks, const std::
                             fs.bytes_received, 0.0, fs.result_seconds};
   for (double b : fs.busy_seconds) r.work_seconds += b;
   r.threads = args.threads;
+  r.master_cpu_seconds = fs.master_cpu_seconds;
   return r;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <climits>
+#include <ctime>
 #include <condition_variable>
 #include <cstdio>
 #include <cstring>
@@ -38,6 +39,13 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// CPU time of the calling thread [s].
+double thread_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
 
 // ---------------------------------------------------------------------------------------------
 // Messages. Every message is one MPI_BYTE buffer: a fixed Header, then up to three payloads
@@ -497,14 +505,19 @@ bool stop_requested(const FarmOptions& o) { return o.stop != nullptr && o.stop->
 class Backoff {
  public:
   void reset() { polls_ = 0; }
-  void wait() {
+  // The next pause: none (a yield) for the first 200 polls, then 50 µs doubling up to 1 ms.
+  std::chrono::microseconds pause() {
     ++polls_;
-    if (polls_ <= 200) {
-      std::this_thread::yield();
-      return;
-    }
+    if (polls_ <= 200) return std::chrono::microseconds(0);
     const int doublings = std::min((polls_ - 200) / 8, 5);
-    std::this_thread::sleep_for(std::chrono::microseconds(std::min(1000, 50 << doublings)));
+    return std::chrono::microseconds(std::min(1000, 50 << doublings));
+  }
+  void wait() {
+    const auto p = pause();
+    if (p.count() == 0)
+      std::this_thread::yield();
+    else
+      std::this_thread::sleep_for(p);
   }
 
  private:
@@ -651,6 +664,7 @@ FarmSummary wind_up(Outbox& outbox, int size, const Scheduler& sched, const Work
 // delivered, the task bound watched, until nothing is left or a stop winds it down.
 FarmSummary run_master(const FarmComm& comm, int size, std::vector<Chain> chains, const WorkFunction& work,
                        const FarmOptions& options, Clock::time_point start) {
+  const double cpu0 = thread_cpu_seconds();
   Scheduler sched(std::move(chains), options, start);
   Outbox outbox(comm);
   LocalWorkers local(std::max(0, options.threads), work);
@@ -708,10 +722,18 @@ FarmSummary run_master(const FarmComm& comm, int size, std::vector<Chain> chains
     const std::optional<MPI_Status> st = comm.iprobe();
     if (!st) {
       sched.tick();
-      if (size == 1)
+      if (size == 1) {
         local.wait(std::chrono::milliseconds(1));  // only threads: their results wake the master
-      else
+      } else if (local.size() > 0) {
+        // Asleep on the threads' results, so a thread's finished task is taken at once (not at
+        // the end of the pause) and the next handed to it; the pause bounds the wait for a rank.
+        if (const auto p = backoff.pause(); p.count() == 0)
+          std::this_thread::yield();
+        else
+          local.wait(p);
+      } else {
         backoff.wait();
+      }
       continue;
     }
     backoff.reset();
@@ -738,6 +760,7 @@ FarmSummary run_master(const FarmComm& comm, int size, std::vector<Chain> chains
   s.busy_seconds = std::move(busy);
   s.tasks_per_rank = std::move(ran);
   s.bytes_received = received;
+  s.master_cpu_seconds = thread_cpu_seconds() - cpu0;
   return s;
 }
 

@@ -138,6 +138,9 @@ struct FarmSummary {
   std::uint64_t bytes_received = 0;        // workers -> master
   double tasks_per_second = 0;             // done / wall_seconds
   double result_seconds = 0;               // rank 0: time spent in on_result (the master's own work)
+  // Rank 0 with workers (ranks or threads): CPU time of the master's loop (its thread alone:
+  // receiving, on_result, handing out, polling), what the master takes of its core.
+  double master_cpu_seconds = 0;
   std::vector<int> lost_ranks;             // rank 0: ranks still past FarmOptions::task_timeout at the end
 };
 

@@ -96,7 +96,8 @@ struct SweepRunRecord {
   double tasks_per_second = 0;
   std::uint64_t bytes_to_workers = 0, bytes_from_workers = 0;  // farm messages, headers included
   double work_seconds = 0;           // summed over ranks: integration alone
-  double master_result_seconds = 0;  // rank 0: classify, journal, write
+  double master_result_seconds = 0;  // rank 0: journal, write (time in the farm's on_result)
+  double master_cpu_seconds = 0;     // rank 0: CPU of the master's loop (0 on one rank with one thread)
   int threads = 1;                   // of rank 0 that integrate (parallel::FarmOptions::threads)
   double settle_seconds_skipped = 0; // [s] of settling not integrated, the orbit known (sim/settle_watch.hpp)
 };
@@ -115,6 +116,7 @@ inline void write_run_record(io::Group& prov, const SweepRunRecord& r) {
   prov.set_attribute("bytes_from_workers", r.bytes_from_workers);
   prov.set_attribute("work_seconds", r.work_seconds);
   prov.set_attribute("master_result_seconds", r.master_result_seconds);
+  prov.set_attribute("master_cpu_seconds", r.master_cpu_seconds);
   prov.set_attribute("threads", r.threads);
   prov.set_attribute("settle_seconds_skipped", r.settle_seconds_skipped);  // every run of the sweep, resumes included
   prov.set_attribute("version", program_version());

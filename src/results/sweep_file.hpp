@@ -85,7 +85,7 @@ class SweepFile {
     write_chains(cfg, plan);
     write_window_layout(plan.setups);
     io::Group wg = f_.open_group("windows");
-    const io::Dims dims{C_, W_}, chunk{1, W_};
+    const io::Dims dims{C_, W_}, chunk{chunk_rows(W_), W_};
     auto cls = wg.create_filled("class", dims, io::DType::Int32, -1.0, chunk);
     cls.set_attribute("description", "orbit class; -1 = not computed (the task never ran)");
     for (const auto& st : kStats) {
@@ -98,7 +98,8 @@ class SweepFile {
       d.set_attribute("units", st.units);
       d.set_attribute("description", st.description);
     }
-    wg.create_filled("mode_fraction", {C_, W_, kNumModes}, io::DType::Float64, kNotComputed, {1, W_, kNumModes})
+    wg.create_filled("mode_fraction", {C_, W_, kNumModes}, io::DType::Float64, kNotComputed,
+                     {chunk_rows(W_ * kNumModes), W_, kNumModes})
         .set_attribute("description", "time fraction in modes 0 sliding, 1 bottom stop, 2 stuck, 3 top stop, 4 slack");
     io::Group sg = f_.create_group("samples");
     sg.set_attribute("sample_rate", cfg.sample_rate);
@@ -130,7 +131,7 @@ class SweepFile {
     tg.create_filled("status", {T_}, io::DType::Int32, 0.0, {T_})
         .set_attribute("names", kTaskStatusNames);
     tg.create_filled("steps", {T_}, io::DType::Int64, 0.0, {T_});
-    tg.create_filled("final_state", {T_, kStateCols}, io::DType::Float64, kNotComputed, {1, kStateCols})
+    tg.create_filled("final_state", {T_, kStateCols}, io::DType::Float64, kNotComputed, {chunk_rows(kStateCols), kStateCols})
         .set_attribute("columns", std::span<const std::string>(physics::state_column_names()));
     write_basin_layout(f_, cfg, plan);
     brackets_.emplace(plan);
@@ -148,38 +149,75 @@ class SweepFile {
           cfg.source_name, f_.disk_path().string()));
   }
 
+  // Read back from the file: results still waiting in memory must have been written (write_pending).
   std::vector<TaskStatus> status() const {
+    check_nothing_pending();
     std::vector<TaskStatus> out;
     for (std::int32_t v : f_.read_int32s("tasks/status").data) out.push_back(TaskStatus(v));
     return out;
   }
   physics::State state(std::size_t task) const {
+    check_nothing_pending();
     const auto all = f_.read_doubles("tasks/final_state");
     return physics::state_from_row(std::span<const double>(&all.data[task * kStateCols], kStateCols));
   }
 
+  // A task's result waits in memory until the next flush (at most kFlushInterval), then goes to
+  // the file with the results around it: one write per dataset for every run of neighbouring
+  // tasks instead of some thirty per task (write_pending). Nothing is lost by the wait: the sweep
+  // journal holds every result before it reaches here.
   void write_not_run(std::size_t task) {
-    const auto v = std::int32_t(TaskStatus::NotRun);
-    ds("tasks/status").write_region({task}, {1}, std::span<const std::int32_t>(&v, 1));
+    pending_.push_back(Pending{task, 0, std::int32_t(TaskStatus::NotRun), 0, {}, {}});
     flush_due();
   }
 
   void write_task(std::size_t task, std::size_t chain, const TaskResult& result) {
-    write_windows(chain, result.windows);
+    const std::vector<WindowResult>& windows = result.windows;
+    for (std::size_t i = 1; i < windows.size(); ++i)
+      if (windows[i].index != windows[0].index + std::int32_t(i)) throw io::Hdf5Error("sweep file: a task's windows are not consecutive");
     if (result.probe) {
       if (!brackets_ || brackets_->probe_row.at(task) < 0) throw io::Hdf5Error("sweep file: a probe's result for a task that is not a probe");
       write_probe([this](const std::string& p) -> io::Dataset& { return ds(p); }, *brackets_, task, chain, *result.probe);
     }
     const sweep::TaskOutput& out = result.summary;
-    const auto st = std::int32_t(out.ok ? TaskStatus::Ok : TaskStatus::Failed);
-    ds("tasks/status").write_region({task}, {1}, std::span<const std::int32_t>(&st, 1));
-    const std::int64_t steps = out.steps;
-    ds("tasks/steps").write_region({task}, {1}, std::span<const std::int64_t>(&steps, 1));
-    const std::vector<double> row = physics::state_row(out.final_state);
-    ds("tasks/final_state").write_region({task, 0}, {1, kStateCols}, std::span<const double>(row));
+    pending_.push_back(Pending{task, chain, std::int32_t(out.ok ? TaskStatus::Ok : TaskStatus::Failed), out.steps,
+                               physics::state_row(out.final_state), windows});
     flush_due();
   }
 
+  // Every result waiting in memory written to the file (done by each flush, finish and close).
+  void write_pending() {
+    if (pending_.empty()) return;
+    // Stable: a task committed twice (a resume's replay) keeps its last result, as written in order.
+    std::stable_sort(pending_.begin(), pending_.end(), [](const Pending& a, const Pending& b) { return a.task < b.task; });
+    const auto next_task = [](const Pending& a, const Pending& b) { return b.task == a.task + 1; };
+    for_runs(pending_, next_task, [&](const Pending* p, std::size_t n) {
+      std::vector<std::int32_t> st(n);
+      for (std::size_t i = 0; i < n; ++i) st[i] = p[i].status;
+      ds("tasks/status").write_region({p->task}, {n}, std::span<const std::int32_t>(st));
+    });
+    std::vector<Pending> ran;  // the tasks with a final state and windows (not "not run")
+    for (Pending& p : pending_)
+      if (p.status != std::int32_t(TaskStatus::NotRun)) ran.push_back(std::move(p));
+    pending_.clear();
+    for_runs(ran, next_task, [&](const Pending* p, std::size_t n) {
+      std::vector<std::int64_t> steps(n);
+      std::vector<double> rows;
+      for (std::size_t i = 0; i < n; ++i) {
+        steps[i] = p[i].steps;
+        rows.insert(rows.end(), p[i].state.begin(), p[i].state.end());
+      }
+      ds("tasks/steps").write_region({p->task}, {n}, std::span<const std::int64_t>(steps));
+      ds("tasks/final_state").write_region({p->task, 0}, {n, kStateCols}, std::span<const double>(rows));
+    });
+    std::erase_if(ran, [](const Pending& p) { return p.windows.empty(); });
+    // Blocks of /windows: one task's windows, or the same windows of tasks on consecutive chains.
+    const auto below = [](const Pending& a, const Pending& b) {
+      return b.chain == a.chain + 1 && b.windows.front().index == a.windows.front().index &&
+             b.windows.size() == a.windows.size();
+    };
+    for_runs(ran, below, [&](const Pending* p, std::size_t n) { write_windows(p, n); });
+  }
   // Failures of this run join those of earlier runs of the same sweep (one line each, sorted).
   void finish(std::vector<std::string> failures, const SweepRunRecord& run) {
     io::Group tg = f_.open_group("tasks");
@@ -188,14 +226,16 @@ class SweepFile {
     std::sort(failures.begin(), failures.end());
     failures.erase(std::unique(failures.begin(), failures.end()), failures.end());
     tg.set_attribute("failures", std::span<const std::string>(failures));
+    write_pending();
     write_basin_results(f_);  // the fractions of the samples done
     io::Group prov = f_.require_group("provenance");
     write_run_record(prov, run);
     close();
   }
 
-  // Closes the datasets held open for writing, then the file.
+  // Writes what waits, closes the datasets held open for writing, then the file.
   void close() {
+    write_pending();
     open_.clear();
     f_.close();
   }
@@ -210,10 +250,39 @@ class SweepFile {
   void flush_due() {
     const auto now = std::chrono::steady_clock::now();
     if (now - last_flush_ < kFlushInterval) return;
+    write_pending();
     f_.flush();
     last_flush_ = now;
   }
   std::chrono::steady_clock::time_point last_flush_ = std::chrono::steady_clock::now();
+
+  // A result not written yet (write_task, write_not_run).
+  struct Pending {
+    std::size_t task = 0, chain = 0;
+    std::int32_t status = 0;
+    std::int64_t steps = 0;
+    std::vector<double> state;  // the final state's row
+    std::vector<WindowResult> windows;
+  };
+  std::vector<Pending> pending_;
+  void check_nothing_pending() const {
+    if (!pending_.empty()) throw std::logic_error("sweep file: read back with results not written yet (write_pending)");
+  }
+
+  // fn(first, n) for each run of items where every item follows the one before (joined(a, b)).
+  template <class Joined, class Fn>
+  static void for_runs(const std::vector<Pending>& items, const Joined& joined, const Fn& fn) {
+    for (std::size_t b = 0, e = 0; b < items.size(); b = e) {
+      for (e = b + 1; e < items.size() && joined(items[e - 1], items[e]); ++e) {
+      }
+      fn(&items[b], e - b);
+    }
+  }
+
+  // Rows per chunk of a dataset whose rows hold `row` values: chunks of about 4096 values, so
+  // that a sweep of many short chains (one window each) does not store, index and checksum a
+  // chunk per value; a chain of hundreds of windows keeps a few rows per chunk.
+  std::size_t chunk_rows(std::size_t row) const { return std::max<std::size_t>(1, 4096 / std::max<std::size_t>(row, 1)); }
 
   // /classes: the orbit classes' table (sweep/orbit_classes.hpp), indexed by class code.
   void write_classes() {
@@ -361,39 +430,42 @@ class SweepFile {
         .set_attribute("description", "protocol segment index");
   }
 
-  // A task's windows: their rows of /windows and /samples/count in one write per dataset (a
-  // task's windows are consecutive), and each window's sample chunks as the worker made them.
-  void write_windows(std::size_t chain, const std::vector<WindowResult>& windows) {
-    if (windows.empty()) return;
-    const std::size_t first = std::size_t(windows.front().index), n = windows.size();
-    for (std::size_t i = 0; i < n; ++i)
-      if (std::size_t(windows[i].index) != first + i) throw io::Hdf5Error("sweep file: a task's windows are not consecutive");
+  // The windows of n tasks (p[0 .. n-1]): one task's consecutive windows, or the same windows of
+  // tasks on consecutive chains; their rows of /windows and /samples/count in one write per
+  // dataset, and each window's sample chunks as the worker made them.
+  void write_windows(const Pending* p, std::size_t n) {
+    const std::size_t chain = p->chain, first = std::size_t(p->windows.front().index), m = p->windows.size();
     std::vector<WindowRow> rows;
     std::vector<std::int32_t> count;
-    for (const WindowResult& w : windows) {
-      rows.push_back(w.row);
-      count.push_back(w.count);
-    }
-    write_rows(chain, first, rows);
-    std::vector<double> column(n);
+    for (std::size_t t = 0; t < n; ++t)
+      for (const WindowResult& w : p[t].windows) {
+        rows.push_back(w.row);
+        count.push_back(w.count);
+      }
+    write_rows(chain, first, rows, n);
+    std::vector<double> column(rows.size());
     for (std::size_t k = 0; k < kNumPowers; ++k) {
-      for (std::size_t i = 0; i < n; ++i) column[i] = windows[i].powers[k];
-      ds(std::string("windows/") + kPowers[k].name).write_region({chain, first}, {1, n}, std::span<const double>(column));
+      std::size_t i = 0;
+      for (std::size_t t = 0; t < n; ++t)
+        for (const WindowResult& w : p[t].windows) column[i++] = w.powers[k];
+      ds(std::string("windows/") + kPowers[k].name).write_region({chain, first}, {n, m}, std::span<const double>(column));
     }
-    ds("samples/count").write_region({chain, first}, {1, n}, std::span<const std::int32_t>(count));
-    for (const WindowResult& w : windows)
-      for (std::size_t k = 0; k < w.chunks.size(); ++k)
-        ds(std::string("samples/") + kSampleColumns[k])
-            .write_chunk(k < 6 ? io::Dims{chain, std::size_t(w.index), 0} : io::Dims{chain, std::size_t(w.index), 0, 0},
-                         w.chunks[k]);
+    ds("samples/count").write_region({chain, first}, {n, m}, std::span<const std::int32_t>(count));
+    for (std::size_t t = 0; t < n; ++t)
+      for (const WindowResult& w : p[t].windows)
+        for (std::size_t k = 0; k < w.chunks.size(); ++k)
+          ds(std::string("samples/") + kSampleColumns[k])
+              .write_chunk(k < 6 ? io::Dims{p[t].chain, std::size_t(w.index), 0} : io::Dims{p[t].chain, std::size_t(w.index), 0, 0},
+                           w.chunks[k]);
   }
 
  public:
-  // Rows of /windows for consecutive windows from `first` (also what astrojax classify rewrites).
-  void write_rows(std::size_t chain, std::size_t first, std::span<const WindowRow> rows) {
+  // Rows of /windows for consecutive windows from `first` (also what astrojax classify rewrites);
+  // with `chains` > 1, the same windows of that many consecutive chains from `chain`, row by row.
+  void write_rows(std::size_t chain, std::size_t first, std::span<const WindowRow> rows, std::size_t chains = 1) {
     const std::size_t n = rows.size();
     if (n == 0) return;
-    const io::Dims at{chain, first}, block{1, n};
+    const io::Dims at{chain, first}, block{chains, n / chains};
     std::vector<std::int32_t> cls(n);
     std::vector<double> column(n), modes(kNumModes * n);
     for (std::size_t i = 0; i < n; ++i) {
@@ -405,7 +477,7 @@ class SweepFile {
       for (std::size_t i = 0; i < n; ++i) column[i] = rows[i].stats[k];
       ds(std::string("windows/") + kStats[k].name).write_region(at, block, std::span<const double>(column));
     }
-    ds("windows/mode_fraction").write_region({chain, first, 0}, {1, n, kNumModes}, std::span<const double>(modes));
+    ds("windows/mode_fraction").write_region({chain, first, 0}, {chains, n / chains, kNumModes}, std::span<const double>(modes));
   }
 
   io::File& file() { return f_; }
