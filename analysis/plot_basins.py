@@ -5,8 +5,8 @@
 Top: the fraction of starts ending on each attractor at each level, stacked bottom to top in
 the order the attractors first appear, each band in its orbit class's colour (a second
 attractor of one class hatched); the bar at each band's upper edge is the 95 % Wilson interval
-of that band's width. Attractors are matched from level to level (astrojax_analysis.basins: same
-class, nearest in scaled features within the file's match_tolerance). Above the bands, with
+of that band's width. The attractors are the file's own (/basins/attractors: matched across ω_m
+by the program when the sweep finished, src/sweep/basin_match.hpp). Above the bands, with
 --paper, the main job's seeded chains of the same variant (out/paper.h5: rise from rest, up
 and fall from Table 1's orbit), one row each, every window a mark at its ω_m in its class's
 colour (▲ ω_m rising, ▼ falling). Bottom: the probability that the bead is up (any orbit but
@@ -16,6 +16,8 @@ paper's measured ω_rise = 12.63π and ω_fall = 3.24π.
 usage: /usr/bin/python3 analysis/plot_basins.py out/basins.h5 --paper out/paper.h5 -o out/basins.png
        /usr/bin/python3 analysis/plot_basins.py out/basins.h5 --table     (the numbers, as text)
 """
+import warnings
+
 import numpy as np
 
 import astrojax_analysis as ajx
@@ -97,7 +99,7 @@ def print_table(sweep):
     for part in bs.basin_parts(sweep):
         _, group, variant = part_title(sweep, part)
         t = bs.basin_table(sweep, part)
-        print(f"# group {group}, variant {variant}: family {t['family']}, match tolerance {t['tolerance']:g}")
+        print(f"# group {group}, variant {variant}: family {t['family']}")
         print("omega_m/pi  done  " + "  ".join(f"{lab} [95% CI]" for lab in t["labels"]))
         for i, w in enumerate(t["omega_m"]):
             cells = [f"{t['fraction'][i, j]:.3f} [{t['lower'][i, j]:.3f}, {t['upper'][i, j]:.3f}]"
@@ -108,7 +110,8 @@ def print_table(sweep):
         for j, lab in enumerate(t["labels"]):
             m = t["sample_label"] == j
             levels = np.unique(np.round(b["levels"]["omega_m"][b["level"][m]] / PI, 3))
-            with np.errstate(invalid="ignore"):
+            with warnings.catch_warnings():  # a feature no start of the attractor has: NaN, not a warning
+                warnings.simplefilter("ignore", RuntimeWarning)
                 f = np.nanmean(b["features"][m], axis=0) if m.any() else np.full(4, np.nan)
             print(f"  {lab}: {', '.join(f'{v:g}' for v in levels)}; {int(m.sum())} starts; "
                   f"ω_ball {f[0] / PI:.2f}π, ρ1 {f[1]:.3f}, ρ2 {f[2]:.3f}, s {f[3]:.3f}")

@@ -239,8 +239,9 @@ class reader_formats(unittest.TestCase):
     def test_basins(self):
         """/basins (format 5): read when consistent; refused naming the dataset when a sample's class
         is not its chain's window 0, a count or a fraction does not follow from the samples, or the
-        file is older than basins."""
-        def add(f, cls=(1, 0), frac=None):
+        file is older than basins; the stored attractors read when consistent with the samples'
+        classes and refused naming /basins/attractor when a sample is on one of another class."""
+        def add(f, cls=(1, 0), frac=None, attractor=None):
             g = f.create_group("basins")
             g.create_dataset("chain", data=np.arange(C, dtype=np.int64))
             g.create_dataset("level", data=np.zeros(C, np.int32))
@@ -252,7 +253,6 @@ class reader_formats(unittest.TestCase):
             for name, v in (("part", [0]), ("first", [0]), ("samples", [C]), ("family", [0]), ("done", [C])):
                 lv.create_dataset(name, data=np.array(v, np.int32))
             lv.create_dataset("omega_m", data=np.array([4 * np.pi]))
-            lv.create_dataset("match_tolerance", data=np.array([0.25]))
             count = np.zeros((1, len(CLASSES)), np.int32)
             count[0, 0] = count[0, 1] = 1
             lv.create_dataset("count", data=count)
@@ -260,7 +260,24 @@ class reader_formats(unittest.TestCase):
             lv.create_dataset("fraction", data=frac if frac is not None else count / C)
             lv.create_dataset("lower", data=lo)
             lv.create_dataset("upper", data=hi)
+            if attractor is not None:  # attractor 0 of class 1 (locked), 1 of class 0 (fallen)
+                g.create_dataset("attractor", data=np.array(attractor, np.int32))
+                at = g.create_group("attractors")
+                at.create_dataset("name", data=np.array(["locked-circular", "fallen"], dtype=h5py.string_dtype()))
+                at.create_dataset("class", data=np.array([1, 0], np.int32))
+                at.create_dataset("part", data=np.array([0, 0], np.int32))
+                c = np.array([[1, 1]], np.int32)
+                at.create_dataset("count", data=c)
+                a_lo, a_hi = reader.wilson_interval(c, np.array([[C]]))
+                at.create_dataset("fraction", data=c / C)
+                at.create_dataset("lower", data=a_lo)
+                at.create_dataset("upper", data=a_hi)
+        s = ajx.Sweep(self.damaged(lambda f: add(f, attractor=(0, 1))))
+        self.assertEqual(s.basins["attractors"]["name"], ["locked-circular", "fallen"])
+        self.assertEqual(s.basins["attractor"].tolist(), [0, 1])
+        refused(self, self.damaged(lambda f: add(f, attractor=(1, 0))), "/basins/attractor", ["another class"])
         s = ajx.Sweep(self.damaged(add))
+        self.assertIsNone(s.basins["attractors"])
         self.assertEqual(s.basins["levels"]["count"][0, :2].tolist(), [1, 1])
         self.assertAlmostEqual(s.basins["levels"]["lower"][0, 0], 0.0945, places=4)  # 1 of 2: [0.0945, 0.9055]
         refused(self, self.damaged(lambda f: add(f, cls=(0, 0))), "/basins/class", ["at [0]", "/windows/class"])

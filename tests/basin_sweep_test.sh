@@ -52,6 +52,26 @@ cp "$work/one.h5" "$work/re.h5"
 "$bin" classify "$work/re.h5" -o "$work/re2.h5" --set classifier.fallen_fraction=7 > "$work/re2.out" 2>&1
 check "classify with settings that change classes: /basins follows (the C++ reader accepts it)" \
   "[ $? -eq 0 ] && ! h5diff '$work/one.h5' '$work/re2.h5' /basins/class > /dev/null 2>&1 && '$bin' verify '$work/re2.h5' > /dev/null 2>&1; [ \$? -ne 2 ]"
+# A cloud around a stored state (basin.state): the end of window 0 of chain 7 of one.h5 (the bead
+# fallen at 3π); refused before any work, naming the key, for a chain the file does not have.
+stored() {
+  sed -e 's/^family = "hanging"/family = "cloud"\nepsilon = 0.005\nstate = {file = "'"${work//\//\\/}"'\/one.h5", chain = '"$1"', window = 0}/' \
+      -e '/^s = /d' -e '/^swing = /d' -e 's/^samples = .*/samples = 2/' "$toml" > "$work/stored.toml"
+}
+stored 7
+"$bin" sweep "$work/stored.toml" -o "$work/stored.h5" -q > "$work/stored.out" 2>&1
+check "a cloud around a stored state runs (exit $?)" "[ -s '$work/stored.h5' ]"
+check "its starts lie within 2ε of the stored state (the bead moved by up to ε, the bottom ball by up to 2ε), and differ" "'$py' -c '
+import h5py, numpy as np, sys
+a = h5py.File(sys.argv[1]); b = h5py.File(sys.argv[2])
+c = list(a[\"basins/start\"].attrs[\"columns\"]); i = [c.index(n) for n in (\"r1_z [m]\", \"r2_z [m]\")]
+s = b[\"basins/start\"][:][:, i]; e = a[\"tasks/final_state\"][7][[list(a[\"tasks/final_state\"].attrs[\"columns\"]).index(n) for n in (\"r1_z [m]\", \"r2_z [m]\")]]
+sys.exit(0 if np.all(np.abs(s - e) <= 2 * 0.005 + 1e-9) and not np.array_equal(s[0], s[1]) else 1)' '$work/one.h5' '$work/stored.h5'"
+stored 99
+"$bin" sweep "$work/stored.toml" -o "$work/stored99.h5" -q > "$work/stored99.out" 2>&1
+rc=$?
+check "a stored state of a chain the file lacks: exit 2, naming basin.state and the chain ($(head -c 200 "$work/stored99.out"))" \
+  "[ $rc -eq 2 ] && grep -q \"key 'basin.state'\" '$work/stored99.out' && grep -q 'chain 99' '$work/stored99.out' && [ ! -e '$work/stored99.h5' ]"
 PYTHONPATH=$src/analysis "$py" - "$work/one.h5" "$work/re2.h5" > "$work/py.out" 2>&1 <<'PY'
 import sys
 import numpy as np

@@ -579,8 +579,7 @@ def _read_basins(f, p, version, cls, n_classes):
     b["features"] = read(dataset(f, p, "basins/features", "f", (S, len(BASIN_FEATURES))), p)
     L = dataset(f, p, "basins/levels/omega_m", "f", (None,)).shape[0]
     lv = {}
-    for name in ("omega_m", "match_tolerance"):
-        lv[name] = read(dataset(f, p, "basins/levels/" + name, "f", (L,)), p)
+    lv["omega_m"] = read(dataset(f, p, "basins/levels/omega_m", "f", (L,)), p)
     for name in ("part", "first", "samples", "family", "done"):
         lv[name] = read(dataset(f, p, "basins/levels/" + name, "i", (L,)), p).astype(int)
     K = n_classes
@@ -592,8 +591,6 @@ def _read_basins(f, p, version, cls, n_classes):
     check_range(lv["family"], p, "basins/levels/family", 0, len(BASIN_FAMILIES) - 1, "family")
     check_range(lv["samples"], p, "basins/levels/samples", 1, 2 ** 31 - 1, "N")
     check_finite(lv["omega_m"], p, "basins/levels/omega_m")
-    if not np.all(lv["match_tolerance"] > 0):
-        raise SweepFileError(p, "/basins/levels/match_tolerance", "a tolerance that is not > 0")
     if np.any(np.isinf(b["start"])) or np.any(np.isinf(b["features"])):
         raise SweepFileError(p, "/basins/start" if np.any(np.isinf(b["start"])) else "/basins/features", "an infinite value")
     bad = np.flatnonzero(b["class"] != cls[b["chain"], 0])
@@ -617,7 +614,48 @@ def _read_basins(f, p, version, cls, n_classes):
             raise SweepFileError(p, "/basins/levels/" + name, "differs from the counts (fraction = count / done, the "
                                  "95 % Wilson interval)")
     b["levels"] = lv
+    b["attractors"] = _read_basin_attractors(f, p, b, L)
     return b
+
+
+def _read_basin_attractors(f, p, b, L):
+    """/basins/attractor and /basins/attractors (the attractors matched across ω_m, written by
+    the sweep and by `astrojax classify`), checked as the C++ reader checks them; None in a file
+    made before they were stored."""
+    if "basins/attractor" not in f and "basins/attractors" not in f:
+        return None
+    S = len(b["class"])
+    b["attractor"] = read(dataset(f, p, "basins/attractor", "i", (S,)), p).astype(int)
+    names = f.get("basins/attractors/name")
+    if not isinstance(names, h5py.Dataset) or names.ndim != 1 or names.dtype.kind not in "OSU":
+        raise SweepFileError(p, "/basins/attractors/name", "missing or not a 1-D array of strings")
+    A = names.shape[0]
+    at = {"name": [as_text(x) for x in read(names, p)]}
+    for name in ("class", "part"):
+        at[name] = read(dataset(f, p, "basins/attractors/" + name, "i", (A,)), p).astype(int)
+    at["count"] = read(dataset(f, p, "basins/attractors/count", "i", (L, A)), p).astype(int)
+    for name in ("fraction", "lower", "upper"):
+        at[name] = read(dataset(f, p, "basins/attractors/" + name, "f", (L, A)), p)
+    lab = b["attractor"]
+    check_range(lab, p, "basins/attractor", -1, A - 1, "attractor")
+    on = lab >= 0
+    if not np.array_equal(on, b["class"] >= 0) or np.any(at["class"][lab[on]] != b["class"][on]) or \
+            np.any(at["part"][lab[on]] != b["levels"]["part"][b["level"][on]]):
+        raise SweepFileError(p, "/basins/attractor", "a sample on an attractor of another class or part, or a sample "
+                             "with a class on none")
+    count = np.zeros((L, A), dtype=int)
+    np.add.at(count, (b["level"][on], lab[on]), 1)
+    if not np.array_equal(count, at["count"]):
+        raise SweepFileError(p, "/basins/attractors/count", "differs from the samples' attractors")
+    n = b["levels"]["done"][:, None]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        frac = np.where(n > 0, count / np.maximum(n, 1), np.nan)
+    lo, hi = wilson_interval(count, n)
+    for name, want in (("fraction", frac), ("lower", lo), ("upper", hi)):
+        if not np.allclose(at[name], want, rtol=0, atol=1e-12, equal_nan=True):
+            raise SweepFileError(p, "/basins/attractors/" + name, "differs from the counts (fraction = count / done, "
+                                 "the 95 % Wilson interval)")
+    return at
 
 
 def wilson_interval(k, n, z=1.959963984540054):

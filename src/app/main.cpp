@@ -11,6 +11,8 @@
 #include "app/commands.hpp"
 #include "config/did_you_mean.hpp"
 #include "parallel/mpi_env.hpp"
+#include "config/config.hpp"
+#include "results/basin_file.hpp"
 #include "results/provenance.hpp"
 
 namespace {
@@ -38,6 +40,7 @@ const CLI::Validator non_empty([](std::string& s) { return s.empty() ? std::stri
 // Long for a reason: the command line's declaration, one CLI11 block per subcommand, read top to
 // bottom as the reference of every option; the commands themselves are in src/app/*_command.cpp.
 int main(int argc, char** argv) {
+  ajx::config::set_stored_orbit_reader(&ajx::results::read_stored_orbit);  // basin.state reads sweep files
   CLI::App app{"astrojax: bifurcation explorer for the motor-driven Astrojax pendulum"};
   app.require_subcommand(1);
   app.footer("Exit codes (also of mpirun, which returns rank 0's): 0 done; 1 internal error (a bug, an MPI failure); "

@@ -642,6 +642,38 @@ void check_chain_count(const SweepConfig& c, double before) {
 }
 
 
+StoredOrbitReader stored_orbit_reader = nullptr;  // set once by the application, before any configuration is read
+
+// basin.state = {file, chain, window}: the end of that window of a sweep file, read through the
+// registered reader (results/ reads sweep files, config does not), of the same string and drive
+// radius as this model.
+sweep::StoredOrbit read_stored_orbit(const toml::table& bt, const physics::Model& m, std::string_view file) {
+  const toml::table* st = bt.get("state")->as_table();
+  if (!st)
+    throw ConfigError(fmt::format("{}: key 'basin.state': expected {{file = \"out/paper.h5\", chain = C, window = K}}: "
+                                  "a window of a sweep file", file));
+  Reader r(*st, "basin.state", file);
+  if (!r.has("file")) r.fail("file", "missing: the sweep file the state is read from");
+  const std::string path = r.text("file", "");
+  if (!r.has("chain")) r.fail("chain", "missing: the chain's index in that file (0, 1, ...)");
+  if (!r.has("window")) r.fail("window", "missing: the window's index in its chain (0, 1, ...)");
+  const long chain = long(r.count("chain", 0, 0.0, 1e9)), window = long(r.count("window", 0, 0.0, 1e9));
+  r.reject_unknown();
+  if (!stored_orbit_reader) r.fail("file", "this command cannot read sweep files");
+  sweep::StoredOrbit o;
+  try {
+    o = stored_orbit_reader(path, chain, window);
+  } catch (const std::exception& e) {
+    throw ConfigError(fmt::format("{}: key 'basin.state': {}", file, e.what()));
+  }
+  const double l = m.p.string_length, R = m.p.drive_radius;
+  if (std::abs(o.string_length - l) > 1e-12 * l || std::abs(o.drive_radius - R) > 1e-12 * R)
+    throw ConfigError(fmt::format("{}: key 'basin.state': chain {} of {} has l = {} m, R = {} m; this model has l = {} m, "
+                                  "R = {} m; allowed: a state of the same string and drive radius",
+                                  file, chain, path, o.string_length, o.drive_radius, l, R));
+  return o;
+}
+
 // [basin] (sweep/basin.hpp): the levels, N starts per level and their family, checked against
 // the model's bounds before any work.
 sweep::BasinSpec read_basin(const toml::table& root, SweepConfig& c) {
@@ -664,14 +696,14 @@ sweep::BasinSpec read_basin(const toml::table& root, SweepConfig& c) {
   b.seed = std::uint64_t(r.count("seed", 1, 0.0, 9007199254740992.0));
   b.settle = r.number("settle", b.settle, 0.0, 1e6);
   b.measure = r.number("measure", b.measure, 0.0, 1e6, true);
-  b.match_tolerance = r.number("match_tolerance", b.match_tolerance, 0.0, 10.0, true);
+  r.known("match_tolerance");  // retired: files made before 2026-11-28 carry it; ignored
   const auto only = [&](const char* key, sweep::BasinFamily f) {
     if (r.has(key) && b.family != f) r.fail(key, fmt::format("belongs to family = \"{}\", not \"{}\"", sweep::to_string(f), family));
   };
   only("s", sweep::BasinFamily::Hanging);
   only("swing", sweep::BasinFamily::Hanging);
   for (const char* k : {"hand_omega", "hand_duration", "hand_knots", "step_rate"}) only(k, sweep::BasinFamily::Hand);
-  for (const char* k : {"orbit", "epsilon"}) only(k, sweep::BasinFamily::Cloud);
+  for (const char* k : {"orbit", "epsilon", "state"}) only(k, sweep::BasinFamily::Cloud);
   if (const toml::node* n = bt.get("s")) {
     r.known("s");
     const toml::array* a = n->as_array();
@@ -689,6 +721,11 @@ sweep::BasinSpec read_basin(const toml::table& root, SweepConfig& c) {
   b.step_rate = r.number("step_rate", b.step_rate, 0.0, 1e4, true);
   b.orbit = r.word("orbit", b.orbit, {"locked_orbit", "circular_high"});
   b.epsilon = r.number("epsilon", b.epsilon, 0.0, 1.0, true);
+  if (bt.contains("state")) {
+    if (r.has("orbit")) r.fail("state", "a cloud surrounds either `orbit` or a stored `state`, not both");
+    r.known("state");
+    b.stored = read_stored_orbit(bt, c.model, file);
+  }
   c.sample_rate = r.number("sample_rate", 100.0, 0.0, 1e5, true);
   r.reject_unknown();
   try {
@@ -701,8 +738,9 @@ sweep::BasinSpec read_basin(const toml::table& root, SweepConfig& c) {
         const sweep::CompiledProtocol p = sweep::basin_protocol(b, b.omega[i], int(i), 0);
         (void)sweep::basin_orbit(c.model, physics::MotorSchedule(c.model.p.drive_radius, p.schedule), b, b.omega[i]);
       } catch (const sweep::BasinError& e) {
-        throw ConfigError(fmt::format("{}: key 'basin.orbit': at basin.omega[{}] = {} rad/s: {}; allowed: a level "
-                                      "where the orbit exists, or orbit = \"circular_high\"", file, i, b.omega[i], e.what()));
+        throw ConfigError(fmt::format("{}: key 'basin.{}': at basin.omega[{}] = {} rad/s: {}; allowed: a level "
+                                      "where the orbit exists, or orbit = \"circular_high\"", file,
+                                      b.stored ? "state" : "orbit", i, b.omega[i], e.what()));
       }
   c.windows_per_task = 1;
   return b;
@@ -1124,5 +1162,7 @@ OrbitsConfig parse_orbits_config(std::string_view text, std::string_view source_
 OrbitsConfig load_orbits_config(const std::string& path, const std::vector<std::string>& overrides) {
   return parse_orbits_config(read_file(path), path, overrides);
 }
+
+void set_stored_orbit_reader(StoredOrbitReader reader) { stored_orbit_reader = reader; }
 
 }  // namespace ajx::config

@@ -13,6 +13,7 @@
 #include "physics/model.hpp"
 #include "physics/state.hpp"
 #include "sim/simulation.hpp"
+#include "sweep/basin.hpp"
 #include "sweep/grid.hpp"
 #include "sweep/plan.hpp"
 
@@ -79,6 +80,13 @@ struct SweepConfig : CommonConfig, sweep::SweepSpec {
 
 // What the planner needs of each part (one for a plain file), in the order of `parts`.
 std::vector<sweep::PlanPart> plan_parts(const SweepConfig& c);
+// Reads basin.state's window of a sweep file (the end of window `window` of chain `chain`);
+// throws with a message naming the file. results/ owns sweep files: the application registers
+// its reader (results::read_stored_orbit) before it reads a configuration; unregistered, a
+// basin.state is refused.
+using StoredOrbitReader = sweep::StoredOrbit (*)(const std::string& file, long chain, long window);
+void set_stored_orbit_reader(StoredOrbitReader reader);
+
 inline sweep::SweepPlan make_plan(const SweepConfig& c) { return sweep::make_plan(plan_parts(c)); }
 
 // The most chains a sweep may have: its plan and file layout are held in memory on rank 0

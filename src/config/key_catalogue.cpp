@@ -214,8 +214,9 @@ void basin_keys(std::vector<KeyInfo>& k) {
   k.push_back(whole("basin", "seed", 0, 9007199254740992.0, "1", "the draws' stream: another seed draws other starts"));
   k.push_back(num("basin", "settle", "s", 0.0, 1e6, false, false, "60", "held at the level before the measured window"));
   k.push_back(num("basin", "measure", "s", 0.0, 1e6, true, false, "10", "the measured window"));
-  k.push_back(num("basin", "match_tolerance", "", 0.0, 10.0, true, false, "0.25",
-                  "orbits of one class at neighbouring levels are one attractor within this scaled feature distance"));
+  k.push_back(other("basin", "match_tolerance", "number", "", "any (ignored)", "",
+                    "retired on 2026-11-28 and ignored: attractors are matched with bands from the features' measured "
+                    "scatter (guide: basin sweeps); still accepted so that sweep files made before read"));
   k.push_back(other("basin", "s", "[lo, hi]", "m", "within the stops [s_min, l − d]", "l − d (on the bottom ball)",
                     "family hanging: the bead's position along the string, uniform in [lo, hi]"));
   k.push_back(num("basin", "swing", "rad", 0.0, 1.5707963267948966, false, false, "0.3",
@@ -228,6 +229,13 @@ void basin_keys(std::vector<KeyInfo>& k) {
                   "family hand: the motor's ramp from the hand's last ω_m to the level"));
   k.push_back(other("basin", "orbit", "word", "", "locked_orbit, circular_high", "locked_orbit",
                     "family cloud: the orbit the starts surround, at each level"));
+  k.push_back(other("basin", "state", "table", "", "{file, chain, window}; not with orbit", "",
+                    "family cloud: the starts surround the state at the end of a window of a sweep file (guide: basin sweeps)"));
+  k.push_back(other("basin.state", "file", "text", "", "a sweep file (relative to the working directory)", "",
+                    "the sweep file the state is read from"));
+  k.push_back(whole("basin.state", "chain", 0, 1e9, "", "the chain's index in that file"));
+  k.push_back(whole("basin.state", "window", 0, 1e9, "",
+                    "the window's index in its chain: the state at its end, which must end its task"));
   k.push_back(num("basin", "epsilon", "m", 0.0, 1.0, true, false, "0.01",
                   "family cloud: ε, each ball moved across the string by up to ε, each velocity component by up to ε ω_m "
                   "(at most a tenth of l)"));

@@ -597,6 +597,12 @@ Group Group::create_group(std::string_view path) {
   return Group(std::move(g), file_, std::move(full));
 }
 
+void Group::remove(std::string_view path) {
+  std::string full = child_path(path);
+  std::string p(path);
+  check(H5Ldelete(handle_.get(), p.c_str(), H5P_DEFAULT), "H5Ldelete", Where{file_name(), full});
+}
+
 Group Group::open_group(std::string_view path) const {
   std::string full = child_path(path);
   std::string p(path);

@@ -191,6 +191,7 @@ class Group : public Object {
   Group create_group(std::string_view path);  // fails if it exists
   Group open_group(std::string_view path) const;
   Group require_group(std::string_view path);  // open, or create if missing
+  void remove(std::string_view path);         // unlinks a group or dataset (its space is not reclaimed)
 
   // Whole arrays, row-major; the product of dims must equal data.size() (dims {} = scalar).
   // A non-empty array is stored in chunks that carry HDF5's Fletcher32 checksum: a byte changed

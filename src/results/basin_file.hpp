@@ -10,6 +10,7 @@
 
 #include "config/config.hpp"
 #include "io/hdf5_file.hpp"
+#include "sweep/basin.hpp"
 #include "sweep/plan.hpp"
 
 namespace ajx::results {
@@ -23,6 +24,13 @@ bool has_basins(const sweep::SweepPlan& plan);
 
 // /basins with every start, the level table and the results "not computed" (class -1, NaN).
 void write_basin_layout(io::File& f, const config::SweepConfig& cfg, const sweep::SweepPlan& plan);
+
+// basin.state's orbit (config::StoredOrbitReader): the state at the end of window `window` of
+// chain `chain` of the sweep file `path`, read through the one reader (which validates the whole
+// file), turned so that the top is at azimuth 0. Throws std::runtime_error naming the file and
+// what is wrong: no such chain or window, a window not computed or failed, or one that does not
+// end its task (its end state is not stored).
+sweep::StoredOrbit read_stored_orbit(const std::string& path, long chain, long window);
 
 // /basins' results from /windows: each sample's class and features, each level's counts,
 // fractions and intervals. Nothing when the file has no /basins.

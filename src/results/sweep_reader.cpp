@@ -458,7 +458,6 @@ void SweepReader::read_basins() {
   const Array<double> features = doubles("basins/features", {S, kNumBasinFeatures});
   const std::size_t L = dataset("basins/levels/omega_m", 1, io::TypeClass::Float).dims()[0];
   basin_omega_ = doubles("basins/levels/omega_m", {L}).data;
-  const Array<double> tol = doubles("basins/levels/match_tolerance", {L});
   const auto first = dataset("basins/levels/first", 1, io::TypeClass::Integer).read_int64s();
   if (first.dims != io::Dims{L}) fail("basins/levels/first", fmt::format("has shape {}, expected [{}]", dims_text(first.dims), L));
   const auto samples = ints("basins/levels/samples", {L}).data;
@@ -494,7 +493,6 @@ void SweepReader::read_basins() {
       fail("basins/levels/first", fmt::format("at [{}]: rows {} to {} are not inside the {} samples", l, first.data[l],
                                               first.data[l] + samples[l] - 1, S));
     if (family[l] < 0 || family[l] > 2) fail("basins/levels/family", fmt::format("at [{}]: {} is not one of 0 to 2", l, family[l]));
-    if (!(tol.data[l] > 0.0)) fail("basins/levels/match_tolerance", fmt::format("at [{}]: {} is not > 0", l, tol.data[l]));
     if (basin_done_[l] != done[l])
       fail("basins/levels/done", fmt::format("at [{}]: {}, but {} of its samples have a class", l, basin_done_[l], done[l]));
     for (std::size_t k = 0; k < K; ++k) {
@@ -516,6 +514,49 @@ void SweepReader::read_basins() {
     }
   }
   basin_chain_ = chain;
+  read_basin_attractors(S, L);
+}
+
+// /basins/attractor and /basins/attractors (written since 2026-11-28; a file of format 5 made
+// before has neither, and `astrojax classify` adds them): every sample with a class is on one
+// attractor of that class and of its level's part, and the counts, fractions and Wilson
+// intervals are those of the samples.
+void SweepReader::read_basin_attractors(std::size_t S, std::size_t L) {
+  if (!f_.exists("basins/attractor") && !f_.exists("basins/attractors")) return;
+  const std::vector<std::int32_t> label = ints("basins/attractor", {S}).data;
+  const io::Dataset nd = dataset("basins/attractors/name", 1, io::TypeClass::String);
+  const std::size_t A = nd.dims()[0];
+  basin_attractor_names_ = nd.read_strings();
+  const std::vector<std::int32_t> cls = ints("basins/attractors/class", {A}).data, part = ints("basins/attractors/part", {A}).data;
+  const Array<std::int32_t> count = ints("basins/attractors/count", {L, A});
+  const Array<double> fraction = doubles("basins/attractors/fraction", {L, A}), lower = doubles("basins/attractors/lower", {L, A}),
+                      upper = doubles("basins/attractors/upper", {L, A});
+  const std::vector<std::int32_t> level_part = ints("basins/levels/part", {L}).data;
+  std::vector<std::int32_t> mine(L * A, 0);
+  for (std::size_t i = 0; i < S; ++i) {
+    const std::int32_t a = label[i], l = basin_level_[i];
+    if ((a < 0) != (basin_class_[i] < 0) || a >= std::int32_t(A))
+      fail("basins/attractor", fmt::format("at [{}]: {} for a sample of class {} (the file has {} attractors)", i, a,
+                                           basin_class_[i], A));
+    if (a < 0) continue;
+    if (cls[std::size_t(a)] != basin_class_[i] || part[std::size_t(a)] != level_part[std::size_t(l)])
+      fail("basins/attractor", fmt::format("at [{}]: attractor {} (class {}, part {}) for a sample of class {} in part {}", i, a,
+                                           cls[std::size_t(a)], part[std::size_t(a)], basin_class_[i], level_part[std::size_t(l)]));
+    ++mine[std::size_t(l) * A + std::size_t(a)];
+  }
+  for (std::size_t l = 0; l < L; ++l)
+    for (std::size_t a = 0; a < A; ++a) {
+      const std::size_t i = l * A + a;
+      if (count.data[i] != mine[i])
+        fail("basins/attractors/count", fmt::format("at [{}, {}]: {}, but {} of its samples are on it", l, a, count.data[i], mine[i]));
+      if (basin_done_[l] == 0) continue;
+      const sweep::Interval ci = sweep::wilson_interval(mine[i], basin_done_[l]);
+      if (!(std::abs(fraction.data[i] - double(mine[i]) / basin_done_[l]) <= 1e-12) ||
+          !(std::abs(lower.data[i] - ci.lo) <= 1e-12 && std::abs(upper.data[i] - ci.hi) <= 1e-12))
+        fail("basins/attractors/fraction", fmt::format("at [{}, {}]: {} [{}, {}], but {} of {} with its Wilson interval", l, a,
+                                                       fraction.data[i], lower.data[i], upper.data[i], mine[i], basin_done_[l]));
+    }
+  basin_attractor_ = label;
 }
 
 }  // namespace ajx::results

@@ -125,6 +125,10 @@ class SweepReader {
   const Array<double>& basin_fraction() const { return basin_fraction_; }
   const Array<double>& basin_lower() const { return basin_lower_; }
   const Array<double>& basin_upper() const { return basin_upper_; }
+  // Each sample's attractor matched across ω_m (empty in a file made before the matching was
+  // stored) and the attractors' names.
+  const std::vector<std::int32_t>& basin_attractor() const { return basin_attractor_; }
+  const std::vector<std::string>& basin_attractor_names() const { return basin_attractor_names_; }
 
   // /tasks
   const std::vector<TaskStatus>& status() const { return status_; }
@@ -151,6 +155,7 @@ class SweepReader {
   void read_tasks();
   void read_classes() const;
   void read_basins();
+  void read_basin_attractors(std::size_t samples, std::size_t levels);
   void read_brackets();  // sweep_reader_brackets.cpp
 
   std::string path_;
@@ -169,7 +174,8 @@ class SweepReader {
   std::vector<TaskStatus> status_;
   Array<double> final_states_;
   std::vector<std::int64_t> basin_chain_;
-  std::vector<std::int32_t> basin_level_, basin_class_, basin_done_;
+  std::vector<std::int32_t> basin_level_, basin_class_, basin_done_, basin_attractor_;
+  std::vector<std::string> basin_attractor_names_;
   std::vector<double> basin_omega_;
   Array<std::int32_t> basin_count_;
   Array<double> basin_fraction_, basin_lower_, basin_upper_;

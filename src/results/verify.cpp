@@ -34,7 +34,7 @@ constexpr const char* kLayout[] = {"chains/grid_values", "chains/model",      "c
                                    "tasks/t_begin",      "tasks/t_end",
                                    "basins/chain", "basins/level", "basins/sample", "basins/start",
                                    "basins/levels/part", "basins/levels/omega_m", "basins/levels/first",
-                                   "basins/levels/samples", "basins/levels/family", "basins/levels/match_tolerance"};
+                                   "basins/levels/samples", "basins/levels/family"};
 
 // "[c, k]" of element i of a dims array.
 std::string at(const io::Dims& d, std::size_t i) {

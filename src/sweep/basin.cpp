@@ -139,6 +139,16 @@ CompiledProtocol basin_protocol(const BasinSpec& b, double omega, int level, int
 
 physics::State basin_orbit(const physics::Model& m, const physics::MotorSchedule& schedule, const BasinSpec& b,
                            double omega) {
+  if (b.stored) {  // the balls turned with the top from azimuth 0 to the schedule's φ(0)
+    const StoredOrbit& o = *b.stored;
+    const double phi = schedule.top(0.0).phi, c = std::cos(phi), s = std::sin(phi);
+    const auto turn = [&](const Vec3& x) { return Vec3(c * x.x() - s * x.y(), s * x.x() + c * x.y(), x.z()); };
+    try {
+      return sim::explicit_state(m, schedule, turn(o.r1), turn(o.r2), turn(o.v1), turn(o.v2), o.mode);
+    } catch (const std::invalid_argument& e) {
+      throw BasinError(e.what());
+    }
+  }
   try {
     return seed_state(m, schedule, b.orbit, omega, 0, 0.0);
   } catch (const std::invalid_argument& e) {

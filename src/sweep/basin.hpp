@@ -8,7 +8,8 @@
 //   hand     the hanging rest state (bead on the bottom ball), the top then turned through a short
 //            random motion, ω_m piecewise linear through K random knots in [0, ω_hand] over
 //            T_hand, before the motor ramps to the level at `step_rate` and holds it;
-//   cloud    an orbit (a seed of seeds.hpp at the level: locked_orbit or circular_high) with each
+//   cloud    an orbit (a seed of seeds.hpp at the level: locked_orbit or circular_high, or a state
+//            stored in a sweep file: the end of one of its windows, `state`) with each
 //            ball moved across the string by a displacement uniform in a disc of radius ε (s and
 //            l − s kept, so the stops are kept) and each velocity component moved by ε ω_m × U[−1, 1].
 // Every draw comes from a counter-based generator keyed by (family, seed, level, sample): the
@@ -34,6 +35,20 @@ inline constexpr const char* kBasinFamilyNames[] = {"hanging", "hand", "cloud"};
 std::string_view to_string(BasinFamily f);
 std::optional<BasinFamily> parse_basin_family(std::string_view name);
 
+// The state a cloud surrounds when it is read from a sweep file (basin.state = {file, chain,
+// window}): the end of that window (its task's stored final state), a point on the orbit the
+// window measured; the balls relative to the top, turned about the motor axis so that the top
+// sits at azimuth 0.
+struct StoredOrbit {
+  std::string file;                 // the sweep file it was read from
+  long chain = -1, window = -1;     // its chain and window there
+  physics::Vec3 r1, r2, v1, v2;     // [m], [m/s]
+  physics::Mode mode = physics::Mode::Sliding;
+  double string_length = 0.0;       // l of the stored chain's model [m]
+  double drive_radius = 0.0;        // R of the stored chain's model [m]
+  double omega_m = 0.0;             // the window's ω_m at its end [rad/s]
+};
+
 // [basin] of a sweep or of a [[group]]: the levels, the samples per level and the family.
 struct BasinSpec {
   std::vector<double> omega;       // ω_m levels [rad/s]
@@ -43,7 +58,6 @@ struct BasinSpec {
   double settle = 60.0;            // held before the measured window [s]
   double measure = 10.0;           // the measured window [s]
   double step_rate = 5.0;          // hand: the motor's ramp to the level [rad/s²]
-  double match_tolerance = 0.25;   // orbits matched across levels within this feature distance [1]
   // hanging
   double s_lo = 0.0, s_hi = 0.0;   // bead position range [m]; both 0: l − d (on the bottom ball)
   double swing = 0.3;              // θ_max from the vertical [rad], hanging
@@ -53,6 +67,7 @@ struct BasinSpec {
   int hand_knots = 4;              // K
   // cloud
   std::string orbit = "locked_orbit";
+  std::optional<StoredOrbit> stored;  // basin.state: the orbit read from a sweep file instead
   double epsilon = 0.01;           // ε [m]
 };
 
@@ -77,7 +92,8 @@ void check_basin(const physics::Model& m, const BasinSpec& b, std::string_view s
 // ω_m = 0 then a ramp to `omega` (hand); one measured window at the end.
 CompiledProtocol basin_protocol(const BasinSpec& b, double omega, int level, int sample);
 
-// The orbit a cloud surrounds at omega, on a chain's schedule; throws BasinError when there is none.
+// The orbit a cloud surrounds at omega, on a chain's schedule (the stored state as it is, turned to
+// the schedule's top at t = 0, when the spec has one); throws BasinError when there is none.
 physics::State basin_orbit(const physics::Model& m, const physics::MotorSchedule& schedule, const BasinSpec& b,
                            double omega);
 
