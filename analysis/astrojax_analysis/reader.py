@@ -605,14 +605,7 @@ def _read_basins(f, p, version, cls, n_classes):
         raise SweepFileError(p, "/basins/levels/count", "differs from the samples' classes")
     if not np.array_equal(count.sum(axis=1), lv["done"]):
         raise SweepFileError(p, "/basins/levels/done", "differs from the samples with a class")
-    n = lv["done"][:, None]
-    with np.errstate(invalid="ignore", divide="ignore"):
-        frac = np.where(n > 0, count / np.maximum(n, 1), np.nan)
-    lo, hi = wilson_interval(count, n)
-    for name, want in (("fraction", frac), ("lower", lo), ("upper", hi)):
-        if not np.allclose(lv[name], want, rtol=0, atol=1e-12, equal_nan=True):
-            raise SweepFileError(p, "/basins/levels/" + name, "differs from the counts (fraction = count / done, the "
-                                 "95 % Wilson interval)")
+    _check_fractions(p, "/basins/levels/", lv, count, lv["done"])
     b["levels"] = lv
     b["attractors"] = _read_basin_attractors(f, p, b, L)
     return b
@@ -647,15 +640,21 @@ def _read_basin_attractors(f, p, b, L):
     np.add.at(count, (b["level"][on], lab[on]), 1)
     if not np.array_equal(count, at["count"]):
         raise SweepFileError(p, "/basins/attractors/count", "differs from the samples' attractors")
-    n = b["levels"]["done"][:, None]
+    _check_fractions(p, "/basins/attractors/", at, count, b["levels"]["done"])
+    return at
+
+
+def _check_fractions(p, where, stored, count, done):
+    """The stored fraction, lower and upper of each (level, column) against the counts: fraction =
+    count / done, and its 95 % Wilson interval."""
+    n = done[:, None]
     with np.errstate(invalid="ignore", divide="ignore"):
         frac = np.where(n > 0, count / np.maximum(n, 1), np.nan)
     lo, hi = wilson_interval(count, n)
     for name, want in (("fraction", frac), ("lower", lo), ("upper", hi)):
-        if not np.allclose(at[name], want, rtol=0, atol=1e-12, equal_nan=True):
-            raise SweepFileError(p, "/basins/attractors/" + name, "differs from the counts (fraction = count / done, "
-                                 "the 95 % Wilson interval)")
-    return at
+        if not np.allclose(stored[name], want, rtol=0, atol=1e-12, equal_nan=True):
+            raise SweepFileError(p, where + name, "differs from the counts (fraction = count / done, the 95 % Wilson "
+                                 "interval)")
 
 
 def wilson_interval(k, n, z=1.959963984540054):
