@@ -78,19 +78,6 @@ std::optional<OrbitClassification> ProbeVerdict::close_block(double t_begin, dou
   return out;
 }
 
-namespace {
-
-void add_counts(TaskOutput& to, const sim::RunSummary& r) {
-  to.steps += r.steps;
-  to.rhs_evals += r.rhs_evals;
-  to.impacts += r.impacts;
-  to.sticks += r.sticks;
-  to.slack_phases += r.slack_phases;
-  to.skipped += r.skipped;
-}
-
-}  // namespace
-
 ProbePath run_probe_path(const ChainSetup& chain, physics::State start, Threshold threshold,
                          const ClassifierSettings& settings) {
   const Window& win = chain.protocol.windows.front();

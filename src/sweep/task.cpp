@@ -61,14 +61,18 @@ TaskOutput run_task(const ChainSetup& chain, const TaskSpan& span, physics::Stat
   out.ok = r.ok();
   out.failure = r.failure;
   out.final_state = start;
-  out.steps = r.steps;
-  out.rhs_evals = r.rhs_evals;
-  out.impacts = r.impacts;
-  out.sticks = r.sticks;
-  out.slack_phases = r.slack_phases;
+  add_counts(out, r);
   out.simulated = r.t_end - span.t_begin;
-  out.skipped = r.skipped;
   return out;
+}
+
+void add_counts(TaskOutput& out, const sim::RunSummary& r) {
+  out.steps += r.steps;
+  out.rhs_evals += r.rhs_evals;
+  out.impacts += r.impacts;
+  out.sticks += r.sticks;
+  out.slack_phases += r.slack_phases;
+  out.skipped += r.skipped;
 }
 
 WindowPowers window_powers(const WindowRecord& rec) {

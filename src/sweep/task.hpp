@@ -72,6 +72,10 @@ struct TaskOutput {
   double skipped = 0.0;          // ... of which settling not integrated, its orbit known [s]
 };
 
+// Adds a run's counts (steps, evaluations, impacts, sticks, slack phases, settling skipped) to a
+// task's: one task may be several runs (a bisection's probes).
+void add_counts(TaskOutput& out, const sim::RunSummary& r);
+
 TaskOutput run_task(const ChainSetup& chain, const TaskSpan& span, physics::State start);
 // The held stretches before the span's windows that end once their orbit is known, as run_task
 // integrates them (so that a re-run of the task, e.g. astrojax replay, integrates the same way).
