@@ -61,9 +61,11 @@ wait_mpi() {
     rc=124
   fi
 }
+# The master's summary line: its first word, then two spaces.
+summary_re='^(ok|FAILED|INTERRUPTED)  '
 # The exit code the master's summary line in $1 stands for (ok 0, FAILED 3, INTERRUPTED 4, none 99).
 code_from_summary() {
-  case "$(grep -oE '^(ok|FAILED|INTERRUPTED)  ' "$1" | tail -1)" in
+  case "$(grep -oE "$summary_re" "$1" | tail -1)" in
     "ok  ") echo 0 ;; "FAILED  ") echo 3 ;; "INTERRUPTED  ") echo 4 ;; *) echo 99 ;;
   esac
 }
@@ -89,7 +91,7 @@ resume() {
 # it (seen about 1 run in 10 here, with "ORTE_ERROR_LOG: Data unpack would read past end of
 # buffer" from show_help.c). Then lets mpirun end and rank 2 go on, so that nothing is left
 # behind; sets rc to mpirun's exit code (wait_mpi).
-summary_printed() { grep -qE '^(ok|FAILED|INTERRUPTED)  ' "$1" 2> /dev/null; }
+summary_printed() { grep -qE "$summary_re" "$1" 2> /dev/null; }
 stop_rank2() {
   kill -STOP "$rank2"
   local t0=$(date +%s)

@@ -162,16 +162,21 @@ void output_keys(std::vector<KeyInfo>& k) {
 }
 
 // [protocol] (astrojax sweep)
+// The early stop's two keys, the same in [protocol] and [hold].
+void early_stop_keys(std::vector<KeyInfo>& k, const char* section) {
+  k.push_back(other(section, "early_stop", "boolean", "", "true, false", "true",
+                    "each held level's settling ends once its orbit is known: converging to a fixed point or a periodic orbit of the frame turning with the top at a measured rate that has not slowed; false runs every settle in full"));
+  k.push_back(num(section, "early_stop_tolerance", "1", 0.0, 0.01, true, false, "1e-4",
+                  "ε: the settling ends when the distance left to the fixed point, or the drift over the periods skipped of a periodic orbit, is at most ε l"));
+}
+
 void protocol_keys(std::vector<KeyInfo>& k) {
   k.push_back(num("protocol", "start_omega", "rad/s", 0.0, kOmegaMax, false, false, "0", "ω_m at t = 0"));
   k.push_back(other("protocol", "start_seed", "word", "", "hanging, circular_high, locked_orbit", "hanging",
                     "the state at t = 0, a seed state at start_omega"));
   k.push_back(whole("protocol", "windows_per_task", 1, 1e6, "10", "windows per farm task (the unit of work and of resume)"));
   k.push_back(num("protocol", "sample_rate", "1/s", 0.0, 1e5, true, false, "100", "samples stored per second of every window"));
-  k.push_back(other("protocol", "early_stop", "boolean", "", "true, false", "true",
-                    "each held level's settling ends once its orbit is known: converging to a fixed point or a periodic orbit of the frame turning with the top at a measured rate that has not slowed; false runs every settle in full"));
-  k.push_back(num("protocol", "early_stop_tolerance", "1", 0.0, 0.01, true, false, "1e-4",
-                  "ε: the settling ends when the distance left to the fixed point, or the drift over the periods skipped of a periodic orbit, is at most ε l"));
+  early_stop_keys(k, "protocol");
   k.push_back(other("protocol", "segment", "array of tables", "", "at least one", "",
                     "the protocol's segments, [[protocol.segment]], run in order"));
   k.push_back(other("protocol.segment", "kind", "word", "", "ramp, steps", "",
@@ -198,10 +203,7 @@ void hold_keys(std::vector<KeyInfo>& k) {
   k.push_back(whole("hold", "perturbations", 0, 1000, "0", "extra copies of each seed with random velocity kicks"));
   k.push_back(num("hold", "perturbation", "m/s", 0.0, 10.0, true, false, "0.01", "size of a kick"));
   k.push_back(num("hold", "sample_rate", "1/s", 0.0, 1e5, true, false, "100", "samples stored per second of every window"));
-  k.push_back(other("hold", "early_stop", "boolean", "", "true, false", "true",
-                    "each held level's settling ends once its orbit is known: converging to a fixed point or a periodic orbit of the frame turning with the top at a measured rate that has not slowed; false runs every settle in full"));
-  k.push_back(num("hold", "early_stop_tolerance", "1", 0.0, 0.01, true, false, "1e-4",
-                  "ε: the settling ends when the distance left to the fixed point, or the drift over the periods skipped of a periodic orbit, is at most ε l"));
+  early_stop_keys(k, "hold");
 }
 
 // [basin] (astrojax sweep, instead of [protocol]; sweep/basin.hpp)
