@@ -5,7 +5,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <numbers>
+#include <thread>
 
 #include "orbits/continuation.hpp"
 #include "orbits/corotating_frame.hpp"
@@ -90,4 +92,48 @@ TEST(OrbitSeed, RampDownFromTheSeedSlipsWhereItsBranchLeavesTheCone) {
   }
   EXPECT_LT(std::abs(miss[1]), 0.5 * std::abs(miss[0]));
   EXPECT_LT(std::abs(miss[1]), 1e-3 * exit);
+}
+
+namespace {
+bool same_bits(const std::optional<orbits::SeedOrbit>& a, const std::optional<orbits::SeedOrbit>& b) {
+  if (a.has_value() != b.has_value()) return false;
+  if (!a) return true;
+  const orbits::Vec9 x = orbits::unknowns(a->orbit), y = orbits::unknowns(b->orbit);
+  return std::memcmp(x.data(), y.data(), sizeof(double) * 9) == 0 && a->rank == b->rank && a->stable == b->stable &&
+         a->orbit.closure == b->orbit.closure;
+}
+}  // namespace
+
+TEST(OrbitSeed, SeedIsTheCataloguesDeepestStableHeldOrbitAndItsMemoryGivesTheSameBits) {
+  // The seed solves only the stuck family of the grid (no frictionless orbits, no cone edges):
+  // it is still one of the catalogue's orbits, bit for bit, and none of the catalogue's stable
+  // held stuck orbits lies deeper inside the cone.
+  physics::Model m;
+  m.p.drive_radius = 0.02;
+  const double w = 4 * std::numbers::pi;
+  const auto seed = orbits::solve_locked_orbit_seed(m, w);
+  ASSERT_TRUE(seed.has_value());
+  ASSERT_EQ(seed->rank, 1);
+  const orbits::OrbitCatalogue cat = orbits::find_orbits(m, w, {orbits::kSeedGridPoints});
+  const auto depth = [](const orbits::SteadyOrbit& o) { return std::min(o.margins.up, o.margins.down); };
+  bool found = false;
+  for (const auto& o : cat.stuck) {
+    const orbits::Vec9 x = orbits::unknowns(o), y = orbits::unknowns(seed->orbit);
+    found = found || std::memcmp(x.data(), y.data(), sizeof(double) * 9) == 0;
+    if (o.admissible && orbits::stability({m, w, o.closure, o.s}, x).stable) EXPECT_LE(depth(o), depth(seed->orbit));
+  }
+  EXPECT_TRUE(found) << "the seed is not one of the catalogue's stuck orbits";
+  // From memory: the same bits on the first call (solved), the second (remembered), and from
+  // two threads at once on a model solved by neither before.
+  EXPECT_TRUE(same_bits(orbits::locked_orbit_seed(m, w), seed));
+  EXPECT_TRUE(same_bits(orbits::locked_orbit_seed(m, w), seed));
+  physics::Model other = m;
+  other.layers.friction_law = physics::FrictionLaw::PointContact;  // a layer alone: a key of its own
+  std::optional<orbits::SeedOrbit> a, b;
+  std::thread ta([&] { a = orbits::locked_orbit_seed(other, w); }), tb([&] { b = orbits::locked_orbit_seed(other, w); });
+  ta.join();
+  tb.join();
+  const auto direct = orbits::solve_locked_orbit_seed(other, w);
+  EXPECT_TRUE(same_bits(a, direct) && same_bits(b, direct));
+  EXPECT_FALSE(same_bits(direct, seed)) << "the point-contact law's seed is the capstan's: the key missed the layer";
 }

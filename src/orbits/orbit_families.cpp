@@ -124,17 +124,25 @@ void add_unique(std::vector<SteadyOrbit>& list, const SteadyOrbit& o, double l) 
 }
 }  // namespace
 
-OrbitCatalogue find_orbits(const physics::Model& m, double omega, const CatalogueOptions& opt) {
+std::vector<double> stuck_grid(const physics::Model& m, int n) {
   const physics::Parameters& p = m.p;
   const double l = p.string_length;
   const double s_lo = m.layers.top_stop ? p.top_stop : 1e-3 * l;
   const double s_hi = m.layers.bottom_stop ? l - p.contact_distance : (1 - 1e-3) * l;
+  n = std::max(n, 2);
+  std::vector<double> s(n);
+  for (int k = 0; k < n; ++k) s[k] = s_lo + (s_hi - s_lo) * k / (n - 1);
+  return s;
+}
+
+OrbitCatalogue find_orbits(const physics::Model& m, double omega, const CatalogueOptions& opt) {
+  const double l = m.p.string_length;
   OrbitCatalogue cat;
   std::vector<std::vector<SteadyOrbit>> rows;
-  const int n = std::max(opt.s_points, 2);
-  for (int k = 0; k < n; ++k) {
-    OrbitProblem pb{m, omega, Closure::Stuck, s_lo + (s_hi - s_lo) * k / (n - 1)};
-    rows.push_back(orbits_at(pb));
+  const std::vector<double> grid = stuck_grid(m, opt.s_points);
+  const int n = int(grid.size());
+  for (const double s : grid) {
+    rows.push_back(orbits_at({m, omega, Closure::Stuck, s}));
     cat.stuck.insert(cat.stuck.end(), rows.back().begin(), rows.back().end());
   }
   if (m.layers.bottom_stop) cat.bottom = orbits_at({m, omega, Closure::BottomStop, 0.0});

@@ -21,6 +21,10 @@ std::vector<Vec9> planar_guesses(const physics::Model& m, double omega, double L
 // Every orbit of the closure Stuck (at s_star) or BottomStop found from the planar guesses.
 std::vector<SteadyOrbit> orbits_at(const OrbitProblem& pb);
 
+// The bead positions s of the stuck family's grid: n points from the top stop (or 1e-3 l
+// without it) to the bottom stop (or (1 − 1e-3) l), ends included.
+std::vector<double> stuck_grid(const physics::Model& m, int n);
+
 struct CatalogueOptions {
   int s_points = 81;  // grid along the string from the top stop to the bottom stop
 };

@@ -1,7 +1,7 @@
 // A start on a locked orbit for the sweep's hold mode (seed "locked_orbit"): the pair on an
 // equilibrium of the co-rotating frame at ω_m, so that hold points and down-ramps need no
 // spin-up. Chosen, in this order, among the orbits of orbit_families.hpp (stuck family on a
-// grid of 41 bead positions):
+// grid of kSeedGridPoints = 41 bead positions):
 //   1. a stuck orbit that friction holds and that is linearly stable, with the largest
 //      smaller cone margin (the one deepest inside the cone);
 //   2. else a stuck orbit that friction holds (unstable: it shows where it goes);
@@ -18,7 +18,15 @@ struct SeedOrbit {
   bool stable = false;
   int rank = 0;        // which rule of the list above chose it (1..3)
 };
-// std::nullopt when no orbit of the list exists at ω_m.
+// The stuck family's grid of bead positions (orbit_families.hpp's stuck_grid).
+inline constexpr int kSeedGridPoints = 41;
+
+// std::nullopt when no orbit of the list exists at ω_m. Solved once per process for each
+// (model, ω_m), bit for bit in every parameter and layer, and then taken from memory: a pure
+// function of its inputs, so a file does not depend on which rank, thread or order asked first.
 std::optional<SeedOrbit> locked_orbit_seed(const physics::Model& m, double omega);
+// The same without the memory: the stuck orbits of the grid only (the catalogue's frictionless
+// orbits and cone edges do not enter the choice), the bottom stop only when no stuck one holds.
+std::optional<SeedOrbit> solve_locked_orbit_seed(const physics::Model& m, double omega);
 
 }  // namespace ajx::orbits
