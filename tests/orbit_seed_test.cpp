@@ -8,6 +8,7 @@
 #include <cstring>
 #include <numbers>
 #include <thread>
+#include <utility>
 
 #include "orbits/continuation.hpp"
 #include "orbits/corotating_frame.hpp"
@@ -136,4 +137,38 @@ TEST(OrbitSeed, SeedIsTheCataloguesDeepestStableHeldOrbitAndItsMemoryGivesTheSam
   const auto direct = orbits::solve_locked_orbit_seed(other, w);
   EXPECT_TRUE(same_bits(a, direct) && same_bits(b, direct));
   EXPECT_FALSE(same_bits(direct, seed)) << "the point-contact law's seed is the capstan's: the key missed the layer";
+}
+
+TEST(OrbitSeed, ScanGivesTheSeedOfEveryRowSolvedInFull) {
+  // The scan solves rows cheaply and again in full only where they can decide; its seed must be
+  // the definition's bit for bit: at R = 5 mm, where the winner comes out of the drag's homotopy
+  // and most directions fail it (at 6π with the point-contact law and no top stop, a homotopy
+  // of 12 iterations a step missed the deepest orbit, s = 0.73 m, and took one at s = 0.8 mm);
+  // at R = 1.26 mm and 12.2π (a model drawn at random, where 20 or 30 iterations a step missed
+  // the deepest unstable orbit); at the documented set; with the bead on the bottom stop
+  // (R = 5 mm, d = 2 cm at 4π: no stuck orbit held).
+  const double pi = std::numbers::pi;
+  const auto model = [](double R, double d) {
+    physics::Model m;
+    m.p.drive_radius = R;
+    m.p.contact_distance = d;
+    return m;
+  };
+  physics::Model point = model(0.005, 0.035), axis = model(0.0012601406869219621, 0.027910328307694486);
+  point.layers.friction_law = physics::FrictionLaw::PointContact;
+  point.layers.top_stop = false;
+  axis.p.bead_mass = 0.050578841790830394;
+  axis.p.ball_mass = 0.015671462419353528;
+  axis.p.string_length = 0.96785965060987056;
+  const std::pair<physics::Model, double> cases[] = {{model(0.005, 0.03), 4 * pi}, {point, 6 * pi},
+                                                     {axis, 38.299972870494933}, {model(0.015, 0.035), 4 * pi},
+                                                     {model(0.005, 0.02), 4 * pi}};
+  for (const auto& [m, w] : cases) {
+    const auto full = orbits::solve_locked_orbit_seed(m, w), scan = orbits::scan_locked_orbit_seed(m, w);
+    ASSERT_TRUE(full.has_value());
+    EXPECT_TRUE(same_bits(scan, full)) << "R " << m.p.drive_radius << " d " << m.p.contact_distance << " ω "
+                                       << w / pi << "π: full s " << full->orbit.s << " rank " << full->rank
+                                       << ", scan s " << (scan ? scan->orbit.s : -1.0) << " rank "
+                                       << (scan ? scan->rank : -1);
+  }
 }

@@ -13,7 +13,7 @@ Vec9 unknowns(const SteadyOrbit& o) {
   return X;
 }
 
-std::vector<Vec9> planar_guesses(const physics::Model& m, double omega, double L1, double L2) {
+std::vector<Vec9> planar_guesses(const physics::Model& m, double omega, double L1, double L2, int n) {
   const physics::Parameters& p = m.p;
   const double m1 = p.bead_mass, m2 = p.ball_mass, M = m1 + m2, g = p.gravity, R = p.drive_radius;
   const double w2 = omega * omega;
@@ -28,7 +28,6 @@ std::vector<Vec9> planar_guesses(const physics::Model& m, double omega, double L
   };
   constexpr double half_pi = 0.5 * std::numbers::pi;
   std::vector<Eigen::Vector2d> roots;
-  const int n = 24;
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) {
       Eigen::Vector2d th(-half_pi + (i + 0.5) * (2 * half_pi / n), -half_pi + (j + 0.5) * (2 * half_pi / n));

@@ -16,7 +16,8 @@ namespace ajx::orbits {
 Vec9 unknowns(const SteadyOrbit& o);
 
 // The distinct drag-free planar roots (θ1, θ2) for segment lengths L1, L2, as guesses X.
-std::vector<Vec9> planar_guesses(const physics::Model& m, double omega, double L1, double L2);
+// Newton from the centres of an n × n grid of starts (24: the catalogue's).
+std::vector<Vec9> planar_guesses(const physics::Model& m, double omega, double L1, double L2, int n = 24);
 
 // Every orbit of the closure Stuck (at s_star) or BottomStop found from the planar guesses.
 std::vector<SteadyOrbit> orbits_at(const OrbitProblem& pb);

@@ -1,8 +1,12 @@
 #include "orbits/orbit_seed.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <utility>
+#include <vector>
 #include <bit>
 #include <cstdint>
+#include <limits>
 #include <deque>
 #include <map>
 #include <mutex>
@@ -13,6 +17,126 @@
 #include "physics/parameter_table.hpp"
 
 namespace ajx::orbits {
+
+namespace {
+// Rule 3: a stable orbit on the bottom stop, else any admissible one there.
+std::optional<SeedOrbit> bottom_seed(const physics::Model& m, double omega) {
+  std::optional<SeedOrbit> best;
+  if (!m.layers.bottom_stop) return best;
+  for (const auto& o : orbits_at({m, omega, Closure::BottomStop, 0.0})) {
+    if (!o.admissible) continue;
+    const bool st = stability({m, omega, o.closure, o.s}, unknowns(o)).stable;
+    if (!best || (st && !best->stable)) best = SeedOrbit{o, st, 3};
+  }
+  return best;
+}
+
+// One row of the seed's grid: the stuck orbits at one bead position s, and per orbit its growth
+// rate (max Re λ, NaN where the orbit is not admissible, hence no candidate).
+struct Row {
+  std::vector<SteadyOrbit> orbits;
+  std::vector<double> growth;
+  bool exact = false;  // solved by orbits_at itself
+};
+
+// A row solved cheaply: Newton from a 12 × 12 grid of planar starts (orbits_at: 24 × 24), the
+// drag's homotopy given up at steps of 1/64 (orbits_at: 1/4096). The orbits are orbits_at's to
+// round-off wherever both find them. (At most 20 or 30 iterations a solve, not 60, missed
+// orbits of the homotopy near the axis: R = 1.3 mm at 12π.)
+std::vector<SteadyOrbit> quick_row(const OrbitProblem& pb) {
+  const double l = pb.model.p.string_length;
+  const NewtonOptions quick{};
+  std::vector<SteadyOrbit> out;
+  for (const Vec9& guess : planar_guesses(pb.model, pb.omega, pb.s_star, l - pb.s_star, 12)) {
+    NewtonResult r = solve(pb, guess, quick);
+    if (!r.converged) {
+      OrbitProblem q = pb;
+      q.model.p.drag = 0.0;
+      r = solve(q, guess, quick);
+      double frac = 0.0, step = 0.125;
+      while (r.converged && frac < 1.0 && step > 1.0 / 64) {
+        const double next = std::min(1.0, frac + step);
+        q.model.p.drag = next * pb.model.p.drag;
+        const NewtonResult t = solve(q, r.X, quick);
+        if (t.converged) r = t, frac = next, step *= 1.5;
+        else step *= 0.5;
+      }
+      r.converged = r.converged && frac >= 1.0;
+    }
+    if (!r.converged) continue;
+    const bool seen = std::any_of(out.begin(), out.end(), [&](const SteadyOrbit& o) {
+      return (unknowns(o).head<6>() - r.X.head<6>()).norm() < 1e-8 * l;
+    });
+    if (!seen) out.push_back(describe(pb, r.X));
+  }
+  std::sort(out.begin(), out.end(), [](const SteadyOrbit& a, const SteadyOrbit& b) { return a.p2.x() < b.p2.x(); });
+  return out;
+}
+
+double depth(const SteadyOrbit& o) { return std::min(o.margins.up, o.margins.down); }
+int rank_of(double growth) { return growth < 0 ? 1 : 2; }  // rule 1 (stable) or 2
+
+// The rule over the rows as they stand, in the order of solve_locked_orbit_seed: (row, orbit).
+std::optional<std::pair<std::size_t, std::size_t>> best_of(const std::vector<Row>& rows) {
+  std::optional<std::pair<std::size_t, std::size_t>> best;
+  for (std::size_t k = 0; k < rows.size(); ++k)
+    for (std::size_t i = 0; i < rows[k].orbits.size(); ++i) {
+      if (std::isnan(rows[k].growth[i])) continue;
+      const int rank = rank_of(rows[k].growth[i]);
+      if (!best) {
+        best = std::pair{k, i};
+        continue;
+      }
+      const int best_rank = rank_of(rows[best->first].growth[best->second]);
+      if (rank < best_rank || (rank == best_rank && depth(rows[k].orbits[i]) > depth(rows[best->first].orbits[best->second])))
+        best = std::pair{k, i};
+    }
+  return best;
+}
+
+// Whether a quick row may decide against the best b: it holds an orbit whose rank and depth come
+// within `near` of b's, or whose test of the rule (a cone margin, the smaller tension, the
+// growth rate) is within `near` of its sign change.
+bool rivals(const Row& row, const SteadyOrbit& b, int b_rank, double near, double near_rate) {
+  for (std::size_t i = 0; i < row.orbits.size(); ++i) {
+    const SteadyOrbit& o = row.orbits[i];
+    if (std::abs(o.margins.up) < near || std::abs(o.margins.down) < near || std::min(o.T1, o.T2) < near) return true;
+    if (std::isnan(row.growth[i])) continue;
+    if (std::abs(row.growth[i]) < near_rate) return true;
+    if (rank_of(row.growth[i]) <= b_rank && depth(o) > depth(b) - near) return true;
+  }
+  return false;
+}
+}  // namespace
+
+std::optional<SeedOrbit> scan_locked_orbit_seed(const physics::Model& m, double omega) {
+  const std::vector<double> grid = stuck_grid(m, kSeedGridPoints);
+  std::vector<Row> rows(grid.size());
+  const auto fill = [&](std::size_t k, bool exact) {
+    const OrbitProblem pb{m, omega, Closure::Stuck, grid[k]};
+    Row& row = rows[k];
+    row.orbits = exact ? orbits_at(pb) : quick_row(pb);
+    row.exact = exact;
+    row.growth.clear();
+    for (const auto& o : row.orbits)
+      row.growth.push_back(o.admissible ? stability({m, omega, o.closure, o.s}, unknowns(o)).growth
+                                        : std::numeric_limits<double>::quiet_NaN());
+  };
+  for (std::size_t k = 0; k < grid.size(); ++k) fill(k, false);
+  // Forces and rates far below what a quick row's round-off could move.
+  const double near = 1e-9 * scales(m).force, near_rate = 1e-9 * (omega + std::sqrt(m.p.gravity / m.p.string_length));
+  for (;;) {
+    const auto best = best_of(rows);
+    if (!best) return bottom_seed(m, omega);
+    const SteadyOrbit& b = rows[best->first].orbits[best->second];
+    const int b_rank = rank_of(rows[best->first].growth[best->second]);
+    std::vector<std::size_t> redo;
+    for (std::size_t k = 0; k < rows.size(); ++k)
+      if (!rows[k].exact && (k == best->first || rivals(rows[k], b, b_rank, near, near_rate))) redo.push_back(k);
+    if (redo.empty()) return SeedOrbit{b, b_rank == 1, b_rank};
+    for (const std::size_t k : redo) fill(k, true);
+  }
+}
 
 std::optional<SeedOrbit> solve_locked_orbit_seed(const physics::Model& m, double omega) {
   const auto depth = [](const SteadyOrbit& o) { return std::min(o.margins.up, o.margins.down); };
@@ -27,13 +151,7 @@ std::optional<SeedOrbit> solve_locked_orbit_seed(const physics::Model& m, double
       const bool st = is_stable(o);
       consider(o, st ? 1 : 2, st);
     }
-  if (best || !m.layers.bottom_stop) return best;
-  for (const auto& o : orbits_at({m, omega, Closure::BottomStop, 0.0})) {
-    if (!o.admissible) continue;
-    const bool st = is_stable(o);
-    if (!best || (st && !best->stable)) best = SeedOrbit{o, st, 3};
-  }
-  return best;
+  return best ? best : bottom_seed(m, omega);
 }
 
 namespace {
@@ -86,7 +204,7 @@ std::optional<SeedOrbit> locked_orbit_seed(const physics::Model& m, double omega
   static SeedCache cache;
   const std::string key = seed_key(m, omega);
   if (auto hit = cache.find(key)) return *hit;
-  std::optional<SeedOrbit> seed = solve_locked_orbit_seed(m, omega);  // outside the lock: threads solve in parallel
+  std::optional<SeedOrbit> seed = scan_locked_orbit_seed(m, omega);  // outside the lock: threads solve in parallel
   cache.insert(key, seed);
   return seed;
 }

@@ -21,12 +21,23 @@ struct SeedOrbit {
 // The stuck family's grid of bead positions (orbit_families.hpp's stuck_grid).
 inline constexpr int kSeedGridPoints = 41;
 
-// std::nullopt when no orbit of the list exists at ω_m. Solved once per process for each
-// (model, ω_m), bit for bit in every parameter and layer, and then taken from memory: a pure
-// function of its inputs, so a file does not depend on which rank, thread or order asked first.
+// std::nullopt when no orbit of the list exists at ω_m. Found by scan_locked_orbit_seed once per
+// process for each (model, ω_m), bit for bit in every parameter and layer, then taken from
+// memory: a pure function of its inputs, so a file does not depend on which rank, thread or
+// order asked first.
 std::optional<SeedOrbit> locked_orbit_seed(const physics::Model& m, double omega);
-// The same without the memory: the stuck orbits of the grid only (the catalogue's frictionless
-// orbits and cone edges do not enter the choice), the bottom stop only when no stuck one holds.
+
+// The list above over the stuck orbits of the grid as orbits_at finds them (the catalogue's
+// frictionless orbits and cone edges do not enter it), the bottom stop only when no stuck orbit
+// holds: the definition, at the cost of 41 catalogue rows (0.05 s; 0.5 s at R = 5 mm, where
+// most directions fail the drag's homotopy).
 std::optional<SeedOrbit> solve_locked_orbit_seed(const physics::Model& m, double omega);
+// The same seed, bit for bit, cheaper: every row solved quickly (fewer planar starts, fewer
+// Newton iterations, a shorter homotopy), the rule applied to those, and the rows that can
+// decide (the best's, and any with an orbit within 1e-9 of it or of a test's sign change) solved
+// again as orbits_at solves them, until the best and its rivals all come from such rows. It
+// relies on the quick rows finding the orbits orbits_at finds (tests/orbit_seed_test.cpp checks
+// it against solve_locked_orbit_seed on the shipped maps' grids and beyond).
+std::optional<SeedOrbit> scan_locked_orbit_seed(const physics::Model& m, double omega);
 
 }  // namespace ajx::orbits

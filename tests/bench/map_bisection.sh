@@ -19,7 +19,8 @@
 # each level 100 s + 20 s (the staircases of sweeps/paper.toml) and reach it at 0.1 rad/s².
 set -u
 bin=$(realpath "$1"); n=${2:-4}; shift; [ $# -gt 0 ] && shift; ranks=${*:-2 4 8}
-work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+# MAP_BENCH_KEEP=dir keeps the sweep files and their outputs there (to profile one of them).
+if [ -n "${MAP_BENCH_KEEP:-}" ]; then work=$MAP_BENCH_KEEP; mkdir -p "$work"; rm -f "$work"/*.h5; else work=$(mktemp -d); trap 'rm -rf "$work"' EXIT; fi
 pi=3.141592653589793
 grid=$(python3 -c "
 n=$n
