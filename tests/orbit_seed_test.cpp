@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <cstring>
 #include <numbers>
 #include <thread>
@@ -164,8 +165,15 @@ TEST(OrbitSeed, ScanGivesTheSeedOfEveryRowSolvedInFull) {
                                                      {axis, 38.299972870494933}, {model(0.015, 0.035), 4 * pi},
                                                      {model(0.005, 0.02), 4 * pi}};
   for (const auto& [m, w] : cases) {
-    const auto full = orbits::solve_locked_orbit_seed(m, w), scan = orbits::scan_locked_orbit_seed(m, w);
+    const std::clock_t c0 = std::clock();
+    const auto full = orbits::solve_locked_orbit_seed(m, w);
+    const std::clock_t c1 = std::clock();
+    const auto scan = orbits::scan_locked_orbit_seed(m, w);
+    const std::clock_t c2 = std::clock();
     ASSERT_TRUE(full.has_value());
+    std::printf("measured seed_cost: R %.4g m, d %.4g m, ω %.3fπ: rank %d at s %.4f m; CPU every row in full %.3f s, "
+                "the scan %.3f s\n", m.p.drive_radius, m.p.contact_distance, w / pi, full->rank, full->orbit.s,
+                double(c1 - c0) / CLOCKS_PER_SEC, double(c2 - c1) / CLOCKS_PER_SEC);
     EXPECT_TRUE(same_bits(scan, full)) << "R " << m.p.drive_radius << " d " << m.p.contact_distance << " ω "
                                        << w / pi << "π: full s " << full->orbit.s << " rank " << full->rank
                                        << ", scan s " << (scan ? scan->orbit.s : -1.0) << " rank "
