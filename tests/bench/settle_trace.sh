@@ -18,7 +18,9 @@ rm -rf "$work/src"
 mkdir -p "$work/src"
 git archive HEAD | tar -x -C "$work/src"
 patch -s -d "$work/src" -p1 < tests/bench/settle_trace.patch
-cmake -S "$work/src" -B "$work/build" -DCMAKE_BUILD_TYPE=Release -DASTROJAX_PEERS=OFF -DASTROJAX_FUZZ=OFF > "$work/cmake.log"
-cmake --build "$work/build" -j"$(nproc)" --target astrojax >> "$work/cmake.log"
+cmake -S "$work/src" -B "$work/build" -DCMAKE_BUILD_TYPE=Release -DASTROJAX_PEERS=OFF -DASTROJAX_FUZZ=OFF > "$work/cmake.log" 2>&1 ||
+  { tail -20 "$work/cmake.log"; exit 1; }
+cmake --build "$work/build" -j"$(nproc)" --target astrojax >> "$work/cmake.log" 2>&1 ||
+  { tail -20 "$work/cmake.log"; exit 1; }
 AJX_SETTLE_TRACE=1 "$work/build/astrojax" sweep "$sweep" -q --force -o "$work/out.h5" 2> "$work/trace.txt"
 /usr/bin/python3 tests/bench/settle_trace.py "$work/trace.txt" "$work/out.h5"
