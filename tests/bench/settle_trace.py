@@ -17,6 +17,7 @@ import numpy as np
 def main(trace_path, h5_path):
     with h5py.File(h5_path, "r") as f:
         t_begin = f["/windows/t_begin"][:]
+        t_end = f["/windows/t_end"][:]
         vnames = list(f["/chains/variant"].attrs["names"])
         gnames = list(f["/chains/group"].attrs["names"])
         variant = [vnames[int(v)] for v in f["/chains/variant"][:]]
@@ -30,12 +31,14 @@ def main(trace_path, h5_path):
     rows = {c: [] for c in range(len(variant))}
     taken = set()
     for d in lines:
-        t1 = float(d["t1"])
+        t0, t1 = float(d["t0"]), float(d["t1"])
         m = np.array([float(x) for x in d["model"].split(",")])
-        # the chain of this model whose window begins where this settle ends; among equals (the
-        # same seed and level in two chains: identical runs), the first not yet taken
+        # the chain of this model with a window that begins where this settle ends and none
+        # measured during it; among equals (the same seed and level in two chains: identical
+        # runs), the first not yet taken
         cands = [c for c in range(len(variant))
-                 if np.allclose(model[c, which], m, rtol=1e-8, atol=0) and np.any(np.abs(t_begin[c] - t1) < 0.05)]
+                 if np.allclose(model[c, which], m, rtol=1e-8, atol=0) and np.any(np.abs(t_begin[c] - t1) < 0.05)
+                 and not np.any((t_begin[c] < t1 - 0.05) & (t_end[c] > t0 + 0.05))]
         if not cands:
             sys.exit(f"settle ending at t = {t1} s matches no chain of {h5_path}")
         c = next((c for c in cands if (c, t1) not in taken), cands[0])
