@@ -1,16 +1,16 @@
 #include "orbits/orbit_seed.hpp"
 
 #include <algorithm>
-#include <cmath>
-#include <utility>
-#include <vector>
 #include <bit>
+#include <cmath>
 #include <cstdint>
-#include <limits>
 #include <deque>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "orbits/orbit_families.hpp"
 #include "orbits/orbit_stability.hpp"
@@ -45,19 +45,18 @@ struct Row {
 // orbits of the homotopy near the axis: R = 1.3 mm at 12π.)
 std::vector<SteadyOrbit> quick_row(const OrbitProblem& pb) {
   const double l = pb.model.p.string_length;
-  const NewtonOptions quick{};
   std::vector<SteadyOrbit> out;
   for (const Vec9& guess : planar_guesses(pb.model, pb.omega, pb.s_star, l - pb.s_star, 12)) {
-    NewtonResult r = solve(pb, guess, quick);
+    NewtonResult r = solve(pb, guess);
     if (!r.converged) {
       OrbitProblem q = pb;
       q.model.p.drag = 0.0;
-      r = solve(q, guess, quick);
+      r = solve(q, guess);
       double frac = 0.0, step = 0.125;
       while (r.converged && frac < 1.0 && step > 1.0 / 64) {
         const double next = std::min(1.0, frac + step);
         q.model.p.drag = next * pb.model.p.drag;
-        const NewtonResult t = solve(q, r.X, quick);
+        const NewtonResult t = solve(q, r.X);
         if (t.converged) r = t, frac = next, step *= 1.5;
         else step *= 0.5;
       }
@@ -139,7 +138,6 @@ std::optional<SeedOrbit> scan_locked_orbit_seed(const physics::Model& m, double 
 }
 
 std::optional<SeedOrbit> solve_locked_orbit_seed(const physics::Model& m, double omega) {
-  const auto depth = [](const SteadyOrbit& o) { return std::min(o.margins.up, o.margins.down); };
   const auto is_stable = [&](const SteadyOrbit& o) { return stability({m, omega, o.closure, o.s}, unknowns(o)).stable; };
   std::optional<SeedOrbit> best;
   const auto consider = [&](const SteadyOrbit& o, int rank, bool stable) {
@@ -172,8 +170,8 @@ std::string seed_key(const physics::Model& m, double omega) {
   return key;
 }
 
-// The solved seeds of this process, oldest evicted first past kCapacity (a map's chains of one
-// grid point, and its probes' restarts, ask for the same seed).
+// The solved seeds of this process, oldest evicted first past kCapacity (the chains of one grid
+// point that start at the same ω_m ask for the same seed).
 class SeedCache {
  public:
   std::optional<std::optional<SeedOrbit>> find(const std::string& key) {

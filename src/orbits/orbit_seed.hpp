@@ -29,15 +29,15 @@ std::optional<SeedOrbit> locked_orbit_seed(const physics::Model& m, double omega
 
 // The list above over the stuck orbits of the grid as orbits_at finds them (the catalogue's
 // frictionless orbits and cone edges do not enter it), the bottom stop only when no stuck orbit
-// holds: the definition, at the cost of 41 catalogue rows (0.05 s; 0.5 s at R = 5 mm, where
-// most directions fail the drag's homotopy).
+// holds: the definition, at the cost of 41 catalogue rows (0.03 s at the documented set; 0.5 s
+// at R = 5 mm, where most directions fail the drag's homotopy).
 std::optional<SeedOrbit> solve_locked_orbit_seed(const physics::Model& m, double omega);
-// The same seed, bit for bit, cheaper: every row solved quickly (fewer planar starts, fewer
-// Newton iterations, a shorter homotopy), the rule applied to those, and the rows that can
+// The same seed, bit for bit, at about half that: every row solved quickly (a quarter of the
+// planar starts, the homotopy given up sooner), the rule applied to those, and the rows that can
 // decide (the best's, and any with an orbit within 1e-9 of it or of a test's sign change) solved
 // again as orbits_at solves them, until the best and its rivals all come from such rows. It
-// relies on the quick rows finding the orbits orbits_at finds (tests/orbit_seed_test.cpp checks
-// it against solve_locked_orbit_seed on the shipped maps' grids and beyond).
+// relies on the quick rows finding the orbits orbits_at finds: tests/orbit_seed_test.cpp checks
+// it against solve_locked_orbit_seed where a quicker row did not.
 std::optional<SeedOrbit> scan_locked_orbit_seed(const physics::Model& m, double omega);
 
 }  // namespace ajx::orbits
