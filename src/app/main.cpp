@@ -335,7 +335,17 @@ int main(int argc, char** argv) {
   if (*verify_cmd) return ajx::app::verify_command(verify);
   if (*replay_cmd) return ajx::app::replay_command(replay);
   if (*windows_cmd) return ajx::app::windows_command(windows);
-  if (*thresholds_cmd) return ajx::app::thresholds_command(thresholds);
+  if (*thresholds_cmd) {
+    if (!ajx::app::thresholds_integrate(thresholds)) return ajx::app::thresholds_command(thresholds);
+    ajx::parallel::MpiEnvironment mpi(argc, argv);  // the holds and refinements run on the farm
+    try {
+      return ajx::app::thresholds_command(thresholds);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "error on rank %d: %s\n", mpi.rank(), e.what());
+      if (mpi.size() > 1) mpi.abort(1);
+      return 1;
+    }
+  }
   if (*classify_cmd) return ajx::app::classify_command(classify);
   if (*orbits_cmd) return ajx::app::orbits_command(orbits);
   if (*wp_cmd) return ajx::app::bench_work_precision_command(wp);
