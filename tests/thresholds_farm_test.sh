@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # astrojax thresholds with its holds and refinements as farm tasks: the same report in one
 # process (-j 1, -j 2) as under mpirun on 2 and on 3 ranks, byte for byte (table, --csv,
-# --markdown); a hold and a refinement that fail on a worker are reported as failed with their
-# reason, with no hang; bad input under mpirun is refused by rank 0 alone; a stop request
+# --markdown), and with --no-hold rank 0 alone reports; a hold and a refinement that fail on
+# a worker are reported as failed with their reason, with no hang; bad input under mpirun is refused by rank 0 alone; a stop request
 # (Ctrl-C in one process, SIGUSR1 through mpirun) ends it with exit 4 and no report.
 # On the README's "your own sweep" (quick.toml at R = 5, 10, 20 mm: two ω_rise brackets, four
 # holds and two refinements) and on tests/data/tiny_rise.toml with an event bound of 10 per
@@ -35,6 +35,13 @@ for run in j2 n2 n3; do
   check "$run: the table, the CSV and the Markdown byte-identical to one process's" \
     "cmp -s j1.out $run.out && cmp -s j1.csv $run.csv && cmp -s j1.md $run.md"
 done
+
+# Without holds or refinements there is nothing to farm out: under mpirun rank 0 alone reports.
+"$bin" thresholds own.h5 --no-hold --csv nh1.csv > nh1.out 2>&1
+mpi 3 thresholds own.h5 --no-hold --csv nh3.csv > nh3.out 2> nh3.err
+wait_mpi $mp 60 nh3.out
+check "--no-hold under mpirun: exit 0, the report once, as one process's (got $rc)" \
+  "[ $rc -eq 0 ] && cmp -s nh1.out nh3.out && cmp -s nh1.csv nh3.csv"
 
 # Failures on the workers: both holds hit the event bound, and so does the refinement 6x slower.
 "$bin" sweep "$src/tests/data/tiny_rise.toml" -o bound.h5 -q --set integrator.max_events=10 > bound.out 2>&1

@@ -69,8 +69,8 @@ struct ThresholdsArgs {
   bool absorb_blips = false;  // the sequence absorbs single not-settled windows between two of one class
   std::vector<std::string> settings;  // "classifier.name=value": classify the windows again in memory first
 };
-// Holds or --refine integrate: the command then runs on every rank of the job (MPI is initialised
-// for it), its checks as farm tasks; without them it reads the file alone, without MPI.
+// Holds or --refine integrate: MPI is then initialised and the checks run as farm tasks on every
+// rank of the job; without them one process reads the file (rank 0 under mpirun).
 inline bool thresholds_integrate(const ThresholdsArgs& a) { return !a.no_hold || a.refine > 0; }
 int thresholds_command(const ThresholdsArgs& args);
 

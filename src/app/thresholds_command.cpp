@@ -763,10 +763,16 @@ bool run_planned_checks(const ThresholdsArgs& args, Prepared& p) {
 }  // namespace
 
 int thresholds_command(const ThresholdsArgs& args) {
-  // With holds or --refine every rank of the job runs this; rank 0 reads, plans and reports,
-  // the others take checks from the farm.
+  // Under mpirun every rank runs this: rank 0 reads, plans and reports, the others take the
+  // holds and refinements from the farm (with none, they have nothing to do). The job's exit
+  // code is rank 0's: the others return 0 (commands.hpp).
   const bool farm = thresholds_integrate(args);
-  if (farm && parallel::comm_rank(MPI_COMM_WORLD) != 0) return checks_worker() ? 0 : kExitBadInput;
+  int mpi = 0;
+  MPI_Initialized(&mpi);
+  if (mpi && parallel::comm_rank(MPI_COMM_WORLD) != 0) {
+    if (farm) checks_worker();
+    return 0;
+  }
   Prepared p;
   if (const int code = prepare(args, p); code != 0) {
     if (farm) refuse_checks();

@@ -94,10 +94,10 @@ void refuse_checks() {
   parallel::broadcast(none, MPI_COMM_WORLD);
 }
 
-bool checks_worker() {
+void checks_worker() {
   parallel::Bytes bytes;
   parallel::broadcast(bytes, MPI_COMM_WORLD);
-  if (bytes.empty()) return false;
+  if (bytes.empty()) return;
   const ChecksContext c = decode_context(bytes);
   // Rank 0 made the same plan from the same text (SweepReader::config), so this cannot fail
   // where rank 0 did not.
@@ -105,7 +105,6 @@ bool checks_worker() {
   const sweep::ClassifierSettings settings = sweep::parse_classifier_settings(c.classifier_settings);
   parallel::ignore_stop_signals();
   parallel::run_farm({}, check_work(plan, settings));
-  return true;
 }
 
 }  // namespace ajx::app

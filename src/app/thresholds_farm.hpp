@@ -40,8 +40,8 @@ std::optional<std::vector<sweep::CheckResult>> run_checks(const ChecksContext& c
 // Rank 0 refused the input before any check: the workers are told (run_checks is not called).
 void refuse_checks();
 
-// The other ranks: wait for rank 0's context (none: refused, returns false), rebuild the plan
+// The other ranks: wait for rank 0's context (none: it refused its input), rebuild the plan
 // and serve the farm until rank 0 ends it.
-bool checks_worker();
+void checks_worker();
 
 }  // namespace ajx::app

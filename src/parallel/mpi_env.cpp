@@ -49,6 +49,12 @@ void wait_politely(MPI_Request& request, const char* call) {
 
 }  // namespace
 
+bool launched_as_rank() {
+  for (const char* size : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
+    if (const char* v = std::getenv(size); v != nullptr && std::atoi(v) > 1) return true;
+  return std::getenv("PMIX_RANK") != nullptr;
+}
+
 void broadcast(std::vector<std::byte>& bytes, MPI_Comm comm) {
   std::uint64_t size = bytes.size();
   MPI_Request request = MPI_REQUEST_NULL;
