@@ -210,6 +210,22 @@ SweepWindows read_sweep_windows(const results::SweepReader& in, const std::optio
   return s;
 }
 
+// Each chain's start seed: a grouped file stores one a chain; an ungrouped one has its config's
+// (the [bisect]'s or the protocol's); "" for a hold or basin sweep, whose chains start otherwise.
+std::vector<std::string> start_seeds_of(const results::SweepReader& in, std::size_t chains) {
+  const results::NameList& seeds = in.start_seeds();
+  std::vector<std::string> out(chains);
+  if (in.grouped()) {
+    for (std::size_t c = 0; c < chains && c < seeds.of_chain.size(); ++c)
+      if (seeds.of_chain[c] >= 0) out[c] = config::printable(seeds.names[std::size_t(seeds.of_chain[c])]);
+    return out;
+  }
+  const config::SweepConfig cfg = in.config();
+  const std::string seed = cfg.bisect ? cfg.bisect->start_seed : (cfg.hold || cfg.basin ? "" : cfg.start_seed);
+  out.assign(chains, config::printable(seed));
+  return out;
+}
+
 // ---- the brackets and their judgement --------------------------------------------------------
 
 struct Row {
@@ -699,7 +715,8 @@ struct Prepared {
   std::vector<std::optional<Onset>> onsets;
   std::optional<results::SweepReader> in;
   std::vector<Row> rows;
-  Checks checks;  // with holds or --refine
+  ChainNames names;  // its start seeds here; the rest from sw
+  Checks checks;     // with holds or --refine
 };
 
 // The options checked, the file read, its brackets found and their checks planned: 0, or the
@@ -729,6 +746,7 @@ int prepare(const ThresholdsArgs& args, Prepared& p) {
     BottomBallSamples samples{*p.in, {}, {}};
     for (std::size_t c = 0; c < p.sw.chains.size(); ++c)
       p.onsets.push_back(flower_onset(samples, p.sw, c, args.onset_span));
+    p.names.starts_ = start_seeds_of(*p.in, p.sw.chains.size());
   } catch (const results::SweepFileError& e) {
     std::fprintf(stderr, "error: %s\n", config::printable(e.what()).c_str());
     return kExitBadInput;
@@ -788,7 +806,7 @@ int thresholds_command(const ThresholdsArgs& args) {
   const results::SweepReader* in = &*p.in;
   const auto& hold = p.hold;
   const auto& onsets = p.onsets;
-  ChainNames names;
+  ChainNames& names = p.names;
   for (std::size_t c = 0; c < sw.chains.size(); ++c) {
     names.params_.push_back(sw.params[c]);
     names.groups_.push_back(sw.group[c]);
