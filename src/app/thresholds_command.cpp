@@ -5,7 +5,8 @@
 // flower's onset and back down, ω2 is also fitted as the lag's Hopf point (sweep/flower_onset.hpp).
 // With --refine F each bracket is re-run from the stored state before it, F times slower
 // (sweep/refine.hpp); with --sequence each chain's class sequence is printed against the paper's.
-// Stages: read the file, find the brackets, judge them (holds, refinements, onsets), report.
+// Stages: read the file, find the brackets, judge them (onsets; holds and refinements as farm
+// tasks, thresholds_farm.hpp: on the ranks of an mpirun, or on threads of one process), report.
 #include <mpi.h>
 
 #include <charconv>
