@@ -22,7 +22,9 @@ bar from before to after at its p: grey for the paper's physics (rigid tie), bla
 clutch; the brackets at one p (the other grid axis) side by side. A bisection that found no
 crossing is a triangle at its last level (the threshold lies beyond, in the triangle's
 direction); one whose start was already past the threshold an × at the start level. An ω_rise
-panel appears when the brackets hold ω_rise (no curve predicts it).
+panel appears when the brackets hold ω_rise (no curve predicts it). Where the CSV's column
+start_seed shows one threshold bracketed from several starts (e.g. ω1 from the locked orbit and
+from Table 1's orbit), each start has its own panel: the threshold depends on the history.
 
 Run with Debian's interpreter:
     build/astrojax orbits sweeps/orbits_map.toml --map drive_radius --range 0.005 0.03 -o out/map_R.h5
@@ -43,6 +45,9 @@ PANELS = [
     ("omega_2", "ω2: the lag turns into a flower", 15.00, ("hopf",)),
     ("omega_rise", "ω_rise: the bead climbs off the ball", 12.63, ()),
 ]
+# What each start seed is, for a panel's title.
+START_TEXT = {"locked_orbit": "from the locked orbit", "circular_high": "from Table 1's orbit",
+              "hanging": "from rest, on the ramp"}
 # Which way a threshold's known side lies: +1 the threshold is above the known side (rising ω_m).
 DIRECTION = {"omega_1": 1, "omega_2": 1, "omega_rise": 1, "omega_fall": -1}
 VARIANT_STYLE = {"clutch": {"color": "k", "lw": 1.6}, "": {"color": "0.45", "lw": 3.2}}
@@ -140,8 +145,9 @@ def _number(text):
 
 
 def read_brackets(path, param):
-    """{symbol: [{p, before, after, variant, other}]} from `astrojax thresholds --csv` of a map
-    (the column `param` gives p) or from a CSV with columns symbol, p, before, after."""
+    """({symbol: [{p, before, after, variant, other, start}]}, the other grid axes' names) from
+    `astrojax thresholds --csv` of a map (the column `param` gives p) or from a CSV with columns
+    symbol, p, before, after."""
     out = {}
     try:
         with open(path, newline="") as f:
@@ -160,11 +166,12 @@ def read_brackets(path, param):
         try:
             if sweep_csv:
                 row = {"p": float(r[param]), "before": _number(r["before_rad_s"]), "after": _number(r["after_rad_s"]),
-                       "variant": r.get("variant", ""), "other": tuple(float(r[a]) for a in other_axes)}
+                       "variant": r.get("variant", ""), "other": tuple(float(r[a]) for a in other_axes),
+                       "start": r.get("start_seed") or ""}
                 sym = r["threshold"]
             else:
                 row = {"p": float(r["p"]), "before": float(r["before"]), "after": float(r["after"]), "variant": "",
-                       "other": ()}
+                       "other": (), "start": ""}
                 sym = r["symbol"]
         except (KeyError, TypeError, ValueError):
             fail(f"--brackets {path}: line {n}: expected columns symbol, p, before, after (numbers), or the columns "
@@ -172,6 +179,26 @@ def read_brackets(path, param):
         if sym not in DIRECTION:
             fail(f"--brackets {path}: line {n}: threshold '{sym}'; allowed: {', '.join(DIRECTION)}")
         out.setdefault(sym, []).append(row)
+    # A threshold's rows that bracket nothing (a ladder chain that never crossed it: its other
+    # thresholds' rows) say nothing about it; without a bracket anywhere the threshold has no panel.
+    return ({sym: rows for sym, rows in out.items()
+             if any(np.isfinite(r["before"]) or np.isfinite(r["after"]) for r in rows)}, other_axes)
+
+
+def panel_list(curves, brackets):
+    """[(symbol, title, paper value, curve kinds, brackets' rows)]: one panel a threshold, or one a
+    start where its brackets come from several starts."""
+    out = []
+    for sym, title, paper, kinds in PANELS:
+        rows = brackets.get(sym, [])
+        starts = sorted({r["start"] for r in rows if np.isfinite(r["before"]) or np.isfinite(r["after"])})
+        if len(starts) > 1:
+            for st in starts:
+                out.append((sym, f"{title}, {START_TEXT.get(st, 'from ' + st)}", paper, kinds,
+                            [r for r in rows if r["start"] == st]))
+        elif rows or (kinds and curves.curve_ids(kinds)):
+            out.append((sym, title + (f", {START_TEXT.get(starts[0], 'from ' + starts[0])}" if starts and starts[0] else ""),
+                        paper, kinds, rows))
     return out
 
 
@@ -183,8 +210,8 @@ def main(argv=None):
     args = ap.parse_args(argv)
     curves = Curves(args.input)
     param = curves.parameter
-    brackets = read_brackets(args.brackets, param) if args.brackets else {}
-    panels_drawn = [pn for pn in PANELS if (pn[3] and curves.curve_ids(pn[3])) or pn[0] in brackets]
+    brackets, other_axes = read_brackets(args.brackets, param) if args.brackets else ({}, [])
+    panels_drawn = panel_list(curves, brackets)
     if not panels_drawn:
         fail(f"{args.input}: no curves in /curves/points")
     rows, cols = panel_grid(len(panels_drawn))
@@ -193,12 +220,16 @@ def main(argv=None):
     symbol = curves.parameter_symbol or param
     unit = curves.parameter_unit
     model_value = curves.resolved.get(f"model.{param}", curves.resolved.get("model.bead_mass") if param == "mass" else None)
-    for ax, (sym, title, paper, kinds) in zip(axes.ravel(), panels_drawn):
+    for ax, (sym, title, paper, kinds, rows_here) in zip(axes.ravel(), panels_drawn):
         if kinds:
             draw_curves(ax, curves, kinds)
         xs = [r["p"] for rows in brackets.values() for r in rows] + list(curves.points["p"])
-        span_y, starts_past = draw_brackets(ax, sym, brackets.get(sym, []), (max(xs) - min(xs)) if xs else 1.0)
-        set_range(ax, span_y + (curve_values(curves, kinds) if kinds else []) + [paper], starts_past)
+        span_y, starts_past = draw_brackets(ax, sym, rows_here, (max(xs) - min(xs)) if xs else 1.0)
+        on_curves = curve_values(curves, kinds) if kinds else []
+        if span_y:  # the sweep's brackets set the scale: a curve far off them (a Hopf point at 250π) is cut at the edge
+            lo, hi = min(span_y + [paper]), max(span_y + [paper])
+            on_curves = [v for v in on_curves if lo - (hi - lo) - 1 <= v <= hi + (hi - lo) + 1]
+        set_range(ax, span_y + on_curves + [paper], starts_past)
         ax.axhline(paper, **PAPER_LINE)
         ax.text(1.0, paper, f" paper {paper:.2f}π", transform=ax.get_yaxis_transform(), fontsize=7, va="center",
                 ha="left", clip_on=False)
@@ -233,8 +264,15 @@ def main(argv=None):
         if any(np.isfinite(r["after"]) and not np.isfinite(r["before"]) for rows in brackets.values() for r in rows):
             handles.append(plt.Line2D([], [], marker="x", color="k", ls="", label="start past it (at the edge)"))
     legend(leg, handles)
+    order = ""
+    if other_axes:  # how the bars at one p are ordered (draw_brackets sorts by variant, then the other axes)
+        values = sorted({r["other"] for rows in brackets.values() for r in rows})
+        spans = ", ".join(f"{a} {min(v[i] for v in values):g} to {max(v[i] for v in values):g}"
+                          for i, a in enumerate(other_axes))
+        tie = "tie clutch, then rigid tie, each " if len({r["variant"] for rows in brackets.values() for r in rows}) > 1 else ""
+        order = f"\nsweep brackets at one {symbol}, left to right: {tie}{spans}"
     fig.suptitle(f"Thresholds over {symbol}, bead stuck at s = {', '.join(f'{s:g}' for s in s_values)} m "
-                 f"(continuation, astrojax orbits --map {param})", fontsize=9)
+                 f"(continuation, astrojax orbits --map {param}){order}", fontsize=9)
     save(fig, args)
 
 

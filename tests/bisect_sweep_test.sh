@@ -32,6 +32,8 @@ check "thresholds --csv: columns for both axes, rows by bisection, converged wit
   "head -1 '$work/th.csv' | grep -q 'contact_distance,drive_radius,method,width_rad_s' &&
    [ \$(grep -c ',bisection,' '$work/th.csv') -eq 4 ] && [ \$(grep -c '\"converged\"' '$work/th.csv') -eq 4 ] &&
    awk -F, 'NR > 1 { w = \$4 - \$5; if (w < 0) w = -w; if (w > 0.3141592654) exit 1 }' '$work/th.csv'"
+check "thresholds --csv: the last column is each row's start seed (the file's circular_high)" \
+  "head -1 '$work/th.csv' | grep -q ',probes_run,start_seed\$' && [ \$(grep -c ',circular_high\$' '$work/th.csv') -eq 4 ]"
 check "thresholds: the table of bisections" "grep -q 'omega_fall' '$work/th.out' && grep -q 'converged' '$work/th.out'"
 
 # Bad input: exit 2, the file and the key named, nothing written.

@@ -98,7 +98,7 @@ std::string with_bisection_rows(const std::string& csv, const results::SweepRead
   std::string axes_head;
   for (const std::string& a : in.axes()) axes_head += "," + config::printable(a);
   std::string out = lines.front() + ",group,variant" + axes_head +
-                    ",method,width_rad_s,before_class,after_class,bisect_status,probes_run\n";
+                    ",method,width_rad_s,before_class,after_class,bisect_status,probes_run,start_seed\n";
   const auto axis_values = [&](std::size_t c) {
     std::string v;
     for (std::size_t a = 0; a < in.axes().size(); ++a) v += fmt::format(",{:.9g}", in.grid_values()(c, a));
@@ -107,7 +107,7 @@ std::string with_bisection_rows(const std::string& csv, const results::SweepRead
   for (std::size_t i = 1; i < lines.size(); ++i) {  // the ladder's rows
     const std::size_t c = std::stoul(lines[i].substr(0, lines[i].find(',')));
     if (is_bisection_chain(in, c)) continue;
-    out += lines[i] + fmt::format(",{},{}", names.group(c), names.variant(c)) + axis_values(c) + ",ladder,,,,,\n";
+    out += lines[i] + fmt::format(",{},{}", names.group(c), names.variant(c)) + axis_values(c) + ",ladder,,,,,," + names.start(c) + "\n";
   }
   for (std::size_t b = 0; b < t.size(); ++b) {
     const auto c = std::size_t(t.chain[b]);
@@ -131,7 +131,7 @@ std::string with_bisection_rows(const std::string& csv, const results::SweepRead
            fmt::format(",bisection,{},{},{},{},{}", e.bracketed ? fmt::format("{:.9g}", std::abs(e.after - e.before)) : "",
                        class_name(t.known_class[b]), class_name(t.other_class[b]),
                        s < 0 ? std::string("not-computed") : fmt::format("\"{}\"", status_text(t, b)), probes_run(t, b));
-    out += row + "\n";
+    out += row + "," + names.start(c) + "\n";
   }
   return out;
 }

@@ -206,6 +206,22 @@ SweepWindows read_sweep_windows(const results::SweepReader& in, const std::optio
   return s;
 }
 
+// Each chain's start seed: a grouped file stores one a chain; an ungrouped one has its config's
+// (the [bisect]'s or the protocol's); "" for a hold or basin sweep, whose chains start otherwise.
+std::vector<std::string> start_seeds_of(const results::SweepReader& in, std::size_t chains) {
+  const results::NameList& seeds = in.start_seeds();
+  std::vector<std::string> out(chains);
+  if (in.grouped()) {
+    for (std::size_t c = 0; c < chains && c < seeds.of_chain.size(); ++c)
+      if (seeds.of_chain[c] >= 0) out[c] = config::printable(seeds.names[std::size_t(seeds.of_chain[c])]);
+    return out;
+  }
+  const config::SweepConfig cfg = in.config();
+  const std::string seed = cfg.bisect ? cfg.bisect->start_seed : (cfg.hold || cfg.basin ? "" : cfg.start_seed);
+  out.assign(chains, config::printable(seed));
+  return out;
+}
+
 // ---- the brackets and their judgement --------------------------------------------------------
 
 struct Row {
@@ -709,6 +725,7 @@ int thresholds_command(const ThresholdsArgs& args) {
     }
   }
   SweepWindows sw;
+  ChainNames names;
   std::vector<std::optional<Onset>> onsets;
   std::optional<results::SweepReader> in;
   try {
@@ -716,6 +733,7 @@ int thresholds_command(const ThresholdsArgs& args) {
     sw = read_sweep_windows(*in, settings);
     BottomBallSamples samples{*in, {}, {}};
     for (std::size_t c = 0; c < sw.chains.size(); ++c) onsets.push_back(flower_onset(samples, sw, c, args.onset_span));
+    names.starts_ = start_seeds_of(*in, sw.chains.size());
   } catch (const results::SweepFileError& e) {
     std::fprintf(stderr, "error: %s\n", config::printable(e.what()).c_str());
     return kExitBadInput;
@@ -727,7 +745,6 @@ int thresholds_command(const ThresholdsArgs& args) {
   for (std::size_t c = 0; c < sw.chains.size(); ++c)
     if (!is_bisection_chain(*in, c))  // a bisection's bracket is in /brackets, not in its windows
       for (sweep::Threshold t : sweep::kThresholds) rows.push_back({c, t, sweep::find_threshold(t, sw.chains[c]), {}, {}});
-  ChainNames names;
   for (std::size_t c = 0; c < sw.chains.size(); ++c) {
     names.params_.push_back(sw.params[c]);
     names.groups_.push_back(sw.group[c]);
