@@ -67,6 +67,7 @@ void SettleWatch::restart(double t) {
   pending_ = false;
   mode_ = ctx_.s.contact.mode;
   tie_slip_ = ctx_.s.contact.tie.slip;
+  tie_switched_ = false;
   recurrence_.clear();
   section_axis_ = -1;
   period_.reset();
@@ -101,11 +102,19 @@ bool SettleWatch::observe(const numerics::StepView& step) {
   if (span_ == spans.size() || t < spans[span_].first) return true;
   if (yend_.size() == 0) yend_.resize(ctx_.s.y.size());
   step.end(yend_);
-  // The first step in the span, or a switch of the bead's mode or of the tie: blocks anew.
-  if (!std::isfinite(block_end_) || ctx_.s.contact.mode != mode_ || ctx_.s.contact.tie.slip != tie_slip_) {
+  // The first step in the span, or a switch of the bead's mode: blocks anew.
+  if (!std::isfinite(block_end_) || ctx_.s.contact.mode != mode_) {
     restart(t);
     open_block(t, yend_);
     return true;
+  }
+  // The tie caught the rod or slipped again. The frame turns with χ either way (ψ = χ, continuous
+  // through the switch), so a stick-slip cycle of the tie is a periodic orbit of that frame: the
+  // section's crossings go on; a fixed point has a tie that no longer switches, so the blocks of
+  // the fixed-point test start anew (recognised()).
+  if (ctx_.s.contact.tie.slip != tie_slip_) {
+    tie_slip_ = ctx_.s.contact.tie.slip;
+    tie_switched_ = true;
   }
   const Vec6 x = in_top_frame(t, yend_);
   lo_ = lo_.cwiseMin(x);
@@ -157,6 +166,12 @@ bool SettleWatch::recognised(double t) {
   if (blocks_ > 0) {  // block 0 has no shift: its distance is not comparable
     std::rotate(dist_.begin(), dist_.begin() + 1, dist_.end());
     dist_.back() = spread + shift;
+  }
+  if (tie_switched_) {  // the tie switched in this block: no fixed point yet, the rates start anew
+    tie_switched_ = false;
+    blocks_ = 0;
+    grid_count_ = 0;
+    dist_.fill(0.0);
   }
   bool known = false;
   if (blocks_ >= kRateBlocks && spread <= spread_prev_) {
@@ -315,7 +330,16 @@ void SettleWatch::jump_periods() {
   const double end = ctx_.opt.settle_spans[span_].second;
   const double n = std::floor((end - s.t) / per.T), dt = n * per.T;
   physics::rotate_about_z(s.y, n * per.turn - (ctx_.axes.angle(s.t + dt) - ctx_.axes.angle(s.t)));
-  if (physics::has_tie(s.y)) s.y(idx::chi) += n * per.turn;
+  if (physics::has_tie(s.y)) {
+    s.y(idx::chi) += n * per.turn;
+    // A held tie sits at χ = φ + δ: over periods in which it slipped, χ turned by n Δψ and φ by
+    // n ω_m T, so δ moves by the difference.
+    if (!s.contact.tie.slip) {
+      double phi, w, wd;
+      ctx_.schedule.phase(s.t + dt, phi, w, wd);
+      s.contact.tie.offset = s.y(idx::chi) - phi;
+    }
+  }
   for (int k = 0; k < 5; ++k)
     if (kWorks[k] < s.y.size()) s.y(kWorks[k]) += n * per.works[std::size_t(k)];
   s.impact_loss += n * per.works[5];

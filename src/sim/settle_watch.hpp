@@ -24,10 +24,12 @@
 //  - otherwise on the present state turned by Ω Δ, within D of it.
 // The work integrals advance at their rates over the last block.
 //
-// An orbit that returns to a periodic orbit of that frame (lagging behind a held tie, a flower)
-// is recognised by its recurrence on a Poincaré section (sim/section_recurrence.hpp): once the
+// An orbit that returns to a periodic orbit of that frame (lagging behind a held tie, a flower,
+// a tie that catches the rod and slips again every cycle, for which ψ = χ throughout) is
+// recognised by its recurrence on a Poincaré section (sim/section_recurrence.hpp): once the
 // distance left to the periodic orbit is at most ε l, the stretch skips the n whole periods T
-// that fit before its end, the state turned by n Δψ (the frame's turn over a period) and the
+// that fit before its end, the state turned by n Δψ (the frame's turn over a period; a held tie's
+// offset δ = χ − φ by n (Δψ − ω_m T)) and the
 // integrals advanced by n times their increase over a period; the rest of the stretch is
 // integrated; a drift that grows over the history (a flower still growing from the lag) is not
 // taken. Orbits that neither converge nor recur (slow slides, escapes from a saddle, a
@@ -111,6 +113,7 @@ class SettleWatch {
   std::optional<Period> period_;  // the periodic orbit recognised, for the jump
   physics::Mode mode_ = physics::Mode::Sliding;
   bool tie_slip_ = false;
+  bool tie_switched_ = false;  // the tie switched in the block now open
   numerics::Vec yend_;
 };
 
