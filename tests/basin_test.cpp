@@ -107,33 +107,41 @@ TEST(BasinDraws, CloudKeepsTheOrbitsSegmentsAndStaysWithinEpsilon) {
   }
 }
 
-TEST(BasinDraws, HandMotionStaysInItsBoundsThenHoldsTheLevel) {
+TEST(BasinDraws, HandPathStaysWithinItsAmplitudeAndHandsOverAtABreakpoint) {
   sweep::BasinSpec b;
   b.family = sweep::BasinFamily::Hand;
-  b.hand_omega = 25.0;
+  b.hand_amplitude = 0.12;
   b.hand_duration = 3.0;
-  b.hand_knots = 5;
+  b.hand_modes = 4;
   b.settle = 30.0;
   b.measure = 5.0;
   const double w = 40.0;
   for (int n = 0; n < 100; ++n) {
     const sweep::CompiledProtocol p = sweep::basin_protocol(b, w, 2, n);
-    ASSERT_GE(p.schedule.size(), 6u);
+    ASSERT_TRUE(p.hand);
+    ASSERT_EQ(p.hand->p.size(), 4u);
+    EXPECT_EQ(p.hand->duration, b.hand_duration);
+    // The motor ramps from rest at step_rate from t = 0, with a breakpoint at T (the hand lets go).
     EXPECT_EQ(p.schedule.front().omega_begin, 0.0);
-    double t = 0.0;
-    for (int k = 0; k < b.hand_knots; ++k) {
-      EXPECT_GE(p.schedule[k].omega_end, 0.0);
-      EXPECT_LT(p.schedule[k].omega_end, b.hand_omega);
-      t += p.schedule[k].duration;
+    EXPECT_NEAR(p.schedule.front().duration, b.hand_duration, 1e-12);
+    EXPECT_NEAR(p.schedule.front().omega_end, b.step_rate * b.hand_duration, 1e-12);
+    const physics::MotorSchedule sched(0.015, p.schedule);
+    physics::MotorSchedule held = sched;
+    held.set_hand(*p.hand);
+    // |x_top − a| <= A throughout, planar, and no offset left at T.
+    double worst = 0.0;
+    for (int k = 0; k <= 300; ++k) {
+      const double t = b.hand_duration * k / 300.0;
+      const physics::Vec3 d = held.top(t).a - sched.top(t).a;
+      worst = std::max(worst, d.norm());
+      EXPECT_EQ(d.z(), 0.0);
     }
-    EXPECT_NEAR(t, b.hand_duration, 1e-12);
+    EXPECT_LE(worst, b.hand_amplitude);
+    EXPECT_EQ((held.top(b.hand_duration).a - sched.top(b.hand_duration).a).norm(), 0.0);
     ASSERT_EQ(p.windows.size(), 1u);
     EXPECT_EQ(p.windows[0].omega_begin, w);
-    EXPECT_NEAR(p.windows[0].t_end - p.windows[0].t_begin, b.measure, 1e-12);
+    EXPECT_NEAR(p.windows[0].t_begin, w / b.step_rate + b.settle, 1e-9);
     EXPECT_NEAR(p.windows[0].t_end, p.duration, 1e-12);
-    // The ramp from the hand's last ω_m to the level at step_rate, then settle: the window starts after both.
-    const double ramp = std::abs(w - p.schedule[std::size_t(b.hand_knots) - 1].omega_end) / b.step_rate;
-    EXPECT_NEAR(p.windows[0].t_begin, b.hand_duration + ramp + b.settle, 1e-9);
   }
 }
 
@@ -192,6 +200,35 @@ TEST(BasinCheck, RefusesARangeBeyondTheStops) {
   b.s_lo = 0.01;  // above the top stop s_min = 5 cm
   EXPECT_THROW(sweep::check_basin(m, b, "f.toml"), sweep::BasinError);
   b.s_lo = m.p.top_stop;
+  EXPECT_NO_THROW(sweep::check_basin(m, b, "f.toml"));
+}
+
+TEST(BasinCheck, RefusesAHandBeyondTheStringALateHandoverAndATieThatWouldSlip) {
+  physics::Model m = paper_model();
+  sweep::BasinSpec b;
+  b.family = sweep::BasinFamily::Hand;
+  b.settle = 40.0;
+  const auto refused = [&](const char* key) {
+    try {
+      sweep::check_basin(m, b, "f.toml");
+      return std::string("accepted");
+    } catch (const sweep::BasinError& e) {
+      return std::string(e.what()).find(std::string("f.toml: key 'basin.") + key + "'") != std::string::npos
+                 ? std::string()
+                 : std::string(e.what());
+    }
+  };
+  EXPECT_NO_THROW(sweep::check_basin(m, b, "f.toml"));
+  b.hand_amplitude = m.p.string_length * 1.01;
+  EXPECT_EQ(refused("hand_amplitude"), "");
+  b.hand_amplitude = 0.1;
+  b.hand_duration = b.settle;  // the hand would still hold the top when the window starts
+  EXPECT_EQ(refused("hand_duration"), "");
+  b.hand_duration = 3.0;
+  m.layers.tie_clutch = true;  // I_a ω̇_m > τ_s: the rod alone would make the held tie slip
+  b.step_rate = 1.01 * m.p.tie_static_torque / m.p.tie_inertia;
+  EXPECT_EQ(refused("step_rate"), "");
+  b.step_rate = 5.0;
   EXPECT_NO_THROW(sweep::check_basin(m, b, "f.toml"));
 }
 

@@ -3,7 +3,8 @@
 // a serial computation and the farm on 1 rank (MPI_COMM_SELF), a failure ends only its chain,
 // a resumed chain gives the same outputs, a stop request (through the signal helpers) returns
 // Interrupted with every handed-out task delivered, errors on the master stop the workers, and
-// many tiny tasks get through (throughput printed). Prints "N passed, M failed" on rank 0.
+// many tiny tasks get through (throughput printed); broadcast hands rank 0's bytes to all.
+// Prints "N passed, M failed" on rank 0.
 #include <mpi.h>
 
 #include <algorithm>
@@ -562,6 +563,19 @@ void test_throughput() {
   }
 }
 
+// broadcast (mpi_env.hpp): rank 0's bytes reach every rank exactly, an empty buffer too, while
+// the other ranks wait in it as rank 0 works for a while first.
+void test_broadcast() {
+  for (const std::size_t n : {std::size_t(0), std::size_t(1), std::size_t(100003)}) {
+    Bytes want(n);
+    for (std::size_t i = 0; i < n; ++i) want[i] = std::byte((i * 131 + 7) & 0xff);
+    Bytes got = g_rank == 0 ? want : Bytes(17, std::byte{0x5a});
+    if (g_rank == 0) std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    broadcast(got, MPI_COMM_WORLD);
+    CHECK(got == want);
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -585,6 +599,7 @@ int main(int argc, char** argv) {
       {"large_payloads", test_large_payloads},
       {"progress", test_progress},
       {"throughput", test_throughput},
+      {"broadcast", test_broadcast},
   };
   for (const auto& [name, fn] : tests) {
     try {

@@ -59,7 +59,7 @@ struct ThresholdsArgs {
   std::string input;  // a sweep's HDF5 file
   std::string csv;    // also write the table as CSV here, when non-empty
   int refine = 0;     // re-run each bracket this many times slower (0: no refinement)
-  int jobs = 0;       // threads for the holds and refinements (0: the number of cores)
+  int jobs = 0;       // threads of rank 0 for the holds and refinements (0: the cores in one process, 1 under mpirun)
   std::string hold = "5tau";  // hold both sides of each bracket this long: seconds, or "Ntau" drag times
   bool no_hold = false;       // no holds: brackets without verdicts
   std::string markdown;       // also write the report as Markdown here, when non-empty
@@ -69,6 +69,9 @@ struct ThresholdsArgs {
   bool absorb_blips = false;  // the sequence absorbs single not-settled windows between two of one class
   std::vector<std::string> settings;  // "classifier.name=value": classify the windows again in memory first
 };
+// Holds or --refine integrate: MPI is then initialised and the checks run as farm tasks on every
+// rank of the job; without them one process reads the file (rank 0 under mpirun).
+inline bool thresholds_integrate(const ThresholdsArgs& a) { return !a.no_hold || a.refine > 0; }
 int thresholds_command(const ThresholdsArgs& args);
 
 // astrojax replay: one window of a sweep file re-run from its stored start, dense samples into a

@@ -156,9 +156,12 @@ int main(int argc, char** argv) {
                              "Re-run each bracket from the stored state before it, this many times slower "
                              "(ramps: rate/F; staircases: F times more levels)")
       ->check(CLI::Range(1, 1000));
-  thresholds_cmd->add_option("-j,--jobs", thresholds.jobs, "Threads for the holds and --refine")
+  thresholds_cmd->add_option("-j,--jobs", thresholds.jobs,
+                             "Threads of rank 0 that run the holds and --refine: in one process, the cores to use; "
+                             "with mpirun (every rank takes holds and refinements as farm tasks), those beside the "
+                             "master. The report does not depend on it")
       ->check(CLI::Range(1, 1024))
-      ->default_str("the number of cores");
+      ->default_str("the number of cores in one process, 1 with mpirun");
   thresholds_cmd->add_option("--hold", thresholds.hold,
                              "Hold ω_m at both sides of each bracket for T (seconds, or e.g. 5tau: drag times "
                              "max(m1,m2)/c_D) and judge: bifurcation, excursion or time-limited transient")
@@ -335,7 +338,20 @@ int main(int argc, char** argv) {
   if (*verify_cmd) return ajx::app::verify_command(verify);
   if (*replay_cmd) return ajx::app::replay_command(replay);
   if (*windows_cmd) return ajx::app::windows_command(windows);
-  if (*thresholds_cmd) return ajx::app::thresholds_command(thresholds);
+  if (*thresholds_cmd) {
+    // The holds and refinements run on the farm; without them MPI is needed only to keep the
+    // ranks of an mpirun from each printing the report.
+    if (!ajx::app::thresholds_integrate(thresholds) && !ajx::parallel::launched_as_rank())
+      return ajx::app::thresholds_command(thresholds);
+    ajx::parallel::MpiEnvironment mpi(argc, argv);
+    try {
+      return ajx::app::thresholds_command(thresholds);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "error on rank %d: %s\n", mpi.rank(), e.what());
+      if (mpi.size() > 1) mpi.abort(1);
+      return 1;
+    }
+  }
   if (*classify_cmd) return ajx::app::classify_command(classify);
   if (*orbits_cmd) return ajx::app::orbits_command(orbits);
   if (*wp_cmd) return ajx::app::bench_work_precision_command(wp);

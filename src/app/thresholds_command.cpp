@@ -5,8 +5,10 @@
 // flower's onset and back down, ω2 is also fitted as the lag's Hopf point (sweep/flower_onset.hpp).
 // With --refine F each bracket is re-run from the stored state before it, F times slower
 // (sweep/refine.hpp); with --sequence each chain's class sequence is printed against the paper's.
-// Stages: read the file, find the brackets, judge them (holds, refinements, onsets), report.
-#include <atomic>
+// Stages: read the file, find the brackets, judge them (onsets; holds and refinements as farm
+// tasks, thresholds_farm.hpp: on the ranks of an mpirun, or on threads of one process), report.
+#include <mpi.h>
+
 #include <charconv>
 #include <algorithm>
 #include <cmath>
@@ -23,10 +25,13 @@
 
 #include "app/commands.hpp"
 #include "app/thresholds_brackets.hpp"
+#include "app/thresholds_farm.hpp"
 #include "config/config.hpp"
 #include "config/text.hpp"
+#include "parallel/mpi_env.hpp"
 #include "results/reclassify.hpp"
 #include "results/sweep_reader.hpp"
+#include "sweep/bracket_check.hpp"
 #include "sweep/class_sequence.hpp"
 #include "sweep/flower_onset.hpp"
 #include "sweep/hold_verdict.hpp"
@@ -239,18 +244,37 @@ struct Onset {
   int levels = 0;                             // levels with both legs in the fit's span
 };
 
+// Where a check's result goes: the row's refinement or one side of its hold (emplaced first).
+enum class Slot { Refined, Pre, Post };
+
+void place(Row& row, Slot slot, sweep::CheckResult result) {
+  if (slot == Slot::Refined)
+    row.refined = std::get<sweep::Refinement>(std::move(result));
+  else
+    (slot == Slot::Pre ? row.held->pre : row.held->post) = std::get<sweep::HoldSide>(std::move(result));
+}
+
 sweep::OrbitClass class_at(const std::vector<sweep::ClassedWindow>& windows, int index) {
   for (const sweep::ClassedWindow& w : windows)
     if (w.index == index) return w.cls;
   return sweep::OrbitClass::Failed;
 }
 
-// Holds (and refinements) of every bracket, spread over threads: each is an independent
-// integration from the file's stored state before it. Returns an error message, or "".
-std::string judge_rows(const ThresholdsArgs& args, const results::SweepReader& in,
-                       const std::optional<sweep::ClassifierSettings>& settings, const std::optional<HoldTime>& hold,
-                       const SweepWindows& sw, std::vector<Row>& rows) {
+// The holds (and refinements) of every bracket, each an independent integration from the
+// file's stored state before it, to run on the farm (thresholds_farm.hpp).
+struct Checks {
   RefineSource src;
+  ChecksContext context;
+  std::vector<PlannedCheck> planned;
+  std::vector<std::pair<std::size_t, Slot>> to;  // per planned check: its row and slot
+};
+
+// Plans the checks of every bracket; a start state that cannot be read fails its check at once.
+// Returns an error message, or "".
+std::string plan_checks(const ThresholdsArgs& args, const results::SweepReader& in,
+                        const std::optional<sweep::ClassifierSettings>& settings, const std::optional<HoldTime>& hold,
+                        const SweepWindows& sw, std::vector<Row>& rows, Checks& checks) {
+  RefineSource& src = checks.src;
   try {
     src = open_refine_source(in, settings);
   } catch (const std::exception& e) {
@@ -261,70 +285,49 @@ std::string judge_rows(const ThresholdsArgs& args, const results::SweepReader& i
     for (std::size_t c = 0; c < sw.chains.size(); ++c)
       if (!(src.plan.setups[c].model.p.drag > 0.0))
         return fmt::format("--hold {}: chain {} has no drag (c_D = 0), so no drag time: give seconds", args.hold, c);
-  // The start states are read from the file here, in this thread: a site's HDF5 need not be
-  // built thread-safe (Debian's serial one is, its MPI one is not).
-  std::vector<std::function<void()>> jobs;
-  const auto guarded = [](auto&& work, auto&& on_error) {
-    return [work, on_error]() mutable {
-      try {
-        work();
-      } catch (const std::exception& e) {
-        on_error(e.what());
-      }
-    };
-  };
-  for (Row& r : rows) {
-    if (!r.bracket) continue;
-    const sweep::ChainSetup* setup = &src.plan.setups[r.chain];
-    if (args.refine > 0) {
-      const double t_begin = setup->protocol.windows[std::size_t(r.bracket->window_before)].t_begin;
-      r.refined.emplace();
-      const auto fail = [&r](const std::string& why) { r.refined->ok = false, r.refined->failure = why; };
-      try {
-        jobs.push_back(guarded(
-            [&, setup, start = src.state_before(r.chain, t_begin)] {
-              r.refined = sweep::refine_threshold(r.threshold, *setup, src.plan.points[r.chain].protocol, *r.bracket,
-                                                  args.refine, start, src.settings);
-            },
-            fail));
-      } catch (const std::exception& e) {
-        fail(e.what());
-      }
+  checks.context = {in.config_text(), in.config_source(), in.overrides(),
+                    settings ? args.settings : in.classifier_settings()};
+  // The start states are read from the file here, on rank 0 and in its main thread: a site's
+  // HDF5 need not be built thread-safe (Debian's serial one is, its MPI one is not).
+  const auto add = [&](std::size_t row, Slot slot, sweep::BracketCheck check, double t_start) {
+    try {
+      checks.planned.push_back({check, src.state_before(rows[row].chain, t_start)});
+      checks.to.emplace_back(row, slot);
+    } catch (const std::exception& e) {
+      place(rows[row], slot, sweep::failed_check(check, e.what()));
     }
+  };
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const Row& r = rows[i];
+    if (!r.bracket) continue;
+    const sweep::ChainSetup& setup = src.plan.setups[r.chain];
+    if (args.refine > 0)
+      add(i, Slot::Refined, sweep::RefineCheck{r.chain, r.threshold, *r.bracket, args.refine},
+          setup.protocol.windows[std::size_t(r.bracket->window_before)].t_begin);
     if (!hold) continue;
-    r.held.emplace();
+    rows[i].held.emplace();
     for (const bool pre : {true, false}) {
       // Held at the middle of the bracket's window (ω_m there is the bracket's value), from the
       // last stored state before it, along the chain's own schedule.
       const int index = pre ? r.bracket->window_before : r.bracket->window_after;
-      const sweep::Window& w = setup->protocol.windows[std::size_t(index)];
+      const sweep::Window& w = setup.protocol.windows[std::size_t(index)];
       const double t_cut = 0.5 * (w.t_begin + w.t_end);
-      sweep::HoldSide& side = pre ? r.held->pre : r.held->post;
-      const auto fail = [&side](const std::string& why) { side.ok = false, side.failure = why; };
-      try {
-        jobs.push_back(guarded(
-            [&, setup, t_cut, window = w.t_end - w.t_begin, reference = class_at(sw.chains[r.chain], index),
-             start = src.state_before(r.chain, t_cut)] {
-              side = sweep::hold_side(*setup, t_cut, hold->seconds(setup->model.p), window, start, reference,
-                                      src.settings);
-            },
-            fail));
-      } catch (const std::exception& e) {
-        fail(e.what());
-      }
+      add(i, pre ? Slot::Pre : Slot::Post,
+          sweep::HoldCheck{r.chain, t_cut, hold->seconds(setup.model.p), w.t_end - w.t_begin,
+                           class_at(sw.chains[r.chain], index)},
+          t_cut);
     }
   }
-  std::atomic<std::size_t> next{0};
-  const auto worker = [&] {
-    for (std::size_t i; (i = next++) < jobs.size();) jobs[i]();
-  };
-  const int threads = args.jobs > 0 ? args.jobs : int(std::max(1u, std::thread::hardware_concurrency()));
-  std::vector<std::thread> pool;
-  for (int k = 0; k < std::min<int>(threads, int(std::max<std::size_t>(jobs.size(), 1))); ++k) pool.emplace_back(worker);
-  for (auto& th : pool) th.join();
-  for (Row& r : rows)
-    if (r.held) r.held->judgement = sweep::judge(r.held->pre, r.held->post);
   return "";
+}
+
+// The threads of rank 0 that run checks: -j, else every core in one process and one thread
+// beside the master under mpirun (whose other ranks take the other cores).
+int check_threads(const ThresholdsArgs& args, std::size_t n_checks) {
+  const int ranks = parallel::comm_size(MPI_COMM_WORLD);
+  int threads = args.jobs > 0 ? args.jobs : ranks > 1 ? 1 : int(std::max(1u, std::thread::hardware_concurrency()));
+  if (ranks == 1) threads = std::min<int>(threads, int(std::max<std::size_t>(n_checks, 1)));
+  return threads;
 }
 
 // The chain's held levels (windows at one ω_m on a rising or falling staircase), keyed by ω_m
@@ -703,37 +706,48 @@ bool write_text(const std::string& path, const std::string& text) { return write
 
 }  // namespace
 
-int thresholds_command(const ThresholdsArgs& args) {
+namespace {
+
+// What rank 0 reads and plans before the checks run.
+struct Prepared {
   std::optional<HoldTime> hold;
+  std::optional<sweep::ClassifierSettings> settings;
+  SweepWindows sw;
+  std::vector<std::optional<Onset>> onsets;
+  std::optional<results::SweepReader> in;
+  std::vector<Row> rows;
+  ChainNames names;  // its start seeds here; the rest from sw
+  Checks checks;     // with holds or --refine
+};
+
+// The options checked, the file read, its brackets found and their checks planned: 0, or the
+// exit code once the error is printed.
+int prepare(const ThresholdsArgs& args, Prepared& p) {
   if (!args.no_hold) {
-    hold = parse_hold(args.hold);
-    if (!hold) {
+    p.hold = parse_hold(args.hold);
+    if (!p.hold) {
       std::fprintf(stderr,
                    "error: --hold %s: give the hold time in seconds (0 < T <= 1e5) or in drag times, e.g. 5tau\n",
                    args.hold.c_str());
       return kExitBadInput;
     }
   }
-  std::optional<sweep::ClassifierSettings> settings;
   if (!args.settings.empty()) {
     try {
-      settings = sweep::parse_classifier_settings(args.settings);
+      p.settings = sweep::parse_classifier_settings(args.settings);
     } catch (const std::invalid_argument& e) {
       std::fprintf(stderr, "error: --set %s (thresholds takes the sweep's configuration from the file; only the "
                    "classifier's settings can be changed)\n", e.what());
       return kExitBadInput;
     }
   }
-  SweepWindows sw;
-  ChainNames names;
-  std::vector<std::optional<Onset>> onsets;
-  std::optional<results::SweepReader> in;
   try {
-    in.emplace(args.input);
-    sw = read_sweep_windows(*in, settings);
-    BottomBallSamples samples{*in, {}, {}};
-    for (std::size_t c = 0; c < sw.chains.size(); ++c) onsets.push_back(flower_onset(samples, sw, c, args.onset_span));
-    names.starts_ = start_seeds_of(*in, sw.chains.size());
+    p.in.emplace(args.input);
+    p.sw = read_sweep_windows(*p.in, p.settings);
+    BottomBallSamples samples{*p.in, {}, {}};
+    for (std::size_t c = 0; c < p.sw.chains.size(); ++c)
+      p.onsets.push_back(flower_onset(samples, p.sw, c, args.onset_span));
+    p.names.starts_ = start_seeds_of(*p.in, p.sw.chains.size());
   } catch (const results::SweepFileError& e) {
     std::fprintf(stderr, "error: %s\n", config::printable(e.what()).c_str());
     return kExitBadInput;
@@ -741,21 +755,65 @@ int thresholds_command(const ThresholdsArgs& args) {
     std::fprintf(stderr, "error: %s: cannot read a sweep file: %s\n", args.input.c_str(), config::printable(e.what()).c_str());
     return kExitBadInput;
   }
-  std::vector<Row> rows;
-  for (std::size_t c = 0; c < sw.chains.size(); ++c)
-    if (!is_bisection_chain(*in, c))  // a bisection's bracket is in /brackets, not in its windows
-      for (sweep::Threshold t : sweep::kThresholds) rows.push_back({c, t, sweep::find_threshold(t, sw.chains[c]), {}, {}});
+  for (std::size_t c = 0; c < p.sw.chains.size(); ++c)
+    if (!is_bisection_chain(*p.in, c))  // a bisection's bracket is in /brackets, not in its windows
+      for (sweep::Threshold t : sweep::kThresholds)
+        p.rows.push_back({c, t, sweep::find_threshold(t, p.sw.chains[c]), {}, {}});
+  if (thresholds_integrate(args))
+    if (const std::string error = plan_checks(args, *p.in, p.settings, p.hold, p.sw, p.rows, p.checks); !error.empty()) {
+      std::fprintf(stderr, "error: %s\n", config::printable(error).c_str());
+      return kExitBadInput;
+    }
+  return 0;
+}
+
+// The planned checks run on the farm, their results in the rows and each hold judged; false
+// when a stop request left some unrun.
+bool run_planned_checks(const ThresholdsArgs& args, Prepared& p) {
+  const Checks& ch = p.checks;
+  const auto results = run_checks(ch.context, ch.src.plan, ch.src.settings, ch.planned, check_threads(args, ch.planned.size()));
+  if (!results) return false;
+  for (std::size_t i = 0; i < results->size(); ++i) place(p.rows[ch.to[i].first], ch.to[i].second, (*results)[i]);
+  for (Row& r : p.rows)
+    if (r.held) r.held->judgement = sweep::judge(r.held->pre, r.held->post);
+  return true;
+}
+
+}  // namespace
+
+int thresholds_command(const ThresholdsArgs& args) {
+  // Under mpirun every rank runs this: rank 0 reads, plans and reports, the others take the
+  // holds and refinements from the farm (with none, they have nothing to do). The job's exit
+  // code is rank 0's: the others return 0 (commands.hpp).
+  const bool farm = thresholds_integrate(args);
+  int mpi = 0;
+  MPI_Initialized(&mpi);
+  if (mpi && parallel::comm_rank(MPI_COMM_WORLD) != 0) {
+    if (farm) checks_worker();
+    return 0;
+  }
+  Prepared p;
+  if (const int code = prepare(args, p); code != 0) {
+    if (farm) refuse_checks();
+    return code;
+  }
+  if (farm && !run_planned_checks(args, p)) {
+    std::fprintf(stderr, "interrupted (Ctrl-C, SIGTERM or SIGUSR1) before every hold and refinement had run: no "
+                 "report written; run the command again\n");
+    return kExitInterrupted;
+  }
+  const std::vector<Row>& rows = p.rows;
+  const SweepWindows& sw = p.sw;
+  const results::SweepReader* in = &*p.in;
+  const auto& hold = p.hold;
+  const auto& onsets = p.onsets;
+  ChainNames& names = p.names;
   for (std::size_t c = 0; c < sw.chains.size(); ++c) {
     names.params_.push_back(sw.params[c]);
     names.groups_.push_back(sw.group[c]);
     names.variants_.push_back(sw.variants[sw.variant[c]].name);
     names.labels_.push_back(chain_name(sw, c) + (sw.variants[sw.variant[c]].name.empty() ? "" : " " + sw.variants[sw.variant[c]].name));
   }
-  if (args.refine > 0 || hold)
-    if (const std::string error = judge_rows(args, *in, settings, hold, sw, rows); !error.empty()) {
-      std::fprintf(stderr, "error: %s\n", config::printable(error).c_str());
-      return kExitBadInput;
-    }
   const std::string hold_text =
       hold ? fmt::format("Verdicts: each side held {} from the file's state and judged by its energy balance "
                          "(bifurcation: the new orbit persists; excursion: held past the change the old orbit "

@@ -702,7 +702,7 @@ sweep::BasinSpec read_basin(const toml::table& root, SweepConfig& c) {
   };
   only("s", sweep::BasinFamily::Hanging);
   only("swing", sweep::BasinFamily::Hanging);
-  for (const char* k : {"hand_omega", "hand_duration", "hand_knots", "step_rate"}) only(k, sweep::BasinFamily::Hand);
+  for (const char* k : {"hand_amplitude", "hand_duration", "hand_modes", "step_rate"}) only(k, sweep::BasinFamily::Hand);
   for (const char* k : {"orbit", "epsilon", "state"}) only(k, sweep::BasinFamily::Cloud);
   if (const toml::node* n = bt.get("s")) {
     r.known("s");
@@ -715,9 +715,9 @@ sweep::BasinSpec read_basin(const toml::table& root, SweepConfig& c) {
     b.s_hi = *hi;
   }
   b.swing = r.number("swing", b.swing, 0.0, 1.5707963267948966);
-  b.hand_omega = r.number("hand_omega", b.hand_omega, 0.0, kOmegaMax, true);
+  b.hand_amplitude = r.number("hand_amplitude", b.hand_amplitude, 0.0, 10.0, true);
   b.hand_duration = r.number("hand_duration", b.hand_duration, 0.0, 600.0, true);
-  b.hand_knots = int(r.count("hand_knots", b.hand_knots, 1.0, 100.0));
+  b.hand_modes = int(r.count("hand_modes", b.hand_modes, 1.0, 20.0));
   b.step_rate = r.number("step_rate", b.step_rate, 0.0, 1e4, true);
   b.orbit = r.word("orbit", b.orbit, {"locked_orbit", "circular_high"});
   b.epsilon = r.number("epsilon", b.epsilon, 0.0, 1.0, true);

@@ -223,12 +223,13 @@ void basin_keys(std::vector<KeyInfo>& k) {
                     "family hanging: the bead's position along the string, uniform in [lo, hi]"));
   k.push_back(num("basin", "swing", "rad", 0.0, 1.5707963267948966, false, false, "0.3",
                   "family hanging: each segment's angle from the vertical, uniform in [0, swing]"));
-  k.push_back(num("basin", "hand_omega", "rad/s", 0.0, kOmegaMax, true, false, "20",
-                  "family hand: the top's ω_m at each knot of the hand's motion, uniform in [0, hand_omega]"));
-  k.push_back(num("basin", "hand_duration", "s", 0.0, 600.0, true, false, "3", "family hand: the hand's motion lasts this long"));
-  k.push_back(whole("basin", "hand_knots", 1, 100, "4", "family hand: knots of the hand's piecewise linear ω_m"));
+  k.push_back(num("basin", "hand_amplitude", "m", 0.0, 10.0, true, false, "0.1",
+                  "family hand: A, the hand moves the top at most this far from the motor's top; at most l (guide: basin sweeps)"));
+  k.push_back(num("basin", "hand_duration", "s", 0.0, 600.0, true, false, "3",
+                  "family hand: T, the hand holds the top this long; shorter than settle"));
+  k.push_back(whole("basin", "hand_modes", 1, 20, "3", "family hand: K, the random Fourier modes of the hand's path"));
   k.push_back(num("basin", "step_rate", "rad/s^2", 0.0, 1e4, true, false, "5",
-                  "family hand: the motor's ramp from the hand's last ω_m to the level"));
+                  "family hand: the motor's ramp from rest to the level, from t = 0"));
   k.push_back(other("basin", "orbit", "word", "", "locked_orbit, circular_high", "locked_orbit",
                     "family cloud: the orbit the starts surround, at each level"));
   k.push_back(other("basin", "state", "table", "", "{file, chain, window}; not with orbit", "",

@@ -1,7 +1,11 @@
 #include "parallel/mpi_env.hpp"
 
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
 #include <cstdlib>
 #include <string>
+#include <thread>
 
 namespace ajx::parallel {
 
@@ -25,6 +29,45 @@ int comm_size(MPI_Comm comm) {
   int size = 0;
   check_mpi(MPI_Comm_size(comm, &size), "MPI_Comm_size");
   return size;
+}
+
+namespace {
+
+// Waits for a non-blocking collective: a yield for the first polls (a ready peer answers at
+// once), then 1 ms sleeps.
+void wait_politely(MPI_Request& request, const char* call) {
+  for (int polls = 0;; ++polls) {
+    int done = 0;
+    check_mpi(MPI_Test(&request, &done, MPI_STATUS_IGNORE), call);
+    if (done) return;
+    if (polls < 100)
+      std::this_thread::yield();
+    else
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+}
+
+}  // namespace
+
+bool launched_as_rank() {
+  for (const char* size : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
+    if (const char* v = std::getenv(size); v != nullptr && std::atoi(v) > 1) return true;
+  return std::getenv("PMIX_RANK") != nullptr;
+}
+
+void broadcast(std::vector<std::byte>& bytes, MPI_Comm comm) {
+  std::uint64_t size = bytes.size();
+  MPI_Request request = MPI_REQUEST_NULL;
+  check_mpi(MPI_Ibcast(&size, 1, MPI_UINT64_T, 0, comm, &request), "MPI_Ibcast");
+  wait_politely(request, "MPI_Ibcast");
+  // MPI counts are ints: sent in pieces of at most 1 GiB.
+  bytes.resize(size);
+  constexpr std::uint64_t kPiece = std::uint64_t(1) << 30;
+  for (std::uint64_t at = 0; at < size; at += kPiece) {
+    const int n = static_cast<int>(std::min(kPiece, size - at));
+    check_mpi(MPI_Ibcast(bytes.data() + at, n, MPI_BYTE, 0, comm, &request), "MPI_Ibcast");
+    wait_politely(request, "MPI_Ibcast");
+  }
 }
 
 MpiEnvironment::MpiEnvironment() { init(nullptr, nullptr); }

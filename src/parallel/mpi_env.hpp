@@ -9,7 +9,9 @@
 
 #include <mpi.h>
 
+#include <cstddef>
 #include <stdexcept>
+#include <vector>
 
 namespace ajx::parallel {
 
@@ -24,6 +26,16 @@ void check_mpi(int rc, const char* call);
 // Rank and size of a communicator (checked).
 int comm_rank(MPI_Comm comm);
 int comm_size(MPI_Comm comm);
+
+// Whether a launcher (mpirun, mpiexec, srun) started this process as a rank of a job of several,
+// known before MPI is initialised: from the launcher's environment (OMPI_COMM_WORLD_SIZE,
+// PMI_SIZE, PMIX_RANK).
+bool launched_as_rank();
+
+// Rank 0's bytes, on every rank of comm (collective; the others' `bytes` are replaced). A rank
+// waits without holding its core (a blocking MPI_Bcast busy-polls in Open MPI), so ranks that
+// wait while rank 0 reads its input leave the cores to it.
+void broadcast(std::vector<std::byte>& bytes, MPI_Comm comm);
 
 // MPI for the lifetime of main(): initializes MPI (thread level FUNNELED: only the main thread
 // calls MPI, helper threads may exist) unless it is already initialized, and finalizes it on

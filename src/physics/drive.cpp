@@ -61,7 +61,18 @@ TopKinematics point_on_circle(double R, double phi, double omega, double omega_d
 TopKinematics MotorSchedule::top(double t) const {
   double phi, omega, omega_dot;
   phase(t, phi, omega, omega_dot);
-  return point_on_circle(radius_, phi, omega, omega_dot);
+  TopKinematics k = point_on_circle(radius_, phi, omega, omega_dot);
+  add_hand(t, k);
+  return k;
+}
+
+void MotorSchedule::set_hand(HandPath hand) {
+  const double T = hand.duration, tol = 1e-12 * std::max(1.0, T);
+  if (!(T > 0.0)) throw std::invalid_argument("hand: duration T <= 0 or not a number");
+  bool at_break = std::abs(T - duration()) <= tol;
+  for (double tb : t_begin_) at_break = at_break || std::abs(T - tb) <= tol;
+  if (!at_break) throw std::invalid_argument("hand: its end T is not a breakpoint of the motor's schedule");
+  hand_ = std::move(hand);
 }
 
 }  // namespace ajx::physics

@@ -3,8 +3,11 @@
 #pragma once
 #include <Eigen/Core>
 #include <Eigen/Geometry>  // cross products
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "physics/hand.hpp"
 
 namespace ajx::physics {
 
@@ -30,6 +33,7 @@ struct TopKinematics {
   // (physics/tie.hpp), when φ, ω above are the tie's χ, χ̇.
   double motor_omega;
   double motor_omega_dot;
+  bool hand = false;  // a hand holds the top (physics/hand.hpp): a and its rates are x_top's, not on the circle
 };
 
 // A point turning on the circle of radius R at phase φ with rate ω and acceleration ω̇:
@@ -54,8 +58,20 @@ class MotorSchedule {
   // φ, ω, ω̇ at time t (t beyond the end holds the last ω).
   void phase(double t, double& phi, double& omega, double& omega_dot) const;
   double radius() const { return radius_; }  // R [m]
-  // a(t) = R (cos φ, sin φ, 0) and its derivatives.
+  // a(t) = R (cos φ, sin φ, 0) and its derivatives; x_top(t) while a hand holds the top.
   TopKinematics top(double t) const;
+
+  // The hand that holds the top for 0 <= t < T before the motor takes it (physics/hand.hpp).
+  // Throws std::invalid_argument unless T > 0 is the start of a segment or the schedule's end
+  // (the acceleration jumps at T, so integrators must stop there).
+  void set_hand(HandPath hand);
+  const HandPath* hand() const { return hand_ ? &*hand_ : nullptr; }
+  // k (the top on the circle at t) moved to x_top(t) while the hand holds it.
+  void add_hand(double t, TopKinematics& k) const {
+    if (!hand_ || !hand_->holds(t)) return;
+    const HandOffset o = hand_->offset(t);
+    k.a += o.d, k.a_dot += o.d_dot, k.a_ddot += o.d_ddot, k.hand = true;
+  }
 
  private:
   double radius_ = 0.0;            // R [m]
@@ -63,6 +79,7 @@ class MotorSchedule {
   std::vector<double> t_begin_;    // [s]
   std::vector<double> phi_begin_;  // φ at each segment start [rad]
   std::vector<double> rate_;       // ω̇ = (ω_end − ω_begin)/duration of each segment [rad/s²]
+  std::optional<HandPath> hand_;
 };
 
 }  // namespace ajx::physics

@@ -12,7 +12,9 @@ namespace {
 TopKinematics held_top(const MotorSchedule& schedule, double t, double offset) {
   double phi, omega, omega_dot;
   schedule.phase(t, phi, omega, omega_dot);
-  return point_on_circle(schedule.radius(), phi + offset, omega, omega_dot);
+  TopKinematics k = point_on_circle(schedule.radius(), phi + offset, omega, omega_dot);
+  schedule.add_hand(t, k);  // the hand's top, handed over at T onto the circle with δ = 0 (a held tie)
+  return k;
 }
 
 }  // namespace
@@ -42,6 +44,7 @@ TopKinematics top_kinematics(const Model& m, const MotorSchedule& schedule, cons
 }
 
 double tie_torque_needed(const Model& m, const TopKinematics& held, const Dynamics& d) {
+  if (held.hand) return m.p.tie_inertia * held.motor_omega_dot;  // the string pulls the hand, not the tie
   const Vec3 tangential(-std::sin(held.phi), std::cos(held.phi), 0.0);
   return m.p.tie_inertia * held.motor_omega_dot - m.p.drive_radius * tangential.dot(d.g.u1) * d.pull;
 }
@@ -51,7 +54,9 @@ double tie_torque_needed(const Model& m, const TopKinematics& held, const Contac
 }
 
 TiePowers tie_powers(const Model& m, const TopKinematics& top, const Contact& c, const Dynamics& d) {
-  if (!c.tie.slip) return {tie_torque_needed(m, top, d) * top.motor_omega, 0.0};
+  // While the hand holds the top the work the top does, −F1 u1·ẋ_top, is booked with the rod's:
+  // W_m is the work of everything that moves the top.
+  if (!c.tie.slip) return {tie_torque_needed(m, top, d) * top.motor_omega + (top.hand ? d.motor_power : 0.0), 0.0};
   const double slip = top.motor_omega - top.omega;  // ω_m − χ̇
   const double tau_c = c.tie.sigma * m.p.tie_kinetic_torque + m.p.tie_damping * slip;
   return {tau_c * top.motor_omega, tau_c * slip};

@@ -36,11 +36,14 @@ double GuardEvents::value(Guard kind, bool force, double t, const Vec& y) {
 double GuardEvents::top_travel(double t0, double t1) const {
   if (ctx_.axes.rotating) return 0.0;
   const double R = ctx_.schedule.radius();
-  if (ctx_.model.layers.tie_clutch) return 2.0 * R;
+  // A hand moves the top besides: |Δd| <= |ḋ|max h while it holds the top.
+  const physics::HandPath* hand = ctx_.schedule.hand();
+  const double by_hand = hand && t0 < hand->duration ? hand->speed_bound() * std::abs(t1 - t0) : 0.0;
+  if (ctx_.model.layers.tie_clutch) return 2.0 * R + by_hand;
   double phi, w0, w1, wd;
   ctx_.schedule.phase(t0, phi, w0, wd);
   ctx_.schedule.phase(t1, phi, w1, wd);
-  return std::min(2.0 * R, R * std::abs(t1 - t0) * std::max(std::abs(w0), std::abs(w1)));
+  return std::min(2.0 * R, R * std::abs(t1 - t0) * std::max(std::abs(w0), std::abs(w1))) + by_hand;
 }
 
 void GuardEvents::arm() {

@@ -10,8 +10,9 @@ using numerics::Vec;
 
 RunAxes RunAxes::choose(const physics::Model& model, const physics::MotorSchedule& schedule, Axes axes,
                         const State& s) {
+  // A hand's top is not on the circle: the lab while it holds the top.
   const bool rotating =
-      !model.layers.tie_clutch &&
+      !model.layers.tie_clutch && !(schedule.hand() && schedule.hand()->holds(s.t)) &&
       (axes == Axes::Rotating ||
        (axes == Axes::Auto && corotates(physics::top_kinematics(model, schedule, s.contact, s.t, s.y), s.y)));
   return {model, schedule, rotating};

@@ -108,6 +108,21 @@ void check_basin(const physics::Model& m, const BasinSpec& b, std::string_view s
                             b.s_lo, b.s_hi, stops.lo, stops.hi, m.layers.top_stop ? "" : " off", m.p.string_length,
                             m.p.contact_distance));
   }
+  if (b.family == BasinFamily::Hand) {
+    // The hand moves the top about the pair hanging a string's length below it: beyond l it
+    // throws the pair rather than starting it.
+    if (b.hand_amplitude > m.p.string_length)
+      fail("hand_amplitude", fmt::format("{} m is out of range; allowed (0, {}] m (the string's length l)", b.hand_amplitude,
+                                         m.p.string_length));
+    if (!(b.hand_duration < b.settle))
+      fail("hand_duration", fmt::format("{} s is out of range; allowed (0, {}) s: the hand must let go before the "
+                                        "measured window (settle = {} s)", b.hand_duration, b.settle, b.settle));
+    // A held tie stays held while the hand holds the top: the rod turns only the tie, τ = I_a ω̇_m <= τ_s.
+    if (m.layers.tie_clutch && m.p.tie_inertia * b.step_rate > m.p.tie_static_torque)
+      fail("step_rate", fmt::format("{} rad/s² would make the tie slip on the rod while the hand holds the top "
+                                    "(I_a ω̇_m > τ_s); allowed (0, {}] rad/s²", b.step_rate,
+                                    m.p.tie_static_torque / m.p.tie_inertia));
+  }
   if (b.family == BasinFamily::Cloud && b.epsilon > 0.1 * m.p.string_length)
     fail("epsilon", fmt::format("{} m is out of range; allowed (0, {}] m (a tenth of the string)", b.epsilon,
                                 0.1 * m.p.string_length));
@@ -116,24 +131,35 @@ void check_basin(const physics::Model& m, const BasinSpec& b, std::string_view s
 CompiledProtocol basin_protocol(const BasinSpec& b, double omega, int level, int sample) {
   const Segment hold{Segment::Kind::Steps, {}, {omega, omega, 1, b.settle, b.measure, b.step_rate}};
   if (b.family != BasinFamily::Hand) return compile({hold}, omega);
-  // The hand: ω_m from 0 through K random knots in [0, ω_hand], each piece T_hand / K long.
-  BasinDraws d(b, level, sample);
-  std::vector<physics::DriveSegment> hand;
-  double w = 0.0;
-  for (int k = 0; k < b.hand_knots; ++k) {
-    const double next = d.uniform(0.0, b.hand_omega);
-    hand.push_back({w, next, b.hand_duration / b.hand_knots});
-    w = next;
-  }
-  CompiledProtocol p = compile({hold}, w);  // the motor takes over: a ramp to the level, the hold
+  // The motor ramps from rest from t = 0; the hand holds the top until T, a breakpoint.
+  CompiledProtocol p = compile({hold}, 0.0);
   const double T = b.hand_duration;
-  for (Window& win : p.windows) {
-    win.t_begin += T;
-    win.t_end += T;
+  std::vector<physics::DriveSegment> split;
+  double t = 0.0;
+  for (const physics::DriveSegment& s : p.schedule) {
+    if (t < T && T < t + s.duration) {
+      const double w = s.omega_begin + (s.omega_end - s.omega_begin) * (T - t) / s.duration;
+      split.push_back({s.omega_begin, w, T - t});
+      split.push_back({w, s.omega_end, t + s.duration - T});
+    } else {
+      split.push_back(s);
+    }
+    t += s.duration;
   }
-  hand.insert(hand.end(), p.schedule.begin(), p.schedule.end());
-  p.schedule = std::move(hand);
-  p.duration += T;
+  p.schedule = std::move(split);
+  // h's modes: p_k, q_k uniform in the horizontal disc of radius A/(2K), so |h| <= A.
+  BasinDraws d(b, level, sample);
+  physics::HandPath hand{T, {}, {}};
+  const double r = b.hand_amplitude / (2.0 * b.hand_modes);
+  const auto disc = [&] {
+    const double rho = r * std::sqrt(d.uniform()), a = 2.0 * std::numbers::pi * d.uniform();
+    return Vec3(rho * std::cos(a), rho * std::sin(a), 0.0);
+  };
+  for (int k = 0; k < b.hand_modes; ++k) {
+    hand.p.push_back(disc());
+    hand.q.push_back(disc());
+  }
+  p.hand = std::move(hand);
   return p;
 }
 

@@ -5,9 +5,10 @@
 //   hanging  both balls hanging below the top, the bead at s ~ U[s_lo, s_hi] along the string,
 //            each segment swung from the vertical by an angle ~ U[0, θ_max] in a uniform
 //            azimuth, released at rest; the motor at the level from t = 0;
-//   hand     the hanging rest state (bead on the bottom ball), the top then turned through a short
-//            random motion, ω_m piecewise linear through K random knots in [0, ω_hand] over
-//            T_hand, before the motor ramps to the level at `step_rate` and holds it;
+//   hand     the hanging rest state (bead on the bottom ball); a hand holds the top and moves it
+//            along a random planar path for T (physics/hand.hpp: x_top = a + sin²(πt/T) h, h of K
+//            Fourier modes with amplitudes in the disc of radius A/2K), then hands it over to the
+//            motor, which ramps from rest at `step_rate` from t = 0 to the level and holds it;
 //   cloud    an orbit (a seed of seeds.hpp at the level: locked_orbit or circular_high, or a state
 //            stored in a sweep file: the end of one of its windows, `state`) with each
 //            ball moved across the string by a displacement uniform in a disc of radius ε (s and
@@ -62,9 +63,9 @@ struct BasinSpec {
   double s_lo = 0.0, s_hi = 0.0;   // bead position range [m]; both 0: l − d (on the bottom ball)
   double swing = 0.3;              // θ_max from the vertical [rad], hanging
   // hand
-  double hand_omega = 20.0;        // ω_hand, the knots' bound [rad/s]
-  double hand_duration = 3.0;      // T_hand [s]
-  int hand_knots = 4;              // K
+  double hand_amplitude = 0.1;     // A, |x_top − a| <= A [m]
+  double hand_duration = 3.0;      // T [s]
+  int hand_modes = 3;              // K
   // cloud
   std::string orbit = "locked_orbit";
   std::optional<StoredOrbit> stored;  // basin.state: the orbit read from a sweep file instead
@@ -88,8 +89,9 @@ StopRange stop_range(const physics::Model& m);
 // naming `source_name` and the key ("basin.s", ...).
 void check_basin(const physics::Model& m, const BasinSpec& b, std::string_view source_name);
 
-// The chain's protocol: held at `omega` from t = 0 (hanging, cloud), or the hand's motion from
-// ω_m = 0 then a ramp to `omega` (hand); one measured window at the end.
+// The chain's protocol: held at `omega` from t = 0 (hanging, cloud), or a ramp from rest to
+// `omega` with the hand holding the top for T (hand: the schedule has a breakpoint at T); one
+// measured window at the end.
 CompiledProtocol basin_protocol(const BasinSpec& b, double omega, int level, int sample);
 
 // The orbit a cloud surrounds at omega, on a chain's schedule (the stored state as it is, turned to

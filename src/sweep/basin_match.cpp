@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <numeric>
+#include <set>
 #include <tuple>
 
 namespace ajx::sweep {
@@ -19,8 +20,10 @@ MatchSample match_sample(std::int32_t level, std::int32_t cls, const WindowFeatu
                               ? std::abs(w.omega_bead - w.omega_bottom) / (2.0 * w.omega_ball)
                               : 0.0;
   const auto swing = [](double std) { return std::isfinite(std) ? std::sqrt(2.0) * std : 0.0; };
-  m.h = {disagree + d.omega, (swing(w.rho1_std) + d.radius * std::abs(w.rho1)) / l,
-         (swing(w.rho2_std) + d.radius * std::abs(w.rho2)) / l, (swing(w.s_std) + d.L1 * l) / l};
+  // ρ1, ρ2 and s are one configuration of the string: the orbit's extent in it is its largest swing.
+  const double extent = std::max({swing(w.rho1_std), swing(w.rho2_std), swing(w.s_std)});
+  m.h = {disagree + d.omega, (extent + d.radius * std::abs(w.rho1)) / l, (extent + d.radius * std::abs(w.rho2)) / l,
+         (extent + d.L1 * l) / l};
   for (double& h : m.h)
     if (!std::isfinite(h)) h = 0.0;
   return m;
@@ -87,22 +90,18 @@ MatchPoint centroid(std::span<const MatchSample> s, const std::vector<std::size_
   return c;
 }
 
-// Euclidean distance over the features both have; infinite when only one has a feature.
-double distance(const MatchPoint& a, const MatchPoint& b) {
-  double d2 = 0.0;
-  for (std::size_t k = 0; k < kNumMatchFeatures; ++k) {
-    if (std::isnan(a[k]) || std::isnan(b[k])) {
-      if (std::isnan(a[k]) != std::isnan(b[k])) return INFINITY;
-      continue;
-    }
-    d2 += (a[k] - b[k]) * (a[k] - b[k]);
-  }
-  return std::sqrt(d2);
+// A cluster's reach about its centroid c: max over members of |x − c| + h, the union of their bands.
+MatchPoint reach(std::span<const MatchSample> s, const std::vector<std::size_t>& members, const MatchPoint& c) {
+  MatchPoint r{};
+  for (std::size_t i : members)
+    for (std::size_t k = 0; k < kNumMatchFeatures; ++k)
+      if (!std::isnan(s[i].x[k])) r[k] = std::max(r[k], std::abs(s[i].x[k] - c[k]) + s[i].h[k]);
+  return r;
 }
 
 struct LevelAttractor {
   std::int32_t cls;
-  MatchPoint centre;
+  MatchPoint centre, reach;
   std::vector<std::size_t> members;
   std::int32_t label = -1;
 };
@@ -117,9 +116,45 @@ std::vector<LevelAttractor> level_attractors(std::span<const MatchSample> s, con
   for (auto& [cls, of] : by_class) {
     const bool apart = std::size_t(cls) < split.size() && split[std::size_t(cls)];
     for (auto& members : apart ? clusters(s, of) : std::vector<std::vector<std::size_t>>{of})
-      out.push_back({cls, centroid(s, members), std::move(members)});
+    {
+      const MatchPoint c = centroid(s, members);
+      out.push_back({cls, c, reach(s, members, c), std::move(members)});
+    }
   }
   return out;
+}
+
+// A label where it was last seen: its class, centroid and reach there, and that level's ω_m.
+struct LastSeen {
+  std::int32_t cls;
+  MatchPoint centre, reach;
+  double omega;  // [rad/s]
+};
+
+// An attractor against a label last seen |Δ ln ω_m| = dlnw away: per feature, the centroids'
+// difference in units of what may separate two sightings of one orbit, their two reaches plus
+// the largest change along a family, |Δy| <= |y| |Δ ln ω_m| (ln ω_ball: |Δ ln ω_ball| <= |Δ ln ω_m|).
+// `bound` is the largest of these ratios (one orbit when <= 1; infinite when only one of them has
+// a feature), `rank` their root sum of squares, which orders the candidates.
+struct StepDistance {
+  double bound = 0.0, rank = 0.0;
+};
+StepDistance step_distance(const LevelAttractor& a, const LastSeen& b, double dlnw) {
+  StepDistance D;
+  for (std::size_t k = 0; k < kNumMatchFeatures; ++k) {
+    const double x = a.centre[k], y = b.centre[k];
+    if (std::isnan(x) || std::isnan(y)) {
+      if (std::isnan(x) != std::isnan(y)) return {INFINITY, INFINITY};
+      continue;
+    }
+    const double change = dlnw * (k == 0 ? 1.0 : std::max(std::abs(x), std::abs(y)));
+    const double allowed = a.reach[k] + b.reach[k] + change;
+    const double q = allowed > 0.0 ? std::abs(x - y) / allowed : (x == y ? 0.0 : INFINITY);
+    D.bound = std::max(D.bound, q);
+    D.rank += q * q;
+  }
+  D.rank = std::sqrt(D.rank);
+  return D;
 }
 
 }  // namespace
@@ -137,10 +172,10 @@ BasinMatch match_attractors(std::span<const MatchLevel> levels, std::span<const 
     std::stable_sort(rows.begin(), rows.end(), [&](std::size_t a, std::size_t b) { return levels[a].omega < levels[b].omega; });
     std::map<std::int32_t, int> letters;                 // attractors so far, per class
     std::map<std::int32_t, std::int32_t> unsplit_label;  // an unsplit class's one label
-    std::vector<LevelAttractor> previous;
+    std::map<std::int32_t, LastSeen> seen;               // label -> where it was last seen
     for (std::size_t l : rows) {
       std::vector<LevelAttractor> now = level_attractors(samples, at_level[l], split);
-      std::vector<std::tuple<double, std::size_t, std::size_t>> pairs;  // (distance, now, previous)
+      std::vector<std::tuple<double, std::size_t, std::int32_t>> pairs;  // (rank, now, label)
       for (std::size_t a = 0; a < now.size(); ++a) {
         const bool apart = std::size_t(now[a].cls) < split.size() && split[std::size_t(now[a].cls)];
         if (!apart) {
@@ -149,24 +184,25 @@ BasinMatch match_attractors(std::span<const MatchLevel> levels, std::span<const 
           now[a].label = it->second;
           continue;
         }
-        for (std::size_t b = 0; b < previous.size(); ++b)
-          if (previous[b].cls == now[a].cls) {
-            const double d = distance(now[a].centre, previous[b].centre);
-            if (std::isfinite(d)) pairs.emplace_back(d, a, b);
+        for (const auto& [label, last] : seen)
+          if (last.cls == now[a].cls) {
+            const StepDistance D = step_distance(now[a], last, std::abs(std::log(levels[l].omega / last.omega)));
+            if (D.bound <= 1.0) pairs.emplace_back(D.rank, a, label);
           }
       }
       std::sort(pairs.begin(), pairs.end());
-      std::vector<bool> taken(previous.size(), false);
-      for (const auto& [d, a, b] : pairs)
-        if (now[a].label < 0 && !taken[b]) now[a].label = previous[b].label, taken[b] = true;
+      std::set<std::int32_t> taken;
+      for (const auto& [rank, a, label] : pairs)
+        if (now[a].label < 0 && !taken.count(label)) now[a].label = label, taken.insert(label);
       for (LevelAttractor& a : now)
         if (a.label < 0) {
           a.label = std::int32_t(out.attractors.size());
           out.attractors.push_back({part, a.cls, letters[a.cls]++, ""});
         }
-      for (const LevelAttractor& a : now)
+      for (LevelAttractor& a : now) {
         for (std::size_t i : a.members) out.label[i] = a.label;
-      previous = std::move(now);
+        seen[a.label] = {a.cls, a.centre, a.reach, levels[l].omega};
+      }
     }
     for (Attractor& a : out.attractors)
       if (a.part == part) {

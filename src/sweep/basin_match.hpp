@@ -5,9 +5,11 @@
 // An orbit is described by four scaled features x = (ln(ω_ball / 1 rad/s), ρ1/l, ρ2/l, s/l):
 // the logarithm because a locked orbit's ω_ball moves with ω_m, a lagging one's hardly at all.
 // Each feature of each window has a half-width h, what one window resolves of it:
-//   h_ρ = (√2 σ_ρ + δ_ρ ρ̄)/l,  h_s = (√2 σ_s + δ_s l)/l,  h_ω = |ω_bead − ω_bottom|/(2|ω_ball|) + δ_ω,
-// σ the feature's standard deviation over the window (√2 σ is the amplitude of a sinusoidal
-// swing with that deviation), ω_bead − ω_bottom the two balls' disagreement on ω_ball, and δ the
+//   h_ρ = (e + δ_ρ ρ̄)/l,  h_s = (e + δ_s l)/l,  h_ω = |ω_bead − ω_bottom|/(2|ω_ball|) + δ_ω,
+// e = √2 max(σ_ρ1, σ_ρ2, σ_s) the orbit's extent in the string's configuration (σ a length's
+// standard deviation over the window, √2 σ the amplitude of a sinusoidal swing with it: a flower
+// sweeps its radii over e while its bead stays stuck, so a bead place within e of another's does
+// not tell two flowers apart), ω_bead − ω_bottom the two balls' disagreement on ω_ball, and δ the
 // classifier's drift tolerances (a window is called settled while its mean still moves by that
 // much between its halves, so its mean is known to no better).
 //
@@ -15,9 +17,16 @@
 // overlap, |x_i − x_j| <= h_i + h_j; single linkage makes the attractors. fallen, not-settled and
 // failed are one attractor at every level whatever their features (the fallen bead makes a driven
 // spherical pendulum whose leftover swing tells starts apart, not orbits; the others are not
-// orbits). From one level to the next, each attractor takes the label of the nearest attractor of
-// its class at the level below (Euclidean distance of the centroids in x, nearest pairs first,
-// one to one); one without a partner starts a new label.
+// orbits). An attractor's reach r is the union of its members' bands about its centroid c.
+//
+// From one level to the next (Attractors.jl's matching by distance with a threshold, vanished
+// attractors kept): an attractor is compared with every label of its class seen so far in its
+// part, where it was last seen, |Δ ln ω_m| away, by
+//   q_i = |c_i − c'_i| / (r_i + r'_i + Δ_i),  Δ_ω = |Δ ln ω_m|,  Δ_i = |Δ ln ω_m| max(|c_i|, |c'_i|),
+// the two reaches plus the largest change of the feature along one family of orbits, taken as
+// proportional to ω_m at most (|d ln y / d ln ω_m| <= 1: a locked orbit's ω_ball meets it with
+// equality). max_i q_i <= 1: the same orbit could have moved there; the pairs take labels in
+// rising √(Σ q_i²), one to one; an attractor with no label within the bound starts a new one.
 #pragma once
 #include <array>
 #include <cstdint>

@@ -3,6 +3,7 @@
 // tasks for the farm. A ramp is history-dependent, so the tasks of one chain run in order,
 // each from the final state of the previous one.
 #pragma once
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,7 @@ struct TaskSpan {
 
 struct CompiledProtocol {
   std::vector<physics::DriveSegment> schedule;  // starts from omega_start at t = 0
+  std::optional<physics::HandPath> hand;        // a hand holds the top first (basin family hand)
   std::vector<Window> windows;
   double duration = 0.0;                        // [s]
 };

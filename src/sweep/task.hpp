@@ -24,7 +24,11 @@ struct ChainSetup {
   // l; 0: every settle runs its full length.
   double settle_tolerance = 0.0;
   // The chain's motor: its protocol's schedule on the circle of the model's R.
-  physics::MotorSchedule motor() const { return physics::MotorSchedule(model.p.drive_radius, protocol.schedule); }
+  physics::MotorSchedule motor() const {
+    physics::MotorSchedule s(model.p.drive_radius, protocol.schedule);
+    if (protocol.hand) s.set_hand(*protocol.hand);
+    return s;
+  }
 };
 
 // The samples of one window, row-major: r1 and r2 are N×3.
