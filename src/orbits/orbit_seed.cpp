@@ -1,9 +1,9 @@
 #include "orbits/orbit_seed.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <deque>
 #include <limits>
 #include <map>
@@ -157,9 +157,10 @@ namespace {
 // (physics/parameter_table.hpp) and ω_m. Equal keys, equal inputs.
 std::string seed_key(const physics::Model& m, double omega) {
   std::string key;
-  const auto put = [&](double v) {
-    const auto bits = std::bit_cast<std::uint64_t>(v);
-    key.append(reinterpret_cast<const char*>(&bits), sizeof bits);
+  const auto put = [&](double v) {  // the double's bytes (emscripten's libc++ has no std::bit_cast)
+    char bytes[sizeof v];
+    std::memcpy(bytes, &v, sizeof v);
+    key.append(bytes, sizeof v);
   };
   put(omega);
   for (const double v : physics::parameter_row(m.p)) put(v);
