@@ -35,6 +35,20 @@ void require_finite(CLI::App& app) {
 const CLI::Validator non_empty([](std::string& s) { return s.empty() ? std::string("the output path is empty") : std::string(); },
                                "", "NONEMPTY");
 
+// A command run with MPI started: an MPI or I/O failure on one rank leaves the others unable to
+// go on, so the whole job ends.
+template <class Command>
+int on_mpi(int& argc, char**& argv, Command command) {
+  ajx::parallel::MpiEnvironment mpi(argc, argv);
+  try {
+    return command();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error on rank %d: %s\n", mpi.rank(), e.what());
+    if (mpi.size() > 1) mpi.abort(1);
+    return 1;
+  }
+}
+
 }  // namespace
 
 // Long for a reason: the command line's declaration, one CLI11 block per subcommand, read top to
@@ -343,14 +357,7 @@ int main(int argc, char** argv) {
     // ranks of an mpirun from each printing the report.
     if (!ajx::app::thresholds_integrate(thresholds) && !ajx::parallel::launched_as_rank())
       return ajx::app::thresholds_command(thresholds);
-    ajx::parallel::MpiEnvironment mpi(argc, argv);
-    try {
-      return ajx::app::thresholds_command(thresholds);
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "error on rank %d: %s\n", mpi.rank(), e.what());
-      if (mpi.size() > 1) mpi.abort(1);
-      return 1;
-    }
+    return on_mpi(argc, argv, [&] { return ajx::app::thresholds_command(thresholds); });
   }
   if (*classify_cmd) return ajx::app::classify_command(classify);
   if (*orbits_cmd) return ajx::app::orbits_command(orbits);
@@ -359,16 +366,6 @@ int main(int argc, char** argv) {
   if (*fr_cmd) return ajx::app::bench_friction_command(fr);
   if (*cs_cmd) return ajx::app::bench_constraints_command(cs);
   if (*th_cmd) return ajx::app::bench_threshold_command(th, th_sample);
-  if (*sweep_cmd) {
-    ajx::parallel::MpiEnvironment mpi(argc, argv);
-    try {
-      return ajx::app::sweep_command(sweep);
-    } catch (const std::exception& e) {
-      // An MPI or I/O failure on one rank: the others cannot go on, so the whole job ends.
-      std::fprintf(stderr, "error on rank %d: %s\n", mpi.rank(), e.what());
-      if (mpi.size() > 1) mpi.abort(1);
-      return 1;
-    }
-  }
+  if (*sweep_cmd) return on_mpi(argc, argv, [&] { return ajx::app::sweep_command(sweep); });
   return 0;
 }

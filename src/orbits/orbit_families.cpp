@@ -92,14 +92,22 @@ std::vector<SteadyOrbit> orbits_at(const OrbitProblem& pb) {
   for (const Vec9& guess : planar_guesses(pb.model, pb.omega, s, l - s)) {
     NewtonResult r = solve(pb, guess);
     if (!r.converged) r = drag_homotopy(pb, guess);
-    if (!r.converged) continue;
-    const bool seen = std::any_of(out.begin(), out.end(), [&](const SteadyOrbit& o) {
-      return (unknowns(o).head<6>() - r.X.head<6>()).norm() < 1e-8 * l;
-    });
-    if (!seen) out.push_back(describe(pb, r.X));
+    if (r.converged) add_distinct(out, pb, r.X);
   }
-  std::sort(out.begin(), out.end(), [](const SteadyOrbit& a, const SteadyOrbit& b) { return a.p2.x() < b.p2.x(); });
+  sort_outward(out);
   return out;
+}
+
+void add_distinct(std::vector<SteadyOrbit>& out, const OrbitProblem& pb, const Vec9& X) {
+  const double l = pb.model.p.string_length;
+  const bool seen = std::any_of(out.begin(), out.end(), [&](const SteadyOrbit& o) {
+    return (unknowns(o).head<6>() - X.head<6>()).norm() < 1e-8 * l;
+  });
+  if (!seen) out.push_back(describe(pb, X));
+}
+
+void sort_outward(std::vector<SteadyOrbit>& out) {
+  std::sort(out.begin(), out.end(), [](const SteadyOrbit& a, const SteadyOrbit& b) { return a.p2.x() < b.p2.x(); });
 }
 
 namespace {

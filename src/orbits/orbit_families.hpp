@@ -22,6 +22,11 @@ std::vector<Vec9> planar_guesses(const physics::Model& m, double omega, double L
 // Every orbit of the closure Stuck (at s_star) or BottomStop found from the planar guesses.
 std::vector<SteadyOrbit> orbits_at(const OrbitProblem& pb);
 
+// Adds the orbit of the root X to `out` unless one within 1e-8 l of its positions is there already.
+void add_distinct(std::vector<SteadyOrbit>& out, const OrbitProblem& pb, const Vec9& X);
+// Orders orbits outward, by the bottom ball's x in the frame.
+void sort_outward(std::vector<SteadyOrbit>& out);
+
 // The bead positions s of the stuck family's grid: n points from the top stop (or 1e-3 l
 // without it) to the bottom stop (or (1 − 1e-3) l), ends included.
 std::vector<double> stuck_grid(const physics::Model& m, int n);

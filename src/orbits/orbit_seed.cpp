@@ -62,13 +62,9 @@ std::vector<SteadyOrbit> quick_row(const OrbitProblem& pb) {
       }
       r.converged = r.converged && frac >= 1.0;
     }
-    if (!r.converged) continue;
-    const bool seen = std::any_of(out.begin(), out.end(), [&](const SteadyOrbit& o) {
-      return (unknowns(o).head<6>() - r.X.head<6>()).norm() < 1e-8 * l;
-    });
-    if (!seen) out.push_back(describe(pb, r.X));
+    if (r.converged) add_distinct(out, pb, r.X);
   }
-  std::sort(out.begin(), out.end(), [](const SteadyOrbit& a, const SteadyOrbit& b) { return a.p2.x() < b.p2.x(); });
+  sort_outward(out);
   return out;
 }
 
