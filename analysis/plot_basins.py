@@ -113,8 +113,11 @@ def print_table(sweep):
             with warnings.catch_warnings():  # a feature no start of the attractor has: NaN, not a warning
                 warnings.simplefilter("ignore", RuntimeWarning)
                 f = np.nanmean(b["features"][m], axis=0) if m.any() else np.full(4, np.nan)
+            def num(v, text):  # a feature none of its starts has (e.g. no ω_ball): said, not "nan"
+                return text.format(v) if np.isfinite(v) else "none"
             print(f"  {lab}: {', '.join(f'{v:g}' for v in levels)}; {int(m.sum())} starts; "
-                  f"ω_ball {f[0] / PI:.2f}π, ρ1 {f[1]:.3f}, ρ2 {f[2]:.3f}, s {f[3]:.3f}")
+                  f"ω_ball {num(f[0] / PI, '{:.2f}π')}, ρ1 {num(f[1], '{:.3f}')}, ρ2 {num(f[2], '{:.3f}')}, "
+                  f"s {num(f[3], '{:.3f}')}")
         w, p, lo, hi = bs.up_probability(sweep, part)
         print("omega_m/pi  P(up) [95% CI]")
         for i in range(len(w)):
