@@ -62,13 +62,14 @@ std::vector<Vec9> planar_guesses(const physics::Model& m, double omega, double L
 
 namespace {
 // From the drag-free root (exact for c_D = 0) to the model's drag in steps: a drag that
-// turns the orbit far out of the plane needs the path, not one Newton jump.
-NewtonResult drag_homotopy(const OrbitProblem& pb, const Vec9& guess) {
+// turns the orbit far out of the plane needs the path, not one Newton jump. Given up once the
+// step falls to min_step.
+NewtonResult drag_homotopy(const OrbitProblem& pb, const Vec9& guess, double min_step) {
   OrbitProblem q = pb;
   q.model.p.drag = 0.0;
   NewtonResult r = solve(q, guess);
   double frac = 0.0, step = 0.125;
-  while (r.converged && frac < 1.0 && step > 1.0 / 4096) {
+  while (r.converged && frac < 1.0 && step > min_step) {
     const double next = std::min(1.0, frac + step);
     q.model.p.drag = next * pb.model.p.drag;
     const NewtonResult t = solve(q, r.X);
@@ -85,29 +86,21 @@ NewtonResult drag_homotopy(const OrbitProblem& pb, const Vec9& guess) {
 }
 }  // namespace
 
-std::vector<SteadyOrbit> orbits_at(const OrbitProblem& pb) {
+std::vector<SteadyOrbit> orbits_at(const OrbitProblem& pb, const SolveEffort& effort) {
   const double l = pb.model.p.string_length;
   const double s = pb.closure == Closure::BottomStop ? l - pb.model.p.contact_distance : pb.s_star;
   std::vector<SteadyOrbit> out;
-  for (const Vec9& guess : planar_guesses(pb.model, pb.omega, s, l - s)) {
+  for (const Vec9& guess : planar_guesses(pb.model, pb.omega, s, l - s, effort.starts)) {
     NewtonResult r = solve(pb, guess);
-    if (!r.converged) r = drag_homotopy(pb, guess);
-    if (r.converged) add_distinct(out, pb, r.X);
+    if (!r.converged) r = drag_homotopy(pb, guess, effort.homotopy_min_step);
+    if (!r.converged) continue;
+    const bool seen = std::any_of(out.begin(), out.end(), [&](const SteadyOrbit& o) {
+      return (unknowns(o).head<6>() - r.X.head<6>()).norm() < 1e-8 * l;
+    });
+    if (!seen) out.push_back(describe(pb, r.X));
   }
-  sort_outward(out);
-  return out;
-}
-
-void add_distinct(std::vector<SteadyOrbit>& out, const OrbitProblem& pb, const Vec9& X) {
-  const double l = pb.model.p.string_length;
-  const bool seen = std::any_of(out.begin(), out.end(), [&](const SteadyOrbit& o) {
-    return (unknowns(o).head<6>() - X.head<6>()).norm() < 1e-8 * l;
-  });
-  if (!seen) out.push_back(describe(pb, X));
-}
-
-void sort_outward(std::vector<SteadyOrbit>& out) {
   std::sort(out.begin(), out.end(), [](const SteadyOrbit& a, const SteadyOrbit& b) { return a.p2.x() < b.p2.x(); });
+  return out;
 }
 
 namespace {

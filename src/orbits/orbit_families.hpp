@@ -19,13 +19,16 @@ Vec9 unknowns(const SteadyOrbit& o);
 // Newton from the centres of an n × n grid of starts (24: the catalogue's).
 std::vector<Vec9> planar_guesses(const physics::Model& m, double omega, double L1, double L2, int n = 24);
 
-// Every orbit of the closure Stuck (at s_star) or BottomStop found from the planar guesses.
-std::vector<SteadyOrbit> orbits_at(const OrbitProblem& pb);
+// How hard orbits_at looks: Newton from an n × n grid of planar starts, and a start Newton
+// misses continued from zero drag to the model's, given up once the continuation's step falls
+// to homotopy_min_step. The defaults are the catalogue's.
+struct SolveEffort {
+  int starts = 24;
+  double homotopy_min_step = 1.0 / 4096;
+};
 
-// Adds the orbit of the root X to `out` unless one within 1e-8 l of its positions is there already.
-void add_distinct(std::vector<SteadyOrbit>& out, const OrbitProblem& pb, const Vec9& X);
-// Orders orbits outward, by the bottom ball's x in the frame.
-void sort_outward(std::vector<SteadyOrbit>& out);
+// Every orbit of the closure Stuck (at s_star) or BottomStop found from the planar guesses.
+std::vector<SteadyOrbit> orbits_at(const OrbitProblem& pb, const SolveEffort& effort = {});
 
 // The bead positions s of the stuck family's grid: n points from the top stop (or 1e-3 l
 // without it) to the bottom stop (or (1 − 1e-3) l), ends included.

@@ -43,30 +43,7 @@ struct Row {
 // drag's homotopy given up at steps of 1/64 (orbits_at: 1/4096). The orbits are orbits_at's to
 // round-off wherever both find them. (At most 20 or 30 iterations a solve, not 60, missed
 // orbits of the homotopy near the axis: R = 1.3 mm at 12π.)
-std::vector<SteadyOrbit> quick_row(const OrbitProblem& pb) {
-  const double l = pb.model.p.string_length;
-  std::vector<SteadyOrbit> out;
-  for (const Vec9& guess : planar_guesses(pb.model, pb.omega, pb.s_star, l - pb.s_star, 12)) {
-    NewtonResult r = solve(pb, guess);
-    if (!r.converged) {
-      OrbitProblem q = pb;
-      q.model.p.drag = 0.0;
-      r = solve(q, guess);
-      double frac = 0.0, step = 0.125;
-      while (r.converged && frac < 1.0 && step > 1.0 / 64) {
-        const double next = std::min(1.0, frac + step);
-        q.model.p.drag = next * pb.model.p.drag;
-        const NewtonResult t = solve(q, r.X);
-        if (t.converged) r = t, frac = next, step *= 1.5;
-        else step *= 0.5;
-      }
-      r.converged = r.converged && frac >= 1.0;
-    }
-    if (r.converged) add_distinct(out, pb, r.X);
-  }
-  sort_outward(out);
-  return out;
-}
+constexpr SolveEffort kQuickRow{12, 1.0 / 64};
 
 double depth(const SteadyOrbit& o) { return std::min(o.margins.up, o.margins.down); }
 int rank_of(double growth) { return growth < 0 ? 1 : 2; }  // rule 1 (stable) or 2
@@ -110,7 +87,7 @@ std::optional<SeedOrbit> scan_locked_orbit_seed(const physics::Model& m, double 
   const auto fill = [&](std::size_t k, bool exact) {
     const OrbitProblem pb{m, omega, Closure::Stuck, grid[k]};
     Row& row = rows[k];
-    row.orbits = exact ? orbits_at(pb) : quick_row(pb);
+    row.orbits = orbits_at(pb, exact ? SolveEffort{} : kQuickRow);
     row.exact = exact;
     row.growth.clear();
     for (const auto& o : row.orbits)
