@@ -59,11 +59,15 @@ SettleWatch::Record SettleWatch::record(double t, const numerics::Vec& y) const 
   return r;
 }
 
-void SettleWatch::restart(double t) {
-  block_end_ = t + kBlock;
+void SettleWatch::reset_rates() {
   blocks_ = 0;
   grid_count_ = 0;
   dist_.fill(0.0);
+}
+
+void SettleWatch::restart(double t) {
+  block_end_ = t + kBlock;
+  reset_rates();
   pending_ = false;
   mode_ = ctx_.s.contact.mode;
   tie_slip_ = ctx_.s.contact.tie.slip;
@@ -169,9 +173,7 @@ bool SettleWatch::recognised(double t) {
   }
   if (tie_switched_) {  // the tie switched in this block: no fixed point yet, the rates start anew
     tie_switched_ = false;
-    blocks_ = 0;
-    grid_count_ = 0;
-    dist_.fill(0.0);
+    reset_rates();
   }
   bool known = false;
   if (blocks_ >= kRateBlocks && spread <= spread_prev_) {

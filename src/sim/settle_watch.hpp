@@ -79,6 +79,7 @@ class SettleWatch {
   double top_rate(double t, const numerics::Vec& y) const;  // Ω [rad/s]
   double top_azimuth(double t, const numerics::Vec& y) const;  // ψ in the integrator's axes [rad]
   Vec6 in_top_frame(double t, const numerics::Vec& y) const;  // x = Rz(−ψ) (r1, r2) [m]
+  void reset_rates();  // the fixed-point test's blocks and their contraction rates start anew
   void restart(double t);
   void open_block(double t, const numerics::Vec& y);
   Record record(double t, const numerics::Vec& y) const;
