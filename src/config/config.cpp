@@ -697,6 +697,13 @@ sweep::BasinSpec read_basin(const toml::table& root, SweepConfig& c) {
   b.settle = r.number("settle", b.settle, 0.0, 1e6);
   b.measure = r.number("measure", b.measure, 0.0, 1e6, true);
   r.known("match_tolerance");  // retired: files made before 2026-11-28 carry it; ignored
+  // Retired with a change of physics, so refused rather than ignored: the hand of before (the top
+  // on the motor's circle at a random piecewise linear ω_m, hand_omega, hand_knots) is not the
+  // free top of today.
+  for (const char* k : {"hand_omega", "hand_knots"})
+    if (r.has(k))
+      r.fail(k, "retired on 2026-11-28: the hand now moves the top freely in the horizontal plane; give "
+                "hand_amplitude, hand_duration and hand_modes instead (guide: basin sweeps)");
   const auto only = [&](const char* key, sweep::BasinFamily f) {
     if (r.has(key) && b.family != f) r.fail(key, fmt::format("belongs to family = \"{}\", not \"{}\"", sweep::to_string(f), family));
   };
