@@ -23,7 +23,7 @@ namespace ajx::numerics {
 struct Event {
   std::function<double(double t, const Vec& y)> g;
   int direction = 0;
-  std::function<double(double t0, double t1, const Vec& y0, const Vec& e)> change_bound;
+  std::function<double(double t0, double t1, const Vec& y0, const Vec& e)> change_bound = {};
 };
 
 // Interpolation over the last accepted step [t0, t1], handed to observers.
