@@ -1,10 +1,10 @@
 // Where a bisection probe's integration steps go (issue 28's map target; docs/reports/
 // threshold-maps.md, "session 5"). Runs the chains of ω_fall (4π down to 2.5π) and ω1 (4π up to
 // 6.5π) of tests/bench/map_bisection.sh's N × N grid of (R, d) by bisection to 0.05π, probes
-// decided early, each probe by sweep::run_probe. Then integrates every probe again along the
-// same path (the same chain, start and 5 s blocks as sweep/probe_verdict.cpp's run_probe_path,
-// so the same steps: checked against the probe's own count) and splits each block's steps by
-// what its samples (every 0.1 s) show:
+// decided early, each probe by sweep::run_probe. Then integrates every probe again by the same
+// sweep::run_probe_path from the same chain and start (so the same steps: checked against the
+// probe's own count), watching its samples and blocks, and splits each block's steps by what its
+// samples (every 0.1 s) show:
 //   ramp      ω_m still on its way to the level;
 //   stuck     held, the bead stuck on the string (and the tie held);
 //   moving    held, the bead sliding (or the tie slipping), not on the ball;
@@ -43,44 +43,17 @@ struct Anatomy {
   bool early_lock = false;  // a lock decided before three whole blocks held at the level (see main)
 };
 
-// sweep/bisection.cpp's probe_chain: the carried history, a ramp to `level`, the hold and one window.
-ChainSetup chain_of(const BisectSpec& spec, const physics::Model& model, const sim::RunOptions& run,
-                    const std::vector<physics::DriveSegment>& history, double omega0, double level) {
-  const Steps hold{level, level, 1, spec.settle, spec.measure, spec.step_rate};
-  const CompiledProtocol tail = compile({Segment{Segment::Kind::Steps, {}, hold}}, omega0);
-  double t0 = 0.0;
-  for (const physics::DriveSegment& s : history) t0 += s.duration;
-  ChainSetup c;
-  c.model = model;
-  c.run = run;
-  c.sample_rate = 50.0;
-  c.protocol.schedule = history;
-  c.protocol.schedule.insert(c.protocol.schedule.end(), tail.schedule.begin(), tail.schedule.end());
-  Window w = tail.windows.front();
-  w.t_begin += t0;
-  w.t_end += t0;
-  c.protocol.windows = {w};
-  c.protocol.duration = t0 + tail.duration;
-  return c;
-}
-
-// The probe's path again, block by block as run_probe_path, with its samples sorted into phases.
-// t_hold: when ω_m reaches the level.
+// The probe's path again, by run_probe_path itself, with its samples sorted into phases.
 // trace: print every fifth sample and every block's steps.
-Anatomy dissect(const ChainSetup& chain, physics::State s, Threshold th, double t_hold, bool trace = false) {
+Anatomy dissect(const ChainSetup& chain, const physics::State& start, Threshold th, bool trace = false) {
   const Window& win = chain.protocol.windows.front();
+  const double t_hold = win.t_settle;  // when ω_m reaches the level
   const double l = chain.model.p.string_length, d = chain.model.p.contact_distance;
   const ClassifierSettings settings;
-  ProbeVerdict verdict(th, chain.model, settings, win.t_settle);
-  sim::RunOptions run = chain.run;
-  run.run_statistics = false;
-  const physics::MotorSchedule schedule = chain.motor();
-  sim::Simulation simulation(chain.model, schedule, run);
   Anatomy a;
-  a.ramp = t_hold - s.t;
+  a.ramp = t_hold - start.t;
   std::array<int, kPhases> in_block{};
   const auto watch = [&](const sim::Sample& x) {
-    verdict.add(x);
     const bool on_ball = x.contact.mode == physics::Mode::BottomStop ||
                          std::abs(l - x.dyn.g.L1 - d) <= settings.on_ball_tol * d;
     const bool stuck = x.contact.mode == physics::Mode::Stuck && !x.contact.tie.slip;
@@ -94,28 +67,27 @@ Anatomy dissect(const ChainSetup& chain, physics::State s, Threshold th, double 
                   x.t - t_hold, x.top.omega / kPi, int(x.contact.mode), x.dyn.g.L1, x.contact.s_star, x.dyn.contact,
                   x.dyn.T1, x.dyn.T2);
   };
-  const double t0 = s.t;
-  for (int k = 1; s.t < win.t_begin; ++k) {
-    const double t_begin = s.t, t_end = std::min(t0 + k * ProbeVerdict::kBlock, win.t_begin);
-    in_block = {};
-    const sim::RunSummary r = simulation.run(s, t_end, ProbeVerdict::kSampleStep, watch, 0.0);
-    a.total += r.steps;
-    if (trace) std::printf("  block to t − t_hold = %.2f s: %ld steps\n", t_end - t_hold, r.steps);
+  long in_blocks = 0;
+  const auto block = [&](double, double t_end, long steps) {
+    in_blocks += steps;
+    if (trace) std::printf("  block to t − t_hold = %.2f s: %ld steps\n", t_end - t_hold, steps);
     int n = 0;
     for (int c : in_block) n += c;
-    for (int p = 0; p < kPhases; ++p) a.steps[p] += n > 0 ? double(r.steps) * in_block[p] / n : 0.0;
-    if (!r.ok()) return a;
-    if (const auto c = verdict.close_block(t_begin, t_end)) {
-      a.end = s.t - t_hold;
-      const double first_held = t0 + std::ceil((t_hold - t0) / ProbeVerdict::kBlock - 1e-9) * ProbeVerdict::kBlock;
-      a.early_lock = c->cls == OrbitClass::LockedCircular && s.t < first_held + 3 * ProbeVerdict::kBlock - 1e-6;
-      return a;
-    }
+    for (int p = 0; p < kPhases; ++p) a.steps[p] += n > 0 ? double(steps) * in_block[p] / n : 0.0;
+    in_block = {};
+  };
+  const ProbePath path = run_probe_path(chain, start, th, settings, watch, block);
+  a.total = path.out.steps;
+  a.steps[kWindow] = double(path.out.steps - in_blocks);  // run_task's: the window and its settle
+  if (path.decided) {
+    a.end = path.decided_at - t_hold;
+    const double first_held =
+        start.t + std::ceil((t_hold - start.t) / ProbeVerdict::kBlock - 1e-9) * ProbeVerdict::kBlock;
+    a.early_lock = path.decided->cls == OrbitClass::LockedCircular &&
+                   path.decided_at < first_held + 3 * ProbeVerdict::kBlock - 1e-6;
+  } else {
+    a.end = win.t_end - t_hold;
   }
-  const TaskOutput w = run_task(chain, TaskSpan{s.t, win.t_end, 0, 1}, s);
-  a.total += w.steps;
-  a.steps[kWindow] += double(w.steps);
-  a.end = win.t_end - t_hold;
   return a;
 }
 
@@ -157,15 +129,12 @@ int main(int argc, char** argv) {
           const Probe p = run_probe(spec, m, run, 50.0, k, carry);
           if (p.ran) {
             const ChainSetup chain =
-                chain_of(spec, m, run, k == 0 ? std::vector<physics::DriveSegment>{} : carry.history,
+                probe_chain(spec, m, run, 50.0, k == 0 ? std::vector<physics::DriveSegment>{} : carry.history,
                          k == 0 ? spec.start_omega : carry.known_omega, p.omega);
             const physics::State start =
                 k == 0 ? seed_state(m, chain.motor(), spec.start_seed, spec.start_omega, 0, 0.0) : carry.known;
-            // The hold begins after the carried history and the ramp at step_rate.
-            const double t_hold = start.t + std::abs(p.omega - (k == 0 ? spec.start_omega : carry.known_omega)) /
-                                                spec.step_rate;
             const bool trace = tracing && i == ti && j == tj && th == tth && k == tk;
-            const Anatomy a = dissect(chain, start, th, t_hold, trace);
+            const Anatomy a = dissect(chain, start, th, trace);
             mismatches += a.total != p.out.steps;
             early_locks += a.early_lock;
             const int kind = k == 0 ? 0 : p.known_side ? 1 : p.classification.cls == OrbitClass::Fallen ? 2 : 3;
