@@ -3,14 +3,14 @@
 // longer change: the window it would measure is then known.
 //
 // The probe's path up to its window is integrated in blocks of B = 5 s (a few periods of the
-// slowest swing, 2π/√(g/l) ≈ 1.8 s for l = 0.826 m), sampled every 0.1 s; after each whole
-// block two verdicts are tested on its samples:
+// slowest swing, 2π/√(g/l) ≈ 1.8 s for l = 0.826 m) on the grid from the probe's start, sampled
+// every 0.1 s; after each block two verdicts are tested on its samples:
 //
 //  fallen  the bead on the bottom ball (the classifier's on-ball test) at every sample for B,
 //          from the first sample of its landing on: the block after a landing ends B after it
 //          (not on the grid: a fall lands at any time, and waiting for the next whole block
-//          cost 2.5 s more on the ball, on average, where a step is dearest: the bottom ball
-//          swings about the bead on a link of length d). A fallen pair rises again only at a
+//          cost 2.3 s more on the ball on average, where a step is dearest, the bottom ball
+//          swinging about the bead on a link of length d: tests/bench/probe_anatomy.cpp). A fallen pair rises again only at a
 //          rise of the held level, and held levels lift no bead off the ball up to 16π at any
 //          point of the shipped maps; so a bead down before the window stays down through it,
 //          in both halves: the window is fallen. Tested for ω_fall and ω1 only, whose ranges

@@ -17,6 +17,8 @@
 # the bisection map runs under mpirun -n RANKS (default 2 4 8, oversubscribed), timing rank 0
 # (the master) on its own. Both maps start on the locked orbit at 4π (seed locked_orbit), hold
 # each level 100 s + 20 s (the staircases of sweeps/paper.toml) and reach it at 0.1 rad/s².
+# Where the bisection's steps go, probe by probe (ramp, bead stuck, sliding, on the ball):
+# build/tests/bench/probe_anatomy N [-v].
 set -u
 bin=$(realpath "$1"); n=${2:-4}; shift; [ $# -gt 0 ] && shift; ranks=${*:-2 4 8}
 # MAP_BENCH_KEEP=dir keeps the sweep files and their outputs there (to profile one of them).
