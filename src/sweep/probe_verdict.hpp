@@ -10,11 +10,11 @@
 //          from the first sample of its landing on: the block after a landing ends B after it
 //          (not on the grid: a fall lands at any time, and waiting for the next whole block
 //          cost 2.3 s more on the ball on average, where a step is dearest, the bottom ball
-//          swinging about the bead on a link of length d: tests/bench/probe_anatomy.cpp). A fallen pair rises again only at a
-//          rise of the held level, and held levels lift no bead off the ball up to 16π at any
-//          point of the shipped maps; so a bead down before the window stays down through it,
-//          in both halves: the window is fallen. Tested for ω_fall and ω1 only, whose ranges
-//          lie far below (2.5π to 6.5π).
+//          swinging about the bead on a link of length d: tests/bench/probe_anatomy.cpp).
+//          A fallen pair rises again only at a rise of the held level, and held levels lift no
+//          bead off the ball up to 16π at any point of the shipped maps; so a bead down before
+//          the window stays down through it, in both halves: the window is fallen. Tested for
+//          ω_fall and ω1 only, whose ranges lie far below (2.5π to 6.5π).
 //  locked  ω_m held (the block begins at or after t_hold), the bead stuck and the tie held at
 //          every sample of three whole blocks in a row, and the balls' positions
 //          in the frame turning with the top, x = Rz(−ψ)(r1, r2), converging: the block's box
