@@ -12,7 +12,9 @@
 //   window    a probe not decided early: its window (and what run_task integrates before it).
 // A block's steps are shared among its phases in proportion to its samples in each (steps are
 // counted per block of 5 s, the probe's own integration, not per sample). Prints each probe and
-// the sums per kind of probe. Figures printed, never asserted.
+// the sums per kind of probe. Also runs every probe decided early again from the same start,
+// held through its window, and prints any whose class differs (a side decided wrongly); exits 1
+// then, or when a replay's steps differ from its probe's.
 // Run:  build/tests/bench/probe_anatomy [N] [-v]
 #include <array>
 #include <cmath>
@@ -111,7 +113,7 @@ int main(int argc, char** argv) {
   std::array<Anatomy, 4> sum{};
   std::array<int, 4> count{};
   std::array<double, 4> slip_sum{}, land_sum{}, end_sum{}, ramp_sum{};
-  long mismatches = 0, early_locks = 0;
+  long mismatches = 0, early_locks = 0, wrong_sides = 0, decided = 0;
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) {
       physics::Model m;
@@ -137,6 +139,20 @@ int main(int argc, char** argv) {
             const Anatomy a = dissect(chain, start, th, trace);
             mismatches += a.total != p.out.steps;
             early_locks += a.early_lock;
+            // The same probe from the same carry held through its window: the same class?
+            if (p.decided) {
+              BisectSpec held = spec;
+              held.decide_early = false;
+              const Probe f = run_probe(held, m, run, 50.0, k, carry);
+              ++decided;
+              if (f.classification.cls != p.classification.cls) {
+                ++wrong_sides;
+                std::printf("  R=%.4f d=%.3f %s k=%d %.4fπ: decided %s, held through %s\n", m.p.drive_radius,
+                            m.p.contact_distance, std::string(to_string(th)).c_str(), k, p.omega / kPi,
+                            std::string(to_string(p.classification.cls)).c_str(),
+                            std::string(to_string(f.classification.cls)).c_str());
+              }
+            }
             const int kind = k == 0 ? 0 : p.known_side ? 1 : p.classification.cls == OrbitClass::Fallen ? 2 : 3;
             ++count[kind];
             for (int q = 0; q < kPhases; ++q) sum[kind].steps[q] += a.steps[q];
@@ -181,5 +197,7 @@ int main(int argc, char** argv) {
   std::printf("  (per-phase columns: mean steps a probe; replayed steps differing from the probe's own: %ld)\n",
               mismatches);
   std::printf("  locks decided before three whole 5 s blocks held at the level: %ld\n", early_locks);
-  return mismatches == 0 ? 0 : 1;
+  std::printf("  probes decided early whose class differs from the same probe's held through its window from the "
+              "same start: %ld of %ld\n", wrong_sides, decided);
+  return mismatches == 0 && wrong_sides == 0 ? 0 : 1;
 }
