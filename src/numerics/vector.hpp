@@ -10,9 +10,10 @@ inline constexpr int kMaxDim = 32;
 using Vec = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, kMaxDim, 1>;
 
 // Calls fn.template operator()<N>() with N = n when n is a state size compiled as fixed-size
-// kernels (15: the Astrojax state, 17: with the string's tie, physics/state.hpp), else with
-// N = Eigen::Dynamic. The steppers use it to combine their stages on Eigen::Map<Matrix<double,
-// N, 1>> views: unrolled element-wise loops, the same arithmetic per element.
+// kernels (15: the Astrojax state, 17: with the motor's ledger, 19: with the string's tie,
+// physics/state.hpp), else with N = Eigen::Dynamic. The steppers use it to combine their stages
+// on Eigen::Map<Matrix<double, N, 1>> views: unrolled element-wise loops, the same arithmetic
+// per element.
 template <class Fn>
 decltype(auto) with_state_size(Eigen::Index n, Fn&& fn) {
   switch (n) {
@@ -20,6 +21,8 @@ decltype(auto) with_state_size(Eigen::Index n, Fn&& fn) {
       return fn.template operator()<15>();
     case 17:
       return fn.template operator()<17>();
+    case 19:
+      return fn.template operator()<19>();
     default:
       return fn.template operator()<Eigen::Dynamic>();
   }

@@ -31,10 +31,11 @@ TopKinematics top_kinematics(const Model& m, const MotorSchedule& schedule, cons
   TopKinematics k = point_on_circle(R, chi, chi_dot, 0.0);  // χ̈ = 0 for now
   k.motor_omega = omega_m;
   k.motor_omega_dot = omega_m_dot;
-  const Dynamics d0 = evaluate(m, k, c, y);
+  // Only the pull F1 and u1 are read: the motion's evaluation (no cone) gives them bit for bit.
+  const Dynamics d0 = evaluate(m, k, c, y, true);
   TopKinematics k1 = k;
   k1.a_ddot += R * tangential;  // χ̈ = 1 rad/s²
-  const Dynamics d1 = evaluate(m, k1, c, y);
+  const Dynamics d1 = evaluate(m, k1, c, y, true);
   const double lever = R * tangential.dot(d0.g.u1);  // R (ê_χ·u1)
   const double clutch = c.tie.sigma * m.p.tie_kinetic_torque + m.p.tie_damping * (omega_m - chi_dot);
   const double chi_ddot = (clutch + lever * d0.pull) / (m.p.tie_inertia - lever * (d1.pull - d0.pull));
