@@ -17,7 +17,8 @@ must
 Older formats the reader accepts replay too: the short chain's file rewritten as format 3 (no
 motor's ledger in /tasks/final_state, no string_power or clutch_power) and as format 2 (joined
 strings, no /classes) reproduces the same three windows, and its run file reads in
-astrojax_analysis.read_motion (the ledger finite: it counts from the task's start).
+astrojax_analysis.read_motion (the ledger finite: it counts from the task's start); the holds
+of `astrojax thresholds` on the format 3 file give format 4's verdicts.
 Bad input exits 2 with the file and the problem named and no output: a window or chain out of
 range, a file without samples, an existing output without --force, a missing file.
 
@@ -144,6 +145,16 @@ def check_older_formats(exe, src, h5, rows, work):
                     ok = False
                     print(e)
                 check(f"format {version}, {cls}: the run file reads, its ledger finite", ok)
+    # The holds of `astrojax thresholds` restart from /tasks/final_state too: on the file without
+    # the ledger they reach the verdicts they reach on the file with it (a tie's W_m, W_c start at 0).
+    verdicts = {}
+    for tag, path in (("4", h5), ("3", f3)):
+        out = os.path.join(work, f"thresholds_f{tag}.csv")
+        p = run(exe, "thresholds", path, "--csv", out, "--hold", "20")
+        with open(out, newline="") as f:
+            verdicts[tag] = [(r["chain"], r["threshold"], r["verdict"]) for r in csv.DictReader(f)] if p.returncode == 0 else None
+    check(f"format 3: the holds' verdicts are format 4's ({verdicts['3']} against {verdicts['4']})",
+          verdicts["4"] and verdicts["3"] == verdicts["4"] and all(v != "undecided" for _, _, v in verdicts["4"]))
 
 
 def check_bad_input(exe, h5, work, rows):

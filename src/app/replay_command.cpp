@@ -111,11 +111,6 @@ StoredWindow read_stored_window(const std::string& path, long chain, long window
                                   path, k, c, int(in.status()[first + s.task - 1])));
   // The start: the chain's seed for its first task, else the previous task's /tasks/final_state.
   s.start = s.task == 0 ? s.plan.start_state(c) : in.final_state(first + s.task - 1);
-  // Files before format 4 hold no motor's ledger (W_m, W_c read as NaN): those integrals start at
-  // 0 with the task, so the run file's ledger counts from there; the motion does not depend on them.
-  if (physics::has_ledger(s.start.y))
-    for (const int i : {physics::idx::rod_work, physics::idx::clutch_loss})
-      if (std::isnan(s.start.y(i))) s.start.y(i) = 0.0;
   describe_window(s, path, in.git_commit(), c, k);
   return s;
 }

@@ -406,7 +406,14 @@ physics::State SweepReader::final_state(std::size_t task) const {
   std::vector<double> row(physics::kStateCols, kNotComputed);
   const std::size_t cols = final_states_.cols();
   std::copy_n(&final_states_.data[task * cols], cols, row.begin());
-  return physics::state_from_row(row);
+  physics::State s = physics::state_from_row(row);
+  // Files before format 4 hold no motor's ledger: a tie's W_m and W_c would read as NaN. A run
+  // restarted from the state (a replay, a hold) integrates them from 0 at its start; the motion
+  // does not depend on them.
+  if (physics::has_ledger(s.y))
+    for (const int i : {physics::idx::rod_work, physics::idx::clutch_loss})
+      if (std::isnan(s.y(i))) s.y(i) = 0.0;
+  return s;
 }
 
 // Format 3: /classes as this program declares them (sweep/orbit_classes.hpp).

@@ -132,6 +132,8 @@ class SweepReader {
 
   // /tasks
   const std::vector<TaskStatus>& status() const { return status_; }
+  // A task's last state, where the next task starts (a tie's W_m, W_c from 0 in files that
+  // predate the motor's ledger).
   physics::State final_state(std::size_t task) const;
   const std::vector<std::string>& failures() const { return failures_; }
 
