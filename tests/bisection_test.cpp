@@ -9,6 +9,7 @@
 
 #include "orbits/threshold_curves.hpp"
 #include "sweep/bisection.hpp"
+#include "sweep/probe_verdict.hpp"
 
 using namespace ajx;
 using namespace ajx::sweep;
@@ -41,6 +42,21 @@ BisectSpec fall_spec(double width) {
   b.width = width;
   return b;
 }
+
+// A synthetic sample of the verdict's blocks: the bead at L1 in `mode`, both balls at rest in
+// the turning frame (φ = 0).
+struct FakeSample {
+  physics::Contact contact;
+  numerics::Vec y = numerics::Vec::Zero(physics::idx::dim);
+  physics::Dynamics dyn{};
+  physics::TopKinematics top{};
+  FakeSample(physics::Mode mode, double L1) : contact(mode) {
+    dyn.g.L1 = L1;
+    y(physics::idx::r1 + 2) = -L1;
+    y(physics::idx::r2 + 2) = -0.826;
+  }
+  sim::Sample at(double t) const { return {t, contact, y, dyn, top, 0.0}; }
+};
 
 // Every probe of one chain in order, each from the carry the previous left.
 std::vector<Probe> bisect(const BisectSpec& spec, const physics::Model& m) {
@@ -158,6 +174,18 @@ TEST(Bisection, ProbesDecidedEarlyGiveTheBracketsOfFullProbes) {
         if (early == 0)
           for (const Probe& p : probes) EXPECT_FALSE(p.decided);
       }
+      // A lock is decided at the third whole 5 s block held at the level at the earliest: the
+      // level is reached |Δω|/step_rate after the probe's start, the known side's state.
+      // (probe 0: the seed at t = 0 and start_omega).
+      BisectCarry in;
+      in.known_omega = spec.start_omega;
+      for (const Probe& p : bisect(spec, m)) {
+        if (p.decided && p.classification.cls == OrbitClass::LockedCircular) {
+          const double t_hold = in.known.t + std::abs(p.omega - in.known_omega) / spec.step_rate;
+          EXPECT_GE(p.decided_at, t_hold + 3 * ProbeVerdict::kBlock - 1e-9) << p.omega / kPi << "π";
+        }
+        in = p.next;
+      }
       const std::string at = "R = " + std::to_string(R) + ", " + std::string(to_string(th));
       ASSERT_EQ(ends[0].status, BisectStatus::Converged) << at;
       EXPECT_EQ(ends[1].status, ends[0].status) << at;
@@ -170,4 +198,76 @@ TEST(Bisection, ProbesDecidedEarlyGiveTheBracketsOfFullProbes) {
   RecordProperty("steps_full", std::to_string(steps[0]));
   RecordProperty("steps_early", std::to_string(steps[1]));
   EXPECT_LT(steps[1], steps[0] / 2);
+}
+
+// The fallen verdict counts B = 5 s on the ball from the landing's first sample, not from the
+// block grid: a bead landing at 2.3 s is decided at the sample of 7.3 s (the block after the
+// landing ends there, fall_due), a bead that leaves the ball on the way starts again, and a
+// flower touching the ball for less than B is never decided fallen.
+TEST(ProbeVerdict, FallenFiveSecondsAfterTheLandingNotOnTheGrid) {
+  const physics::Model m = documented();
+  const double l = m.p.string_length, d = m.p.contact_distance;
+  const FakeSample up(physics::Mode::Sliding, 0.5), down(physics::Mode::BottomStop, l - d);
+  const double dt = ProbeVerdict::kSampleStep;
+  ProbeVerdict v(Threshold::Fall, m, ClassifierSettings{}, 0.0);
+  for (int k = 0; k <= 50; ++k) v.add((k < 23 ? up : down).at(k * dt));
+  EXPECT_FALSE(v.close_block(0.0, 5.0));
+  EXPECT_NEAR(v.fall_due(), 2.3 + ProbeVerdict::kBlock + 0.5 * dt, 1e-9);
+  for (int k = 50; k <= 72; ++k) v.add(down.at(k * dt));
+  EXPECT_FALSE(v.close_block(5.0, 7.2));  // 4.9 s on the ball
+  v.add(down.at(7.3));
+  const auto c = v.close_block(7.2, 7.35);
+  ASSERT_TRUE(c);
+  EXPECT_EQ(c->cls, OrbitClass::Fallen);
+
+  for (const double off : {4.0, 6.0}) {  // off the ball at one sample: 5.9 s since, or 3.9 s
+    ProbeVerdict bounce(Threshold::Omega1, m, ClassifierSettings{}, 0.0);
+    for (int k = 0; k <= 100; ++k) bounce.add((k == std::lround(off / dt) ? up : down).at(k * dt));
+    EXPECT_NEAR(bounce.fall_due(), off + dt + ProbeVerdict::kBlock + 0.5 * dt, 1e-9);
+    EXPECT_EQ(bounce.close_block(0.0, 10.0).has_value(), off == 4.0) << off;
+  }
+  ProbeVerdict flower(Threshold::Fall, m, ClassifierSettings{}, 0.0);
+  for (int k = 0; k <= 100; ++k) flower.add((k % 40 < 30 ? up : down).at(k * dt));  // 1 s on the ball in 4
+  EXPECT_FALSE(flower.close_block(0.0, 10.0));
+  ProbeVerdict rise(Threshold::Rise, m, ClassifierSettings{}, 0.0);  // ω_rise's probes are never decided
+  for (int k = 0; k <= 50; ++k) rise.add(down.at(k * dt));
+  EXPECT_FALSE(rise.close_block(0.0, 5.0));
+  EXPECT_EQ(rise.fall_due(), std::numeric_limits<double>::infinity());
+}
+
+// The lock verdict reads held blocks only: a stuck orbit at a fixed point of the turning frame
+// from t = 0 is decided locked at the third whole block held at the level, when the level is
+// reached at t_hold = 12 s (blocks from 15 s: decided at 30 s), whatever the blocks before.
+TEST(ProbeVerdict, LockedOnlyAfterThreeWholeBlocksHeld) {
+  const physics::Model m = documented();
+  const FakeSample stuck(physics::Mode::Stuck, 0.45);
+  const double dt = ProbeVerdict::kSampleStep, B = ProbeVerdict::kBlock;
+  ProbeVerdict v(Threshold::Fall, m, ClassifierSettings{}, 12.0);
+  double decided = -1.0;
+  for (int b = 0; b < 10 && decided < 0.0; ++b) {
+    for (int k = 0; k <= 50; ++k) v.add(stuck.at(b * B + k * dt));
+    if (const auto c = v.close_block(b * B, (b + 1) * B)) {
+      EXPECT_EQ(c->cls, OrbitClass::LockedCircular);
+      decided = (b + 1) * B;
+    }
+  }
+  EXPECT_DOUBLE_EQ(decided, 30.0);
+}
+
+// A probe's window after a carried history of t0 = 50 s: the ramp from 4π to 3.5π at 0.1 rad/s²
+// ends at t_settle = t0 + 0.5π/0.1, the hold's start, from which the lock verdict reads blocks
+// (it read every block when t_settle was left at the ramp's end measured from 0), the window
+// after settle, and the schedule's motor at t_settle is at the level.
+TEST(Bisection, ProbeChainHoldsFromTheEndOfItsRampAfterTheHistory) {
+  BisectSpec spec = fall_spec(0.05 * kPi);
+  const std::vector<physics::DriveSegment> history = {{4 * kPi, 4 * kPi, 50.0}};
+  const ChainSetup c = probe_chain(spec, documented(), run_options(), 50.0, history, 4 * kPi, 3.5 * kPi);
+  ASSERT_EQ(c.protocol.windows.size(), 1u);
+  const Window& w = c.protocol.windows.front();
+  EXPECT_NEAR(w.t_settle, 50.0 + 0.5 * kPi / spec.step_rate, 1e-9);
+  EXPECT_NEAR(w.t_begin, w.t_settle + spec.settle, 1e-9);
+  EXPECT_NEAR(w.t_end, w.t_begin + spec.measure, 1e-9);
+  const physics::MotorSchedule motor = c.motor();
+  EXPECT_NEAR(motor.top(w.t_settle).omega, 3.5 * kPi, 1e-9);
+  EXPECT_NEAR(motor.top(w.t_settle - 1.0).omega, 3.5 * kPi + spec.step_rate, 1e-9);  // still ramping
 }

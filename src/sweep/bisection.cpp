@@ -83,10 +83,6 @@ BisectCarry decode_carry(const std::vector<std::byte>& bytes) {
   return c;
 }
 
-namespace {
-
-// The probe's chain: the carried history, then ω_m ramped from omega0 to the level at step_rate,
-// held for settle, and one window of measure.
 ChainSetup probe_chain(const BisectSpec& spec, const physics::Model& model, const sim::RunOptions& run,
                        double sample_rate, const std::vector<physics::DriveSegment>& history, double omega0,
                        double level) {
@@ -101,12 +97,15 @@ ChainSetup probe_chain(const BisectSpec& spec, const physics::Model& model, cons
   c.protocol.schedule = history;
   c.protocol.schedule.insert(c.protocol.schedule.end(), tail.schedule.begin(), tail.schedule.end());
   Window w = tail.windows.front();
+  w.t_settle += t0;  // the hold's start: the lock verdict tests held blocks only
   w.t_begin += t0;
   w.t_end += t0;
   c.protocol.windows = {w};
   c.protocol.duration = t0 + tail.duration;
   return c;
 }
+
+namespace {
 
 // The motor schedule from t = 0 to t: the segments before it, the one it falls in cut there.
 std::vector<physics::DriveSegment> schedule_until(const std::vector<physics::DriveSegment>& schedule, double t) {

@@ -103,6 +103,13 @@ struct Probe {
   BisectCarry next;          // the bracket after this probe
 };
 
+// The probe's chain: the carried history (from t = 0 to t0, the sum of its durations), then ω_m
+// ramped from omega0 to `level` at step_rate, held for settle from t_settle = t0 + |level −
+// omega0|/step_rate, and one window of measure.
+ChainSetup probe_chain(const BisectSpec& spec, const physics::Model& model, const sim::RunOptions& run,
+                       double sample_rate, const std::vector<physics::DriveSegment>& history, double omega0,
+                       double level);
+
 // Probe k (0, 1, ...) of a chain at `model`, from the carry probe k − 1 left (ignored for k = 0,
 // which starts from the seed).
 Probe run_probe(const BisectSpec& spec, const physics::Model& model, const sim::RunOptions& run, double sample_rate,

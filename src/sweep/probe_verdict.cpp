@@ -18,7 +18,12 @@ ProbeVerdict::ProbeVerdict(Threshold threshold, const physics::Model& model, con
 
 void ProbeVerdict::add(const sim::Sample& s) {
   // The classifier's on-ball test (sweep/orbit_classifier.cpp): the mode, or L2 = l − L1 within tol·d of d.
-  on_ball_ = on_ball_ && (s.contact.mode == physics::Mode::BottomStop || std::abs(l_ - s.dyn.g.L1 - d_) <= on_ball_tol_ * d_);
+  if (s.contact.mode == physics::Mode::BottomStop || std::abs(l_ - s.dyn.g.L1 - d_) <= on_ball_tol_ * d_) {
+    if (std::isnan(on_since_)) on_since_ = s.t;
+    last_on_ = s.t;
+  } else {
+    on_since_ = std::numeric_limits<double>::quiet_NaN();
+  }
   stuck_ = stuck_ && s.contact.mode == physics::Mode::Stuck && !s.contact.tie.slip;
   // x = Rz(−ψ)(r1, r2), ψ the top's azimuth.
   const double c = std::cos(s.top.phi), sn = std::sin(s.top.phi);
@@ -41,12 +46,12 @@ void ProbeVerdict::add(const sim::Sample& s) {
 std::optional<OrbitClassification> ProbeVerdict::close_block(double t_begin, double t_end) {
   std::optional<OrbitClassification> out;
   const bool whole = t_end - t_begin >= kBlock * (1.0 - 1e-9) && n_ > 0;
-  if (whole && may_fall_ && on_ball_) {
+  if (may_fall_ && !std::isnan(on_since_) && last_on_ - on_since_ >= kBlock - 1e-6) {
     out.emplace();
     out->cls = OrbitClass::Fallen;
     out->confidence = 1.0;
-    out->reason = fmt::format("decided at t = {:.1f} s: the bead on the bottom ball for the whole block from {:.1f} s",
-                              t_end, t_begin);
+    out->reason = fmt::format("decided at t = {:.1f} s: the bead on the bottom ball at every sample since {:.1f} s",
+                              t_end, on_since_);
   }
   const bool held = whole && may_lock_ && stuck_ && t_first_ >= t_hold_;
   if (!out && held) {
@@ -74,12 +79,18 @@ std::optional<OrbitClassification> ProbeVerdict::close_block(double t_begin, dou
     stuck_blocks_ = 0;
   }
   n_ = 0;
-  on_ball_ = stuck_ = true;
+  stuck_ = true;
   return out;
 }
 
+double ProbeVerdict::fall_due() const {
+  return may_fall_ && !std::isnan(on_since_) ? on_since_ + kBlock + 0.5 * kSampleStep
+                                             : std::numeric_limits<double>::infinity();
+}
+
 ProbePath run_probe_path(const ChainSetup& chain, physics::State start, Threshold threshold,
-                         const ClassifierSettings& settings) {
+                         const ClassifierSettings& settings, const sim::SampleObserver& on_sample,
+                         const std::function<void(double, double, long)>& on_block) {
   const Window& win = chain.protocol.windows.front();
   const TaskSpan span{start.t, win.t_end, 0, 1};
   ProbeVerdict verdict(threshold, chain.model, settings, win.t_settle);
@@ -92,14 +103,21 @@ ProbePath run_probe_path(const ChainSetup& chain, physics::State start, Threshol
   sim::RunOptions run = chain.run;
   run.run_statistics = false;
   sim::Simulation simulation(chain.model, schedule, run);
-  const auto watch = [&](const sim::Sample& s) { verdict.add(s); };
+  const auto watch = [&](const sim::Sample& s) {
+    verdict.add(s);
+    if (on_sample) on_sample(s);
+  };
   physics::State s = std::move(start);
   const double t0 = s.t;
-  // Blocks on the grid t0 + k B up to the window's start; the window itself in one run.
-  for (int k = 1; s.t < win.t_begin; ++k) {
-    const double t_begin = s.t, t_end = std::min(t0 + k * ProbeVerdict::kBlock, win.t_begin);
+  // Blocks on the grid t0 + k B up to the window's start, or up to B after a landing (then back
+  // on the grid); the window itself in one run.
+  for (int k = 1; s.t < win.t_begin;) {
+    while (t0 + k * ProbeVerdict::kBlock <= s.t + 1e-9) ++k;
+    const double t_begin = s.t;
+    const double t_end = std::min({t0 + k * ProbeVerdict::kBlock, verdict.fall_due(), win.t_begin});
     const sim::RunSummary r = simulation.run(s, t_end, ProbeVerdict::kSampleStep, watch, 0.0);
     add_counts(p.out, r);
+    if (on_block) on_block(t_begin, t_end, r.steps);
     if (!r.ok()) {
       p.out.ok = false;
       p.out.failure = r.failure;

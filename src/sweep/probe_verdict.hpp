@@ -3,15 +3,20 @@
 // longer change: the window it would measure is then known.
 //
 // The probe's path up to its window is integrated in blocks of B = 5 s (a few periods of the
-// slowest swing, 2π/√(g/l) ≈ 1.8 s for l = 0.826 m), sampled every 0.1 s; after each whole
-// block two verdicts are tested on its samples:
+// slowest swing, 2π/√(g/l) ≈ 1.8 s for l = 0.826 m) on the grid from the probe's start, sampled
+// every 0.1 s; after each block two verdicts are tested on its samples:
 //
-//  fallen  the bead on the bottom ball (the classifier's on-ball test) at every sample of the
-//          block. A fallen pair rises again only at a rise of the held level, and held levels
-//          lift no bead off the ball up to 16π at any point of the shipped maps; so a bead down
-//          before the window stays down through it, in both halves: the window is fallen.
-//          Tested for ω_fall and ω1 only, whose ranges lie far below (2.5π to 6.5π).
-//  locked  ω_m held, the bead stuck and the tie held at every sample, and the balls' positions
+//  fallen  the bead on the bottom ball (the classifier's on-ball test) at every sample for B,
+//          from the first sample of its landing on: the block after a landing ends B after it
+//          (not on the grid: a fall lands at any time, and waiting for the next whole block
+//          cost 2.3 s more on the ball on average, where a step is dearest, the bottom ball
+//          swinging about the bead on a link of length d: tests/bench/probe_anatomy.cpp).
+//          A fallen pair rises again only at a rise of the held level, and held levels lift no
+//          bead off the ball up to 16π at any point of the shipped maps; so a bead down before
+//          the window stays down through it, in both halves: the window is fallen. Tested for
+//          ω_fall and ω1 only, whose ranges lie far below (2.5π to 6.5π).
+//  locked  ω_m held (the block begins at or after t_hold), the bead stuck and the tie held at
+//          every sample of three whole blocks in a row, and the balls' positions
 //          in the frame turning with the top, x = Rz(−ψ)(r1, r2), converging: the block's box
 //          of x has a half-diagonal a_j ≤ a_{j−1}, the shift of its centre from the last
 //          block's, s_j, contracts, q = s_j/s_{j−1} < 1, and the distance left to the fixed
@@ -26,6 +31,8 @@
 // window, classified as every window is.
 #pragma once
 #include <Eigen/Core>
+#include <functional>
+#include <limits>
 #include <optional>
 
 #include "physics/model.hpp"
@@ -51,6 +58,9 @@ class ProbeVerdict {
   void add(const sim::Sample& s);
   // The block that began at t_begin ended at t_end: the class when decided.
   std::optional<OrbitClassification> close_block(double t_begin, double t_end);
+  // When the bead on the ball since its landing will have been there for B (just past the
+  // sample at landing + B, so that the block ending there holds it); +inf when it is not on the ball.
+  double fall_due() const;
 
  private:
   using Vec6 = Eigen::Matrix<double, 6, 1>;
@@ -58,8 +68,10 @@ class ProbeVerdict {
   double l_ = 0.0, d_ = 0.0, on_ball_tol_ = 0.0, t_hold_ = 0.0;
   // this block
   long n_ = 0;
-  bool on_ball_ = true, stuck_ = true;
+  bool stuck_ = true;
   double t_first_ = 0.0;
+  // the bead on the ball at every sample from on_since_ to last_on_ (NaN: not on the ball at the last sample)
+  double on_since_ = std::numeric_limits<double>::quiet_NaN(), last_on_ = 0.0;
   Vec6 lo_, hi_;
   // the blocks before, while stuck and held: the last box's half-diagonal and centre, the last shift
   int stuck_blocks_ = 0;
@@ -75,7 +87,10 @@ struct ProbePath {
   std::optional<OrbitClassification> decided;
   double decided_at = 0.0;  // [s]
 };
+// on_sample and on_block (optional) see every sample of the blocks and every block's span and
+// steps (tests/bench/probe_anatomy.cpp: where a probe's steps go).
 ProbePath run_probe_path(const ChainSetup& chain, physics::State start, Threshold threshold,
-                         const ClassifierSettings& settings);
+                         const ClassifierSettings& settings, const sim::SampleObserver& on_sample = {},
+                         const std::function<void(double t_begin, double t_end, long steps)>& on_block = {});
 
 }  // namespace ajx::sweep

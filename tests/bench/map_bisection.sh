@@ -17,6 +17,8 @@
 # the bisection map runs under mpirun -n RANKS (default 2 4 8, oversubscribed), timing rank 0
 # (the master) on its own. Both maps start on the locked orbit at 4π (seed locked_orbit), hold
 # each level 100 s + 20 s (the staircases of sweeps/paper.toml) and reach it at 0.1 rad/s².
+# Where the bisection's steps go, probe by probe (ramp, bead stuck, sliding, on the ball):
+# build/tests/bench/probe_anatomy N [-v].
 set -u
 bin=$(realpath "$1"); n=${2:-4}; shift; [ $# -gt 0 ] && shift; ranks=${*:-2 4 8}
 # MAP_BENCH_KEEP=dir keeps the sweep files and their outputs there (to profile one of them).
@@ -122,8 +124,26 @@ echo "  the seeds alone ($pts solves, a 0.1 s hold from locked_orbit less one fr
 echo "  integration steps bisection/ladder: $(python3 -c "print(f'{$sb/$sl:.3f}')"); held through: $(python3 -c "print(f'{$sf/$sl:.3f}')")"
 h5diff -q "$work/bisect.h5" "$work/full.h5" /brackets/known_omega > /dev/null && h5diff -q "$work/bisect.h5" "$work/full.h5" /brackets/other_omega > /dev/null &&
   h5diff -q "$work/bisect.h5" "$work/full.h5" /brackets/status > /dev/null &&
-  echo "  brackets decided early identical to those of probes held through: yes" ||
+  echo "  brackets decided early identical to those of probes held through: yes" || {
   echo "  brackets decided early identical to those of probes held through: NO"
+  # A chain's later probes start where its last lock was decided, not at that window's end: a
+  # probe near the threshold may then go the other way (build/tests/bench/probe_anatomy N checks
+  # each verdict against the same probe held through from the same start).
+  /usr/bin/python3 - "$work/bisect.h5" "$work/full.h5" <<'PY'
+import h5py, sys, numpy as np
+a, b = (h5py.File(p)["brackets"] for p in sys.argv[1:3])
+same = np.ones(a["status"].shape, bool)
+for k in ("known_omega", "other_omega"):
+    x, y = a[k][:], b[k][:]
+    same &= (x == y) | (np.isnan(x) & np.isnan(y))
+same &= (a["status"][:] == b["status"][:])
+pi = lambda f, k, i: f"{f[k][i] / np.pi:.4f}π"
+for i in np.flatnonzero(~same):
+    print(f"    chain {i}: {pi(a, 'known_omega', i)} → {pi(a, 'other_omega', i)} decided early, "
+          f"{pi(b, 'known_omega', i)} → {pi(b, 'other_omega', i)} held through")
+print(f"    {int(same.sum())} of {same.size} chains identical")
+PY
+}
 python3 - "$work/b.csv" "$work/l.csv" <<'PY'
 import csv, sys, math
 # A ladder's threshold is the pair of neighbouring levels where the class changes; the bisection's
