@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "map_bench_spec.hpp"
 #include "orbits/threshold_curves.hpp"
 #include "sweep/bisection.hpp"
 #include "sweep/probe_verdict.hpp"
@@ -159,12 +160,7 @@ TEST(Bisection, ProbesDecidedEarlyGiveTheBracketsOfFullProbes) {
     m.p.drive_radius = R;
     m.p.contact_distance = 0.03;
     for (const Threshold th : {Threshold::Fall, Threshold::Omega1}) {
-      BisectSpec spec;
-      spec.threshold = th;
-      spec.start_seed = "locked_orbit";
-      spec.start_omega = spec.from = 4 * kPi;
-      spec.to = th == Threshold::Fall ? 2.5 * kPi : 6.5 * kPi;
-      spec.width = 0.1 * kPi;
+      BisectSpec spec = map_bench_spec(th, 0.1 * kPi);
       BisectCarry ends[2];
       for (int early = 0; early < 2; ++early) {
         spec.decide_early = early == 1;

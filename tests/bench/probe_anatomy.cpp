@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "map_bench_spec.hpp"
 #include "sweep/bisection.hpp"
 #include "sweep/probe_verdict.hpp"
 #include "sweep/protocol.hpp"
@@ -120,12 +121,7 @@ int main(int argc, char** argv) {
       m.p.drive_radius = 0.005 + 0.025 * i / (n - 1);
       m.p.contact_distance = 0.02 + 0.03 * j / (n - 1);
       for (const Threshold th : {Threshold::Fall, Threshold::Omega1}) {
-        BisectSpec spec;
-        spec.threshold = th;
-        spec.start_seed = "locked_orbit";
-        spec.start_omega = spec.from = 4 * kPi;
-        spec.to = th == Threshold::Fall ? 2.5 * kPi : 6.5 * kPi;
-        spec.width = 0.05 * kPi;
+        const BisectSpec spec = map_bench_spec(th, 0.05 * kPi);
         BisectCarry carry;
         for (int k = 0; k < probe_count(spec); ++k) {
           const Probe p = run_probe(spec, m, run, 50.0, k, carry);
