@@ -1,7 +1,8 @@
 // A bracket's checks as farm tasks (sweep/bracket_check.hpp): run_check gives exactly what the
 // hold and the refinement give when called directly, a check and its result come back from
 // their bytes bit for bit (NaNs included), an exception becomes the check's failure with its
-// message, and a damaged message is refused. On tests/data/tiny_rise.toml, whose last ramp
+// message, a damaged message is refused, and a check's seconds (the farm's order) are those it
+// integrates. On tests/data/tiny_rise.toml, whose last ramp
 // crosses ω_rise.
 #include <gtest/gtest.h>
 
@@ -80,6 +81,20 @@ TEST(BracketCheck, RefinementIsTheDirectRefinementAndSurvivesItsBytes) {
   EXPECT_EQ(back.windows.back().omega_end, r.windows.back().omega_end);
   EXPECT_EQ(back.windows.back().cls, r.windows.back().cls);
   EXPECT_EQ(back.simulated, r.simulated);
+}
+
+// The farm hands the checks out longest first by the seconds each integrates: for a refinement,
+// the seconds it did integrate; for a hold, the replay up to t_cut and the hold.
+TEST(BracketCheck, ItsSecondsAreThoseItIntegrates) {
+  const physics::State start = plan().start_state(0);
+  const RefineCheck f{0, Threshold::Rise, last_ramp_bracket(), 2};
+  const Refinement r = std::get<Refinement>(run_check(f, plan(), start, {}));
+  EXPECT_NEAR(check_seconds(f, plan(), start), r.simulated, 1e-9 * r.simulated);
+  const HoldCheck h = hold_check();
+  EXPECT_DOUBLE_EQ(check_seconds(h, plan(), start), h.t_cut + h.hold - start.t);
+  HoldCheck elsewhere = h;
+  elsewhere.chain = 99;  // no such chain: run_check fails it, and it costs nothing
+  EXPECT_EQ(check_seconds(elsewhere, plan(), start), 0.0);
 }
 
 TEST(BracketCheck, ChecksSurviveTheirBytes) {

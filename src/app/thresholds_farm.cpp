@@ -3,7 +3,9 @@
 #include <mpi.h>
 
 #include <atomic>
+#include <algorithm>
 #include <cstdint>
+#include <numeric>
 #include <stdexcept>
 
 #include "config/config.hpp"
@@ -65,9 +67,16 @@ std::optional<std::vector<sweep::CheckResult>> run_checks(const ChecksContext& c
                                                          const std::vector<PlannedCheck>& checks, int threads) {
   parallel::Bytes bytes = encode(context);
   parallel::broadcast(bytes, MPI_COMM_WORLD);
-  // One chain of one task per check: they are independent, handed out in the order given.
+  // One chain of one task per check: they are independent, handed out longest first (by the
+  // simulated seconds each integrates), so that the last to finish is a short one; the results
+  // are kept by task id, in the order of `checks`.
+  std::vector<double> seconds(checks.size());
+  for (std::size_t i = 0; i < checks.size(); ++i) seconds[i] = sweep::check_seconds(checks[i].check, plan, checks[i].start);
+  std::vector<std::size_t> order(checks.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return seconds[a] > seconds[b]; });
   std::vector<parallel::Chain> chains;
-  for (std::size_t i = 0; i < checks.size(); ++i) {
+  for (const std::size_t i : order) {
     const auto id = std::int64_t(i);
     chains.push_back({id, sweep::encode(checks[i].start), {{id, id, 0, sweep::encode(checks[i].check)}}});
   }

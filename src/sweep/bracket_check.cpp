@@ -1,5 +1,6 @@
 #include "sweep/bracket_check.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <exception>
 #include <fmt/format.h>
@@ -152,6 +153,19 @@ CheckResult run_check(const BracketCheck& check, const SweepPlan& plan, const ph
     return refine_threshold(f.threshold, plan.setups[c], plan.points[c].protocol, f.bracket, f.factor, start, settings);
   } catch (const std::exception& e) {
     return failed_check(check, e.what());
+  }
+}
+
+double check_seconds(const BracketCheck& check, const SweepPlan& plan, const physics::State& start) {
+  const std::size_t c = std::visit([](const auto& k) { return k.chain; }, check);
+  if (c >= plan.chains()) return 0.0;
+  if (const auto* h = std::get_if<HoldCheck>(&check)) return std::max(h->t_cut + h->hold - start.t, 0.0);
+  const RefineCheck& f = std::get<RefineCheck>(check);
+  try {
+    const ChainSetup refined = refined_chain(plan.setups[c], plan.points[c].protocol, f.bracket, f.factor);
+    return refined.protocol.windows.empty() ? 0.0 : std::max(refined.protocol.windows.back().t_end - start.t, 0.0);
+  } catch (const std::invalid_argument&) {
+    return 0.0;  // run_check reports it
   }
 }
 

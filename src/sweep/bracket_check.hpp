@@ -44,6 +44,11 @@ using CheckResult = std::variant<HoldSide, Refinement>;
 CheckResult run_check(const BracketCheck& check, const SweepPlan& plan, const physics::State& start,
                       const ClassifierSettings& settings);
 
+// The simulated seconds the check integrates from `start` (the hold's replay up to t_cut and the
+// hold; the refined chain up to its last window), 0 for a check that cannot run: the farm hands
+// the longest out first.
+double check_seconds(const BracketCheck& check, const SweepPlan& plan, const physics::State& start);
+
 // The check's result when it could not run to its end: ok = false with `why` as its failure.
 CheckResult failed_check(const BracketCheck& check, const std::string& why);
 
