@@ -31,7 +31,9 @@ struct Contact {
     bool slip = false;
     int sigma = 0;          // while slipping: sgn(ω_m - χ̇), the sense of the clutch torque
     double offset = 0.0;    // χ - φ while held [rad]
+    bool operator==(const Tie&) const = default;
   } tie;
+  bool operator==(const Contact&) const = default;
 };
 
 // Layout of the flat vector the integrators see. The work integrals are quadratures

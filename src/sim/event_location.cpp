@@ -10,30 +10,23 @@ namespace ajx::sim {
 using numerics::Vec;
 using physics::Guard;
 
-const physics::TopKinematics& GuardEvents::PointCache::top_at(double tq, const Vec& yq, const RunContext& ctx) {
+const physics::Dynamics& GuardEvents::DynamicsCache::at(double tq, const physics::TopKinematics& top,
+                                                        const Vec& yq, const physics::Model& m,
+                                                        const Contact& c) {
   if (!(valid && tq == t && yq.size() == y.size() && (yq.array() == y.array()).all())) {
-    top = ctx.top_at(tq, yq);
+    d = physics::evaluate(m, top, c, yq);
     t = tq;
     y = yq;
     valid = true;
-    has_dynamics = false;
-  }
-  return top;
-}
-
-const physics::Dynamics& GuardEvents::PointCache::dynamics(const physics::Model& m, const Contact& c) {
-  if (!has_dynamics) {
-    d = physics::evaluate(m, top, c, y);
-    has_dynamics = true;
   }
   return d;
 }
 
 double GuardEvents::value(Guard kind, bool force, double t, const Vec& y) {
-  const physics::TopKinematics& top = cache_.top_at(t, y, ctx_);
+  const physics::TopKinematics top = ctx_.top_at(t, y);
   const Contact& contact = ctx_.contact();
   if (!physics::needs_dynamics(kind)) return physics::guard_value(kind, ctx_.model, top, contact, y);
-  return physics::guard_value(kind, ctx_.model, top, contact, y, cache_.dynamics(ctx_.model, contact)) +
+  return physics::guard_value(kind, ctx_.model, top, contact, y, cache_.at(t, top, y, ctx_.model, contact)) +
          (force ? ctx_.band : 0.0);
 }
 

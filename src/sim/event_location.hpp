@@ -24,23 +24,21 @@ class GuardEvents {
   physics::Guard kind(int event_index) const { return specs_[std::size_t(event_index)].kind; }
 
  private:
-  // The guards of a mode share one top at (t, y) (a slipping tie's costs two evaluations of the
-  // dynamics, physics/tie.hpp) and the force guards (two cone margins, the tensions) one
-  // evaluation there. The mode is fixed between two arm() calls.
-  struct PointCache {
-    bool valid = false, has_dynamics = false;
+  // The force guards of a mode (two cone margins, the tensions) share one evaluation at (t, y);
+  // the top they share is RunContext::top_at's. The mode is fixed between two arm() calls.
+  struct DynamicsCache {
+    bool valid = false;
     double t = 0.0;
     numerics::Vec y;
-    physics::TopKinematics top;
     physics::Dynamics d;
-    const physics::TopKinematics& top_at(double tq, const numerics::Vec& yq, const RunContext& ctx);
-    const physics::Dynamics& dynamics(const physics::Model& m, const Contact& c);  // at the last top_at
+    const physics::Dynamics& at(double tq, const physics::TopKinematics& top, const numerics::Vec& yq,
+                                const physics::Model& m, const Contact& c);
   };
   double value(physics::Guard kind, bool force, double t, const numerics::Vec& y);
   double top_travel(double t0, double t1) const;
 
   RunContext& ctx_;
-  PointCache cache_;
+  DynamicsCache cache_;
   std::vector<physics::GuardSpec> specs_;
   std::vector<numerics::Event> events_;
 };

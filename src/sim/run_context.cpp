@@ -18,6 +18,19 @@ RunAxes RunAxes::choose(const physics::Model& model, const physics::MotorSchedul
   return {model, schedule, rotating};
 }
 
+physics::TopKinematics RunContext::top_at(double t, const Vec& y) const {
+  if (axes.rotating) return axes.top(s.contact, t, y);  // the top at φ = 0: nothing to remember
+  TopMemo& m = top_memo;
+  if (!(m.valid && t == m.t && s.contact == m.contact && y.size() == m.y.size() && (y.array() == m.y.array()).all())) {
+    m.top = axes.top(s.contact, t, y);
+    m.t = t;
+    m.y = y;
+    m.contact = s.contact;
+    m.valid = true;
+  }
+  return m.top;
+}
+
 numerics::System RunAxes::system(const Contact& contact) const {
   const physics::Model& m = model;
   const physics::MotorSchedule& sched = schedule;

@@ -53,8 +53,20 @@ struct RunContext {
 
   Contact& contact() { return s.contact; }
   const Contact& contact() const { return s.contact; }
-  // The top for the current mode at (t, y).
-  physics::TopKinematics top_at(double t, const numerics::Vec& y) const { return axes.top(s.contact, t, y); }
+  // The top for the current mode at (t, y). In the lab it is remembered for the last (t, y, mode):
+  // the guards, the step bound and the projection all ask for it at a step's end, and a slipping
+  // tie's top costs two evaluations of the dynamics (physics/tie.hpp).
+  physics::TopKinematics top_at(double t, const numerics::Vec& y) const;
+
+  // top_at's memory (kept a member of this aggregate; nothing else reads it).
+  struct TopMemo {
+    bool valid = false;
+    double t = 0.0;
+    numerics::Vec y;
+    Contact contact;
+    physics::TopKinematics top;
+  };
+  mutable TopMemo top_memo = {};
 };
 
 }  // namespace ajx::sim
