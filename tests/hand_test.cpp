@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "one_set.hpp"
 #include "physics/energy.hpp"
 #include "physics/hand.hpp"
 #include "sim/simulation.hpp"
@@ -34,19 +35,6 @@ HandPath a_hand() {
   return h;
 }
 
-Model basin_model(bool clutch) {
-  Model m;
-  m.p.drive_radius = 0.015;
-  m.p.contact_distance = 0.035;
-  m.layers.friction = Friction::StickSlip;
-  if (clutch) {
-    m.layers.tie_clutch = true;
-    m.p.tie_static_torque = 1.5e-3;
-    m.p.tie_kinetic_torque = 1.35e-3;
-    m.p.tie_damping = 2e-6;
-  }
-  return m;
-}
 
 }  // namespace
 
@@ -74,7 +62,7 @@ TEST(Hand, OffsetVanishesWithItsRateAtBothEndsAndItsRatesAreTheDerivatives) {
 
 TEST(Hand, TheLedgerClosesWhileTheHandMovesTheTopAndTheMotionAfterHandoverIsTheMotorsAlone) {
   for (bool clutch : {false, true}) {
-    const Model m = basin_model(clutch);
+    const Model m = documented_set(clutch);  // basins.toml's set
     const std::vector<DriveSegment> segs{{0.0, 15.0, 3.0}, {15.0, 25.0, 2.0}};  // 5 rad/s² from rest
     const MotorSchedule motor(m.p.drive_radius, segs);
     MotorSchedule held = motor;

@@ -13,3 +13,13 @@ inline ajx::physics::Model one_parameter_set() {
   m.p.tie_damping = 2e-6;
   return m;
 }
+
+// The documented apparatus (sweeps/paper.toml), R = 15 mm, d = 3.5 cm: with `clutch` the set
+// above, else the paper's rigid tie.
+inline ajx::physics::Model documented_set(bool clutch) {
+  if (clutch) return one_parameter_set();
+  ajx::physics::Model m;
+  m.p.drive_radius = 0.015;
+  m.p.contact_distance = 0.035;
+  return m;
+}

@@ -15,6 +15,7 @@
 #include <stdexcept>
 
 #include "measured.hpp"
+#include "one_set.hpp"
 #include "orbits/continuation.hpp"
 #include "orbits/lagging_orbit.hpp"
 #include "orbits/orbit_families.hpp"
@@ -28,20 +29,7 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
-// The documented set (sweeps/paper.toml): R = 15 mm, d = 3.5 cm; with `clutch`, the tie clutch's
-// fitted torques. The bead where the staircase's lands, s = 0.4589 m.
-physics::Model documented(bool clutch) {
-  physics::Model m;
-  m.p.drive_radius = 0.015;
-  m.p.contact_distance = 0.035;
-  if (clutch) {
-    m.layers.tie_clutch = true;
-    m.p.tie_static_torque = 1.5e-3;
-    m.p.tie_kinetic_torque = 1.35e-3;
-    m.p.tie_damping = 2e-6;
-  }
-  return m;
-}
+// On the documented set (one_set.hpp's documented_set), the bead where the staircase's lands.
 constexpr double kS = 0.4589;
 
 // ω of the one-parameter events of `kind` on every stuck branch at s, continued in ω afresh.
@@ -143,23 +131,23 @@ void check_three_points(const physics::Model& m0, const std::string& parameter, 
 }  // namespace
 
 TEST(ThresholdCurves, FoldAgreesWithTheOneParameterContinuationAtThreePoints) {
-  check_three_points(documented(false), "drive_radius", CurveKind::Fold, 0.005, 0.03);
+  check_three_points(documented_set(false), "drive_radius", CurveKind::Fold, 0.005, 0.03);
 }
 TEST(ThresholdCurves, ConeUpAgreesWithTheOneParameterContinuationAtThreePoints) {
-  check_three_points(documented(false), "drive_radius", CurveKind::ConeUp, 0.005, 0.03);
+  check_three_points(documented_set(false), "drive_radius", CurveKind::ConeUp, 0.005, 0.03);
 }
 TEST(ThresholdCurves, ConeDownAgreesWithTheOneParameterContinuationAtThreePoints) {
-  check_three_points(documented(false), "drive_radius", CurveKind::ConeDown, 0.005, 0.03);
+  check_three_points(documented_set(false), "drive_radius", CurveKind::ConeDown, 0.005, 0.03);
 }
 TEST(ThresholdCurves, ConeDownInTheMassAgreesAtThreePoints) {
-  check_three_points(documented(false), "mass", CurveKind::ConeDown, 0.01, 0.12);
+  check_three_points(documented_set(false), "mass", CurveKind::ConeDown, 0.01, 0.12);
 }
 TEST(ThresholdCurves, LagHopfAgreesWithTheLagBranchAtThreePoints) {
-  check_three_points(documented(true), "drive_radius", CurveKind::Hopf, 0.01, 0.02);
+  check_three_points(documented_set(true), "drive_radius", CurveKind::Hopf, 0.01, 0.02);
 }
 
 TEST(ThresholdCurves, RefusesASecondParameterThatIsNotAContinuationParameter) {
-  const physics::Model m = documented(false);
+  const physics::Model m = documented_set(false);
   const CurveStart st{CurveKind::ConeDown, kS, 10.0, Vec9::Zero()};
   for (const char* bad : {"omega", "top_stop", "tie_inertia", "nonsense"}) {
     try {
