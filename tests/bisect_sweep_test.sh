@@ -36,6 +36,25 @@ check "thresholds --csv: the last column is each row's start seed (the file's ci
   "head -1 '$work/th.csv' | grep -q ',probes_run,start_seed\$' && [ \$(grep -c ',circular_high\$' '$work/th.csv') -eq 4 ]"
 check "thresholds: the table of bisections" "grep -q 'omega_fall' '$work/th.out' && grep -q 'converged' '$work/th.out'"
 
+# Guided by the start level's locked orbit (bisect.guide): the prediction is computed on whichever
+# rank runs probe 0, a pure function of its state, so 1 and 3 ranks give the same file again;
+# every converged chain has a finite prediction and a bracket one lattice cell (≤ 0.1π) wide.
+"$mpiexec" --oversubscribe -n 1 "$bin" sweep "$map" -o "$work/g1.h5" -q --set bisect.guide=held_orbit > "$work/g1.out" 2>&1
+check "guided, 1 rank: exit 0" "[ $? -eq 0 ]"
+"$mpiexec" --oversubscribe -n 3 "$bin" sweep "$map" -o "$work/g3.h5" -q --set bisect.guide=held_orbit > "$work/g3.out" 2>&1
+check "guided, 3 ranks: exit 0" "[ $? -eq 0 ]"
+for g in /chains /brackets /tasks; do
+  check "guided: $g identical for 1 and 3 ranks" "h5diff '$work/g1.h5' '$work/g3.h5' $g > '$work/diff' 2>&1"
+done
+check "guided: /brackets/guide finite and every bracket converged within 0.1π" "/usr/bin/python3 - '$work/g1.h5' <<'PY'
+import sys, h5py, numpy as np
+b = h5py.File(sys.argv[1])['brackets']
+ok = (b['status'][:] == 1).all() and np.isfinite(b['guide'][:]).all()
+ok = ok and (np.abs(b['known_omega'][:] - b['other_omega'][:]) <= 0.1 * np.pi + 1e-12).all()
+sys.exit(0 if ok else 1)
+PY"
+check "unguided files have no /brackets/guide" "! h5ls '$work/one.h5/brackets/guide' > /dev/null 2>&1"
+
 # Bad input: exit 2, the file and the key named, nothing written.
 bad() {  # NAME EXPECTED-KEY OVERRIDE...
   local name=$1 key=$2; shift 2
@@ -52,4 +71,6 @@ bad "ω_fall with to above from" "bisect.to" --set bisect.to=15.0
 bad "an unknown threshold" "bisect.threshold" --set bisect.threshold=omega_3
 bad "an unknown key" "bisect.widht" --set bisect.widht=0.3
 bad "[bisect] beside [protocol]" "bisect" --set protocol.start_omega=1.0
+bad "a guide for a threshold that is not a locked orbit's end" "bisect.guide" --set bisect.threshold=omega_2 --set bisect.to=20.0 --set bisect.guide=held_orbit
+bad "an unknown guide" "bisect.guide" --set bisect.guide=secant
 finish bisect_sweep_test

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <numbers>
 
 #include "map_bench_spec.hpp"
@@ -266,4 +267,116 @@ TEST(Bisection, ProbeChainHoldsFromTheEndOfItsRampAfterTheHistory) {
   const physics::MotorSchedule motor = c.motor();
   EXPECT_NEAR(motor.top(w.t_settle).omega, 3.5 * kPi, 1e-9);
   EXPECT_NEAR(motor.top(w.t_settle - 1.0).omega, 3.5 * kPi + spec.step_rate, 1e-9);  // still ramping
+}
+
+namespace {
+// A guided chain on the lattice of 2^n cells, its far end unheld, against an oracle that says
+// whether index j lies on the known side: the middles it runs before the bracket is one cell
+// wide (the far end's probe counted as probe_count counts it).
+template <class KnownSide>
+int guided_probes(int n, double g, KnownSide known) {
+  std::int64_t K = 0, O = std::int64_t(1) << n;
+  bool other_held = false;
+  int probes = 1;  // probe 0
+  while (O - K > 1) {
+    const std::int64_t j = guided_index(K, O, g);
+    EXPECT_GT(j, K);
+    EXPECT_LT(j, O);
+    ++probes;
+    if (known(j)) K = j; else O = j, other_held = true;
+  }
+  return probes + (other_held ? 0 : 1);
+}
+// The most probes any sequence of outcomes costs from the bracket [K, O] (the outcomes need not
+// be monotone: a held orbit's class depends on its history).
+int worst_probes(std::int64_t K, std::int64_t O, double g, std::map<std::pair<std::int64_t, std::int64_t>, int>& memo) {
+  if (O - K <= 1) return 0;
+  const auto key = std::make_pair(K, O);
+  if (const auto it = memo.find(key); it != memo.end()) return it->second;
+  const std::int64_t j = guided_index(K, O, g);
+  return memo[key] = 1 + std::max(worst_probes(j, O, g, memo), worst_probes(K, j, g, memo));
+}
+}  // namespace
+
+// The guided bisection's count (bisection.hpp, guided_index): a chain never needs more probes
+// than probe_count gives it (2n + 2, reached for n >= 3), whatever the outcomes and the
+// prediction; a prediction in the threshold's own cell closes the bracket with two middles, and
+// one k cells off with at most 2 ⌈log2(k + 1)⌉ + 2.
+TEST(Bisection, GuidedProbesStayWithinTheirCountAndTwoWhenThePredictionIsRight) {
+  for (int n = 1; n <= 7; ++n) {
+    BisectSpec b = fall_spec(1.5 * kPi / std::ldexp(1.0, n));
+    b.guide = BisectSpec::Guide::HeldOrbit;
+    ASSERT_EQ(halvings(b), n);
+    const std::int64_t cells = std::int64_t(1) << n;
+    std::vector<double> guesses = {std::numeric_limits<double>::quiet_NaN(), -3.0, double(cells) + 3.0};
+    for (std::int64_t i = 0; i <= 4 * cells; ++i) guesses.push_back(0.25 * double(i) + 0.01);
+    int worst = 0;
+    for (const double g : guesses) {
+      std::map<std::pair<std::int64_t, std::int64_t>, int> memo;
+      // probe 0, the middles, the far end
+      worst = std::max(worst, 1 + worst_probes(0, cells, g, memo) + 1);
+      EXPECT_LE(worst, probe_count(b)) << "n = " << n << ", g = " << g;
+      for (std::int64_t t = 1; t <= cells; ++t) {  // known below index t, other from t (t = cells: the far end)
+        const int p = guided_probes(n, g, [t](std::int64_t j) { return j < t; });
+        EXPECT_LE(p, probe_count(b));
+        if (g > double(t - 1) && g < double(t) && t < cells) EXPECT_LE(p, 3) << "n = " << n << ", g = " << g << ", t = " << t;
+        const double off = std::abs(g - (double(t) - 0.5));
+        if (off >= 1 && t < cells && !std::isnan(g)) EXPECT_LE(p, 3 + 2 * int(std::ceil(std::log2(off + 1)))) << n << " " << g << " " << t;
+      }
+    }
+    if (n >= 3) EXPECT_EQ(worst, probe_count(b)) << "n = " << n << ": the count is the bound, not more";
+  }
+}
+
+// Guided by the start level's own orbit at the documented set: the same kind of bracket as the
+// middles' (converged, one lattice cell wide, fallen beyond), the prediction is the
+// continuation's cone exit downwards at the bead's s* of probe 0 (the curve's start polished on
+// its extended system, orbits/threshold_curves.hpp), and fewer probes run.
+TEST(Bisection, GuidedByTheHeldOrbitBracketsTheFallWithFewerProbes) {
+  const physics::Model m = documented();
+  BisectSpec spec = fall_spec(0.05 * kPi);
+  spec.guide = BisectSpec::Guide::HeldOrbit;
+  const std::vector<Probe> guided = bisect(spec, m);
+  const BisectCarry& end = guided.back().next;
+  ASSERT_EQ(end.status, BisectStatus::Converged);
+  EXPECT_LE(end.width(), spec.width);
+  EXPECT_EQ(OrbitClass(end.other_class), OrbitClass::Fallen);
+  ASSERT_FALSE(std::isnan(end.guide));
+  const BisectCarry& start = guided.front().next;
+  ASSERT_EQ(start.known.contact.mode, physics::Mode::Stuck);
+  const auto starts = orbits::curve_starts(m, orbits::CurveKind::ConeDown, start.known.contact.s_star, {});
+  ASSERT_FALSE(starts.empty());
+  double nearest = starts.front().omega;
+  for (const auto& st : starts)
+    if (std::abs(st.omega - end.guide) < std::abs(nearest - end.guide)) nearest = st.omega;
+  // Both solve the locked orbit's equations at s* to the round-off floor 8ε(1 + ω²l/g) (scaled);
+  // the guide's point is bisected 40 times on a segment of at most 0.05 √(g/l) in ω. 1e-9 rad/s
+  // allows a margin whose slope in ω is 10^3 times below its scale.
+  EXPECT_NEAR(end.guide, nearest, 1e-9);
+  // The held orbit above the bracket keeps its s*, so the bracket holds the prediction to
+  // within its width (the probes below start from the state above, whose bead is at s* only to
+  // the classifier's resolution), as the middles' bracket does (the test above).
+  EXPECT_GE(end.guide, end.other_omega - spec.width);
+  EXPECT_LE(end.guide, end.known_omega + spec.width);
+  spec.guide = BisectSpec::Guide::Middle;
+  int ran[2] = {0, 0};
+  for (const Probe& p : guided) ran[0] += p.ran;
+  for (const Probe& p : bisect(spec, m)) ran[1] += p.ran;
+  RecordProperty("probes_guided", ran[0]);
+  RecordProperty("probes_middle", ran[1]);
+  EXPECT_LT(ran[0], ran[1]);
+}
+
+TEST(Bisection, GuidedCarryRoundTripsAndAnUnguidedOneKeepsItsBytes) {
+  BisectCarry c;
+  c.known.contact = physics::Contact(physics::Mode::Stuck, 1, 0.4589);
+  c.known_omega = 11.0;
+  c.other_omega = 10.2;
+  const std::vector<std::byte> plain = encode(c);
+  c.guide = 10.7;
+  const std::vector<std::byte> guided = encode(c);
+  EXPECT_EQ(guided.size(), plain.size() + sizeof(double));
+  EXPECT_TRUE(std::equal(plain.begin(), plain.end(), guided.begin()));
+  EXPECT_EQ(decode_carry(guided).guide, 10.7);
+  EXPECT_TRUE(std::isnan(decode_carry(plain).guide));
 }

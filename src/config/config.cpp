@@ -571,6 +571,12 @@ sweep::BisectSpec parse_bisect(const toml::table& root, std::string_view file, S
   b.step_rate = r.number("step_rate", b.step_rate, 0.0, 1e4, true);
   c.sample_rate = r.number("sample_rate", 100.0, 0.0, 1e5, true);
   b.decide_early = r.boolean("decide_early", b.decide_early);
+  if (r.word("guide", "middle", {"middle", "held_orbit"}) == "held_orbit") {
+    if (b.threshold != sweep::Threshold::Fall && b.threshold != sweep::Threshold::Omega1)
+      r.fail("guide", fmt::format("held_orbit predicts the end of a locked orbit, not {}; allowed: middle, or "
+                                  "held_orbit with threshold omega_fall or omega_1", t));
+    b.guide = sweep::BisectSpec::Guide::HeldOrbit;
+  }
   r.reject_unknown();
   const double range = std::abs(b.to - b.from), w_min = sweep::min_width(b);
   if (b.width >= range)

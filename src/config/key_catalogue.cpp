@@ -265,6 +265,10 @@ void bisect_keys(std::vector<KeyInfo>& k) {
   k.push_back(other("bisect", "decide_early", "boolean", "", "true, false", "true",
                     "stop an omega_fall or omega_1 probe once its class is decided: the bead down on the ball, or "
                     "stuck and converged to the locked orbit (false: every probe runs through its window)"));
+  k.push_back(other("bisect", "guide", "word", "", "middle, held_orbit", "middle",
+                    "where the probes go: the middle of every bracket, or (omega_fall, omega_1) next to the end of "
+                    "the locked orbit the start level holds, continued in ω_m at its bead's s*; a wrong prediction "
+                    "costs probes, never the bracket"));
 }
 
 // [grid]: each axis a list of values or {start, stop, num}.

@@ -316,6 +316,7 @@ Branch continue_branch(OrbitProblem pb, const Vec9& X0, const std::string& param
     cur = next;
     if (nx.iterations <= 3) h = std::min(1.5 * h, opt.step_max);
     br.stop_reason = run.stop_reason(cur);
+    if (br.stop_reason.empty() && opt.stop_at && opt.stop_at(cur.point)) br.stop_reason = "the caller's stop";
     if (!br.stop_reason.empty()) break;
   }
   if (br.stop_reason.empty()) br.stop_reason = "max_points reached";

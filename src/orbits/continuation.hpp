@@ -12,6 +12,7 @@
 //                 at the bottom stop, climbs off the ball)
 //   slack         min(T1, T2) changes sign
 #pragma once
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -66,6 +67,8 @@ struct ContinuationOptions {
   double step_min = 1e-7, step_max = 0.02;
   int max_points = 4000;
   bool stability = true;      // eigenvalues at each point (needed for stability events)
+  // Stop after the first point (kept, with the events before it) for which this is true.
+  std::function<bool(const BranchPoint&)> stop_at;
 };
 
 // Continue from X0 (an orbit of pb, or close to one) in `parameter`.

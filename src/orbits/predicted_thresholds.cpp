@@ -6,6 +6,7 @@
 #include <limits>
 #include <numbers>
 
+#include "orbits/corotating_frame.hpp"
 #include "orbits/orbit_families.hpp"
 
 namespace ajx::orbits {
@@ -182,6 +183,41 @@ Predictions predict_thresholds(const physics::Model& m, const PredictionOptions&
   }
   out.thresholds = {wr, wc, wf, w1};
   return out;
+}
+
+double held_orbit_end(const physics::Model& m, double omega0, double s_star, const numerics::Vec& y, double phi,
+                      double limit) {
+  const physics::Parameters& p = m.p;
+  const OrbitProblem pb{m, omega0, Closure::Stuck, s_star};
+  const Vec12 z = frame_state(y, phi, omega0);
+  const Vec3 q1 = z.head<3>(), q2 = z.segment<3>(3), W(0, 0, omega0), P(1, 1, 0);
+  // The pulls from the balance of each ball at rest in the frame (steady_orbit.hpp):
+  //   F2 u2 = m2 ω² P p2 − c_D Ω×p2 − m2 g ẑ,   F1 u1 = F2 u2 + m1 ω² P p1 − c_D Ω×p1 − m1 g ẑ.
+  const Vec3 f2 = p.ball_mass * omega0 * omega0 * P.cwiseProduct(q2) - p.drag * W.cross(q2) - p.ball_mass * p.gravity * Vec3::UnitZ();
+  const Vec3 f1 = f2 + p.bead_mass * omega0 * omega0 * P.cwiseProduct(q1) - p.drag * W.cross(q1) - p.bead_mass * p.gravity * Vec3::UnitZ();
+  Vec9 X0;
+  X0 << q1, q2, f1.norm(), f2.norm(), s_star;
+  const NewtonResult held = solve(pb, X0);
+  // Within l/10 of the state: an orbit still swinging about its equilibrium, not the orbit of
+  // another branch (those lie across the motor axis, a ball's ρ away).
+  if (!held.converged || (held.X.head<6>() - X0.head<6>()).norm() > 0.1 * p.string_length) return kNaN;
+  ContinuationOptions copt;
+  copt.direction = limit < omega0 ? -1 : +1;
+  copt.lambda_min = std::min(omega0, limit);
+  copt.lambda_max = std::max(omega0, limit);
+  copt.step_max = 0.05;  // events are located by bisection on their signs, not by the step
+  copt.stop_at = [](const BranchPoint& q) { return !locked(q, true); };  // the interval's end is passed
+  const Branch b = continue_branch(pb, held.X, "omega", copt);
+  Walk w;
+  for (const BranchPoint& p : b.points) w.points.push_back(&p);
+  for (const BranchEvent& e : b.events) w.events.push_back({e.after_point, &e});
+  if (w.points.empty() || !locked(*w.points.front(), true)) return kNaN;
+  for (int i = 0; i + 1 < int(w.points.size()); ++i) {
+    for (const auto& [seg, e] : w.events)  // past a fold the branch turns back: the orbit is gone
+      if (seg == i && e->kind == EventKind::Fold) return e->lambda;
+    if (!locked(*w.points[i + 1], true)) return boundary(w, i, true, true).first;
+  }
+  return kNaN;
 }
 
 }  // namespace ajx::orbits

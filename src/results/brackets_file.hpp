@@ -25,10 +25,12 @@ struct BracketsLayout {
   std::vector<std::int64_t> probe_row;  // per task: its row, -1 for a task that is not a probe
   std::vector<std::int64_t> chain_row;  // per chain: its row, -1 for a chain that is not a bisection
   std::size_t probes = 0, chains = 0;
+  bool guided = false;  // a chain's probes go next to a predicted threshold: /brackets/guide
 
   explicit BracketsLayout(const sweep::SweepPlan& plan) : probe_row(plan.n_tasks, -1), chain_row(plan.chains(), -1) {
     for (std::size_t c = 0; c < plan.chains(); ++c) {
       if (!plan.bisect[c]) continue;
+      guided = guided || plan.bisect[c]->guide != sweep::BisectSpec::Guide::Middle;
       chain_row[c] = std::int64_t(chains++);
       for (std::size_t k = 0; k < plan.spans[c].size(); ++k) probe_row[plan.first_task[c] + k] = std::int64_t(probes++);
     }
@@ -71,7 +73,10 @@ inline void create_brackets(io::File& f, const sweep::SweepPlan& plan, const Bra
   const std::size_t B = L.chains, P = L.probes;
   g.write_dataset("chain", std::span<const std::int64_t>(chain)).set_attribute("description", "the chain (index into /chains)");
   g.write_dataset("threshold", std::span<const std::int32_t>(threshold)).set_attribute("names", kThresholdNames);
-  g.write_dataset("planned_probes", std::span<const std::int32_t>(probes)).set_attribute("description", "probes planned: 2 + ceil(log2(|to - from|/width))");
+  g.write_dataset("planned_probes", std::span<const std::int32_t>(probes))
+      .set_attribute("description", L.guided ? "probes planned: n + 2 with n = ceil(log2(|to - from|/width)), 2 n + 2 "
+                                               "for a chain with guide = held_orbit"
+                                             : "probes planned: 2 + ceil(log2(|to - from|/width))");
   const auto put = [&](const char* name, const std::vector<double>& v, const char* what) {
     auto d = g.write_dataset(name, std::span<const double>(v));
     d.set_attribute("units", "rad/s");
@@ -92,6 +97,8 @@ inline void create_brackets(io::File& f, const sweep::SweepPlan& plan, const Bra
   filled(g, "known_class", b1, io::DType::Int32, -1.0, "description", "class at known_omega, the threshold's known side (-1: none)");
   filled(g, "other_class", b1, io::DType::Int32, -1.0, "description", "class at other_omega, past the threshold (-1: none)");
   filled(g, "status", b1, io::DType::Int32, -1.0, "names", "-1 not computed," "0 running,1 converged,2 start not on the known side,3 no crossing in the range,4 a probe failed");
+  if (L.guided)
+    filled(g, "guide", b1, io::DType::Float64, nan, "units", "rad/s");  // guide = held_orbit's prediction (NaN: none)
   io::Group pg = g.create_group("probes");
   pg.set_attribute("description", "every probe: its held level, class and statistics, and the bracket after it");
   std::vector<std::int64_t> pchain, pindex;
@@ -137,6 +144,7 @@ inline void write_probe(const std::function<io::Dataset&(const std::string&)>& d
   one("brackets/known_class", b, p.known_class);
   one("brackets/other_class", b, p.other_class);
   one("brackets/status", b, p.status);
+  if (L.guided && !p.carry.empty()) one("brackets/guide", b, sweep::decode_carry(p.carry).guide);
 }
 
 }  // namespace ajx::results

@@ -57,6 +57,7 @@ struct BracketTable {
   std::vector<double> from, to, width, start_omega;       // [rad/s]
   std::vector<double> known_omega, other_omega;           // the bracket [rad/s]
   std::vector<std::int32_t> known_class, other_class, status;  // status: sweep::BisectStatus, -1 not computed
+  std::vector<double> guide;  // [rad/s] the guided chains' predictions (NaN: none); empty in an unguided file
   struct Probes {
     std::vector<std::int64_t> chain, index;
     std::vector<double> omega_m, known_omega, other_omega;

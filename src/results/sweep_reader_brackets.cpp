@@ -35,6 +35,7 @@ void SweepReader::read_brackets() {
   t.known_class = ints("brackets/known_class", {B}).data;
   t.other_class = ints("brackets/other_class", {B}).data;
   t.status = ints("brackets/status", {B}).data;
+  if (f_.exists("brackets/guide")) t.guide = doubles("brackets/guide", {B}).data;
   BracketTable::Probes& p = t.probes;
   p.chain = as<std::int64_t>(ints("brackets/probes/chain", {P}));
   p.index = as<std::int64_t>(ints("brackets/probes/index", {P}));

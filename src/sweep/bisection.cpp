@@ -1,11 +1,14 @@
 #include "sweep/bisection.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
 
+#include "orbits/predicted_thresholds.hpp"
 #include "physics/state_row.hpp"
+#include "physics/tie.hpp"
 #include "sweep/codec.hpp"
 #include "sweep/probe_verdict.hpp"
 #include "sweep/protocol.hpp"
@@ -31,11 +34,34 @@ bool far_end_last(Threshold t) { return t == Threshold::Fall || t == Threshold::
 
 int bisect_direction(Threshold t) { return t == Threshold::Fall ? -1 : +1; }
 
-int probe_count(const BisectSpec& s) {
+int halvings(const BisectSpec& s) {
   // Halvings of Δ = |to − from| down to w (counted, not log2, so that rounding cannot leave one out).
   int m = 0;
   for (double d = std::abs(s.to - s.from); d > s.width && m < 60; d *= 0.5) ++m;
-  return 2 + m;
+  return m;
+}
+
+int probe_count(const BisectSpec& s) {
+  const int n = halvings(s);
+  return s.guide == BisectSpec::Guide::HeldOrbit ? 2 * n + 2 : 2 + n;
+}
+
+std::int64_t guided_index(std::int64_t K, std::int64_t O, double g) {
+  using I = std::int64_t;
+  const I mid = K + (O - K) / 2;
+  I j = mid;
+  if (std::isnan(g)) {
+    j = mid;
+  } else if (g <= K) {  // the threshold lies further than predicted: gallop from the known side
+    j = std::min(K + std::max<I>(1, I(std::ceil(K - g))), mid);
+  } else if (g >= O) {  // nearer than predicted: gallop back from the other side
+    j = std::max(O - std::max<I>(1, I(std::ceil(g - O))), mid);
+  } else if (std::floor(g) > K) {
+    j = I(std::floor(g));  // expected on the known side
+  } else {
+    j = I(std::ceil(g));   // K <= g < K + 1: the point past it
+  }
+  return std::clamp(j, K + 1, O - 1);
 }
 
 double min_width(const BisectSpec& s, const ClassifierSettings& settings) {
@@ -62,6 +88,7 @@ std::vector<std::byte> encode(const BisectCarry& c) {
   w.put(c.known_class);
   w.put(c.other_class);
   w.put(std::int32_t(c.status));
+  if (!std::isnan(c.guide)) w.put(c.guide);  // only a guided chain's: the others' bytes as before
   return w.take();
 }
 
@@ -79,6 +106,7 @@ BisectCarry decode_carry(const std::vector<std::byte>& bytes) {
   const auto status = r.get<std::int32_t>();
   if (status < 0 || status > kMaxBisectStatus) throw std::runtime_error("bisection carry: bad status");
   c.status = BisectStatus(status);
+  if (!r.done()) c.guide = r.get<double>();
   if (!r.done()) throw std::runtime_error("bisection carry: trailing bytes");
   return c;
 }
@@ -130,11 +158,18 @@ Probe run_probe(const BisectSpec& spec, const physics::Model& model, const sim::
                 int k, const BisectCarry& in, const ClassifierSettings& settings) {
   Probe p;
   BisectCarry c = k == 0 ? BisectCarry{} : in;
+  // Guided probes lie on the middles' lattice, from + (to − from) j/2^n, j = 0 .. 2^n.
+  const bool guided = spec.guide == BisectSpec::Guide::HeldOrbit;
+  const double cells = std::ldexp(1.0, halvings(spec));
+  const auto index = [&](double w) { return std::int64_t(std::llround((w - spec.from) / (spec.to - spec.from) * cells)); };
+  const auto narrow = [&](const BisectCarry& b) {
+    return guided ? index(b.other_omega) - index(b.known_omega) <= 1 : b.width() <= spec.width;
+  };
   // The far end is assumed on the other side (other_class −1) until it is held: first (probe 1),
   // or, for ω_fall and ω1, once the bracket has shrunk to w with every middle on the known side.
   const bool unheld = k >= 1 && c.status == BisectStatus::Running && c.other_class < 0;
-  const bool at_far_end = unheld && (far_end_last(spec.threshold) ? c.width() <= spec.width : k == 1);
-  if (k >= 1 && c.status == BisectStatus::Running && c.width() <= spec.width && !at_far_end)
+  const bool at_far_end = unheld && (far_end_last(spec.threshold) ? narrow(c) : k == 1);
+  if (k >= 1 && c.status == BisectStatus::Running && narrow(c) && !at_far_end)
     c.status = BisectStatus::Converged;
   if (c.status != BisectStatus::Running) {  // settled before this probe: nothing to integrate
     p.omega = nan;
@@ -143,7 +178,14 @@ Probe run_probe(const BisectSpec& spec, const physics::Model& model, const sim::
     return p;
   }
   p.ran = true;
-  p.omega = k == 0 ? spec.from : at_far_end ? spec.to : 0.5 * (c.known_omega + c.other_omega);
+  if (k == 0 || at_far_end) {
+    p.omega = k == 0 ? spec.from : spec.to;
+  } else if (guided) {
+    const double g = (c.guide - spec.from) / (spec.to - spec.from) * cells;  // NaN without a guide
+    p.omega = spec.from + (spec.to - spec.from) * (double(guided_index(index(c.known_omega), index(c.other_omega), g)) / cells);
+  } else {
+    p.omega = 0.5 * (c.known_omega + c.other_omega);
+  }
   const ChainSetup chain = probe_chain(spec, model, run, sample_rate, k == 0 ? std::vector<physics::DriveSegment>{} : c.history,
                                        k == 0 ? spec.start_omega : c.known_omega, p.omega);
   const physics::State start =
@@ -182,6 +224,11 @@ Probe run_probe(const BisectSpec& spec, const physics::Model& model, const sim::
       take_known();
       c.other_omega = spec.to;  // assumed, not yet held
       c.other_class = -1;
+      if (guided && c.known.contact.mode == physics::Mode::Stuck) {
+        const physics::TopKinematics top =
+            physics::top_kinematics(model, chain.motor(), c.known.contact, c.known.t, c.known.y);
+        c.guide = orbits::held_orbit_end(model, spec.from, c.known.contact.s_star, c.known.y, top.phi, spec.to);
+      }
     } else {
       c.status = BisectStatus::StartOffSide;
     }
@@ -195,7 +242,7 @@ Probe run_probe(const BisectSpec& spec, const physics::Model& model, const sim::
     c.other_omega = p.omega;
     c.other_class = cls;
   }
-  if (c.status == BisectStatus::Running && c.other_class >= 0 && c.width() <= spec.width)
+  if (c.status == BisectStatus::Running && c.other_class >= 0 && narrow(c))
     c.status = BisectStatus::Converged;
   p.next = std::move(c);
   return p;

@@ -51,6 +51,9 @@ struct BisectSpec {
   // Stop a probe once its class is decided (sweep/probe_verdict.hpp); false: every probe runs
   // through its window.
   bool decide_early = true;
+  // Where the probes go: Middle, the middle of every bracket; HeldOrbit (ω_fall, ω1), next to
+  // the threshold the start level's own orbit predicts (guided_index below).
+  enum class Guide : std::int32_t { Middle = 0, HeldOrbit = 1 } guide = Guide::Middle;
 };
 
 // Whether a held level's class is on the threshold's known side.
@@ -61,8 +64,18 @@ bool on_known_side(Threshold t, OrbitClass c);
 bool far_end_last(Threshold t);
 // +1: the threshold is found with rising ω_m (from < to), −1 falling.
 int bisect_direction(Threshold t);
-// Probes per chain, at most: 2 + the halvings that bring |to − from| to at most w.
+// The halvings n that bring |to − from| to at most w: the probes' lattice has 2^n cells.
+int halvings(const BisectSpec& s);
+// Probes per chain, at most: 2 + n with the middles; 2n + 2 guided (guided_index's bound,
+// tests/bisection_guide_test.cpp checks it over every order of outcomes).
 int probe_count(const BisectSpec& s);
+// The guided probe between lattice indices K (known side) < O (other side), O − K >= 2, given
+// the predicted threshold at index g (NaN: none): the lattice point next to g on the known side
+// of it, then the one past it; once g lies outside [K, O] (the prediction was wrong), steps
+// from the end nearest g that double with the distance to g (K + ⌈K − g⌉ ...), at most to the
+// middle: a bracket the prediction holds is closed in two probes, and any other in at most
+// about twice the middles' count.
+std::int64_t guided_index(std::int64_t K, std::int64_t O, double g);
 // The narrowest bracket a window resolves: two levels w apart drift apart in phase by w·T_m over
 // the window T_m; below 2π/min_samples_per_turn (the classifier's largest azimuth step, a quarter
 // turn by default) one window cannot tell their orbits apart. w_min = 2π/(n_turn T_m) [rad/s].
@@ -87,6 +100,9 @@ struct BisectCarry {
   double known_omega = 0.0, other_omega = 0.0;  // the bracket [rad/s]
   std::int32_t known_class = -1, other_class = -1;  // the classes measured there (-1: none yet)
   BisectStatus status = BisectStatus::Running;
+  // The threshold the start level's orbit predicts [rad/s] (BisectSpec::Guide::HeldOrbit; NaN:
+  // none or not asked): orbits::held_orbit_end from probe 0's state.
+  double guide = std::numeric_limits<double>::quiet_NaN();
   double width() const { return other_omega > known_omega ? other_omega - known_omega : known_omega - other_omega; }
 };
 std::vector<std::byte> encode(const BisectCarry& c);

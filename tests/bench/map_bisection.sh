@@ -96,32 +96,46 @@ cpu() {  # user + sys seconds of a command, from /usr/bin/time
   awk '{ printf "%.2f %.2f", $1 + $2, $3 }' "$work/t"
 }
 sed 's/^step_rate = 0.1$/step_rate = 0.1\ndecide_early = false/' "$work/bisect.toml" > "$work/full.toml"
+# Probes next to the threshold the start level's locked orbit predicts (bisect.guide).
+sed 's/^step_rate = 0.1$/step_rate = 0.1\nguide = "held_orbit"/' "$work/bisect.toml" > "$work/guided.toml"
+# The ladder as the map issue found it: every level held through its window (protocol.early_stop,
+# on by default since, stops a level once its orbit has settled).
+sed 's/^windows_per_task = 4$/windows_per_task = 4\nearly_stop = false/' "$work/ladder.toml" > "$work/ladder_full.toml"
 hold() { printf '%s\n[hold]\nomega = [%s]\nsettle = 0.0\nmeasure = 0.1\nseeds = ["%s"]\nperturbations = 0\nsample_rate = 50.0\n' "$common" "$(w 4)" "$1"; }
 hold locked_orbit > "$work/seeded.toml"
 hold circular_high > "$work/unseeded.toml"
 read cb wb < <(cpu "$bin" sweep "$work/bisect.toml" -o "$work/bisect.h5" -q)
 read cf wf < <(cpu "$bin" sweep "$work/full.toml" -o "$work/full.h5" -q)
+read cg wg < <(cpu "$bin" sweep "$work/guided.toml" -o "$work/guided.h5" -q)
 read cl wl < <(cpu "$bin" sweep "$work/ladder.toml" -o "$work/ladder.h5" -q)
+read clf wlf < <(cpu "$bin" sweep "$work/ladder_full.toml" -o "$work/ladder_full.h5" -q)
 read cs ws < <(cpu "$bin" sweep "$work/seeded.toml" -o "$work/seeded.h5" -q)
 read cu wu < <(cpu "$bin" sweep "$work/unseeded.toml" -o "$work/unseeded.h5" -q)
 steps() { /usr/bin/python3 -c "import h5py, sys; print(int(h5py.File(sys.argv[1])['tasks/steps'][:].sum()))" "$1"; }
-sb=$(steps "$work/bisect.h5"); sf=$(steps "$work/full.h5"); sl=$(steps "$work/ladder.h5")
+sb=$(steps "$work/bisect.h5"); sf=$(steps "$work/full.h5"); sg=$(steps "$work/guided.h5"); sl=$(steps "$work/ladder.h5"); slf=$(steps "$work/ladder_full.h5")
 "$bin" thresholds "$work/bisect.h5" --csv "$work/b.csv" > /dev/null
 "$bin" thresholds "$work/ladder.h5" --no-hold --csv "$work/l.csv" > /dev/null
 probes=$(h5dump -d /brackets/probes/ran "$work/bisect.h5" | grep -o '\b1\b' | wc -l)
 pts=$((n * n))
 echo "map of ω_fall and ω1 over (R, d), $n × $n points, one process ($(nproc) cores, load $(cut -d' ' -f1 /proc/loadavg))"
 fprobes=$(h5dump -d /brackets/probes/ran "$work/full.h5" | grep -o '\b1\b' | wc -l)
+gprobes=$(h5dump -d /brackets/probes/ran "$work/guided.h5" | grep -o '\b1\b' | wc -l)
 printf "  %-44s %9s %9s %10s %12s %12s\n" "" "CPU [s]" "wall [s]" "steps" "CPU a point" "16×16 (×$((256 / pts)))"
 row() { printf "  %-44s %9.2f %9.2f %10d %12.3f %12.1f\n" "$1" "$2" "$3" "$4" "$(python3 -c "print($2/$pts)")" "$(python3 -c "print($2*256/$pts)")"; }
 row "bisection to 0.05π, decided early ($probes probes)" "$cb" "$wb" "$sb"
 row "bisection, probes held through ($fprobes probes)" "$cf" "$wf" "$sf"
+row "bisection guided by the held orbit ($gprobes probes)" "$cg" "$wg" "$sg"
 row "ladder of 0.1π (42 levels a point)" "$cl" "$wl" "$sl"
+row "ladder, every level held through" "$clf" "$wlf" "$slf"
 echo "  CPU ratio bisection/ladder: $(python3 -c "print(f'{$cb/$cl:.3f}')") (target ≤ 0.2); held through: $(python3 -c "print(f'{$cf/$cl:.3f}')")"
+echo "  CPU ratio guided bisection/ladder: $(python3 -c "print(f'{$cg/$cl:.3f}')") (target ≤ 0.2); integration steps: $(python3 -c "print(f'{$sg/$sl:.3f}')")"
+echo "  CPU ratio bisection/ladder held through (the ladder before the early stop): $(python3 -c "print(f'{$cb/$clf:.3f}')"); both held through: $(python3 -c "print(f'{$cf/$clf:.3f}')")"
 seed=$(python3 -c "print(max($cs - $cu, 0.0))")
 echo "  the seeds alone ($pts solves, a 0.1 s hold from locked_orbit less one from circular_high): $(python3 -c "print(f'{$seed:.2f}')") s;" \
-  "CPU ratio without them: $(python3 -c "print(f'{($cb - $seed)/($cl - $seed):.3f}')")"
-echo "  integration steps bisection/ladder: $(python3 -c "print(f'{$sb/$sl:.3f}')"); held through: $(python3 -c "print(f'{$sf/$sl:.3f}')")"
+  "CPU ratio without them: $(python3 -c "print(f'{($cb - $seed)/($cl - $seed):.3f}')"), guided: $(python3 -c "print(f'{($cg - $seed)/($cl - $seed):.3f}')")"
+echo "  integration steps bisection/ladder: $(python3 -c "print(f'{$sb/$sl:.3f}')"); held through: $(python3 -c "print(f'{$sf/$sl:.3f}')"); against the ladder held through: $(python3 -c "print(f'{$sb/$slf:.3f}')")"
+h5diff -q "$work/ladder.h5" "$work/ladder_full.h5" /windows/class > /dev/null &&
+  echo "  the ladder's classes with and without the early stop: identical" || echo "  the ladder's classes with and without the early stop: DIFFER"
 h5diff -q "$work/bisect.h5" "$work/full.h5" /brackets/known_omega > /dev/null && h5diff -q "$work/bisect.h5" "$work/full.h5" /brackets/other_omega > /dev/null &&
   h5diff -q "$work/bisect.h5" "$work/full.h5" /brackets/status > /dev/null &&
   echo "  brackets decided early identical to those of probes held through: yes" || {
