@@ -54,6 +54,10 @@ ok = ok and (np.abs(b['known_omega'][:] - b['other_omega'][:]) <= 0.1 * np.pi + 
 sys.exit(0 if ok else 1)
 PY"
 check "unguided files have no /brackets/guide" "! h5ls '$work/one.h5/brackets/guide' > /dev/null 2>&1"
+"$bin" thresholds "$work/g1.h5" > "$work/gth.out" 2>&1
+check "thresholds of a guided map: a guide column, each row's prediction in π rad/s" \
+  "grep -q 'probes  guide \[π\]' '$work/gth.out' && [ \$(grep -cE 'converged +[0-9]+/10  3\.[0-9]{3}\$' '$work/gth.out') -eq 4 ]"
+check "thresholds of an unguided map: no guide column" "! grep -q 'guide' '$work/th.out'"
 
 # Bad input: exit 2, the file and the key named, nothing written.
 bad() {  # NAME EXPECTED-KEY OVERRIDE...

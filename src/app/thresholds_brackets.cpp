@@ -75,8 +75,10 @@ std::string bisection_report(const results::SweepReader& in, const ChainNames& n
   std::string out = "\nbisections (held levels; before = the threshold's known side, after = past it)\n";
   std::size_t w = 5;
   for (std::size_t b = 0; b < t.size(); ++b) w = std::max(w, names.label(std::size_t(t.chain[b])).size());
-  out += fmt::format("  {:<10} {:<{}} {:<22} {:>9} {:>9}  {:<36} {:<40} {:>6}\n", "threshold", "chain", w,
-                     "bracket [π rad/s]", "width [π]", "paper [π]", "classes", "status", "probes");
+  const bool guided = !t.guide.empty();  // a column for the predictions the probes were put next to
+  out += fmt::format("  {:<10} {:<{}} {:<22} {:>9} {:>9}  {:<36} {:<40} {:>6}{}\n", "threshold", "chain", w,
+                     "bracket [π rad/s]", "width [π]", "paper [π]", "classes", "status", "probes",
+                     guided ? "  guide [π]" : "");
   for (std::size_t b = 0; b < t.size(); ++b) {
     const auto c = std::size_t(t.chain[b]);
     const auto th = sweep::Threshold(t.threshold[b]);
@@ -84,9 +86,10 @@ std::string bisection_report(const results::SweepReader& in, const ChainNames& n
     const std::string bracket = e.bracketed ? fmt::format("{:.3f} → {:.3f}", e.before / pi, e.after / pi) : "none";
     const std::string width = e.bracketed ? fmt::format("{:.3f}", std::abs(e.after - e.before) / pi) : "";
     const std::string classes = fmt::format("{} → {}", class_name(t.known_class[b]), class_name(t.other_class[b]));
-    out += fmt::format("  {:<10} {:<{}} {:<22} {:>9} {:>9.2f}  {:<36} {:<40} {:>3}/{:<2}\n", sweep::to_string(th),
+    const std::string guide = !guided ? "" : std::isnan(t.guide[b]) ? "  none" : fmt::format("  {:.3f}", t.guide[b] / pi);
+    out += fmt::format("  {:<10} {:<{}} {:<22} {:>9} {:>9.2f}  {:<36} {:<40} {:>3}/{:<2}{}\n", sweep::to_string(th),
                        names.label(c), w, bracket, width, sweep::paper_value(th) / pi, classes, status_text(t, b),
-                       probes_run(t, b), t.planned[b]);
+                       probes_run(t, b), t.planned[b], guide);
   }
   return out;
 }
