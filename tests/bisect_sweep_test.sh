@@ -53,6 +53,13 @@ ok = (b['status'][:] == 1).all() and np.isfinite(b['guide'][:]).all()
 ok = ok and (np.abs(b['known_omega'][:] - b['other_omega'][:]) <= 0.1 * np.pi + 1e-12).all()
 sys.exit(0 if ok else 1)
 PY"
+"$mpiexec" --oversubscribe -n 3 "$bin" sweep "$map" -o "$work/gr.h5" -q --set bisect.guide=held_orbit --max-tasks 7 > "$work/gpart.out" 2>&1
+check "guided, stopped after 7 probes: exit 4" "[ $? -eq 4 ] && [ -s '$work/gr.h5.part' ]"
+"$mpiexec" --oversubscribe -n 2 "$bin" sweep "$map" -o "$work/gr.h5" -q --set bisect.guide=held_orbit --resume > "$work/gres.out" 2>&1
+check "guided, resumed on 2 ranks: exit 0" "[ $? -eq 0 ]"
+for g in /chains /brackets /tasks; do
+  check "guided: $g of the resumed map identical to the straight run" "h5diff '$work/g1.h5' '$work/gr.h5' $g > '$work/diff' 2>&1"
+done
 check "unguided files have no /brackets/guide" "! h5ls '$work/one.h5/brackets/guide' > /dev/null 2>&1"
 "$bin" thresholds "$work/g1.h5" > "$work/gth.out" 2>&1
 check "thresholds of a guided map: a guide column, each row's prediction in π rad/s" \
