@@ -214,6 +214,14 @@ class reader_formats(unittest.TestCase):
         s = ajx.SweepFile(self.path("b.h5"))
         self.assertAlmostEqual(s.brackets["known_omega"][0], 4 * np.pi)
         self.assertEqual(list(s.brackets["probes"]["class"]), [1, 0])
+        self.assertNotIn("guide", s.brackets)
+        with h5py.File(self.path("b.h5"), "r+") as f:  # a guided chain's prediction
+            f["brackets"].create_dataset("guide", data=np.array([3.6 * np.pi]))
+        self.assertAlmostEqual(ajx.SweepFile(self.path("b.h5")).brackets["guide"][0], 3.6 * np.pi)
+        with h5py.File(self.path("b.h5"), "r+") as f:
+            del f["brackets/guide"]
+            f["brackets"].create_dataset("guide", data=np.array([1.0, 2.0]))
+        refused(self, self.path("b.h5"), "/brackets/guide", [])
         make_sweep(self.path("b.h5"), 5)
         add(self.path("b.h5"), threshold=7)
         refused(self, self.path("b.h5"), "/brackets/threshold", ["7", "outside [0, 3]"])

@@ -417,6 +417,8 @@ class SweepFile:
              for k in ("chain", "threshold", "planned_probes", "known_class", "other_class", "status")}
         b.update({k: read(dataset(f, p, "brackets/" + k, "f", (B,)), p)
                   for k in ("from", "to", "width", "start_omega", "known_omega", "other_omega")})
+        if "brackets/guide" in f:  # only in a file with a guided chain (bisect.guide = "held_orbit")
+            b["guide"] = read(dataset(f, p, "brackets/guide", "f", (B,)), p)
         pr = {k: read(dataset(f, p, "brackets/probes/" + k, "i", (P,)), p).astype(int)
               for k in ("chain", "index", "class", "ran", "known_side", "status")}
         pr.update({k: read(dataset(f, p, "brackets/probes/" + k, "f", (P,)), p)
