@@ -13,7 +13,10 @@
 // known side (it tells a crossing in the last width from none in the range); for ω2 and ω_rise
 // it runs first (far_end_last). The middles are those of [from, to] either way, so the order
 // moves no bracket; holding it last saves the far end's probe, a fall or a loss of lock and the
-// most expensive of a chain, wherever a middle finds the other side.
+// most expensive of a chain, wherever a middle finds the other side. With Guide::HeldOrbit
+// (ω_fall, ω1) the later probes go instead to the middles' lattice next to the threshold probe
+// 0's locked orbit predicts (orbits::held_orbit_end, guided_index): the bracket is still two
+// held probes, reached by another history.
 //
 // The known side, per threshold (the definitions of thresholds.hpp on held levels):
 //   ω_rise  (rising)   fallen;       ω_fall (falling)  not fallen;
