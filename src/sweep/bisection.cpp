@@ -224,7 +224,8 @@ Probe run_probe(const BisectSpec& spec, const physics::Model& model, const sim::
       take_known();
       c.other_omega = spec.to;  // assumed, not yet held
       c.other_class = -1;
-      if (guided && c.known.contact.mode == physics::Mode::Stuck) {
+      // Only a locked start has a locked orbit to continue (a lagging one turns slower than ω_m).
+      if (guided && p.classification.cls == OrbitClass::LockedCircular && c.known.contact.mode == physics::Mode::Stuck) {
         const physics::TopKinematics top =
             physics::top_kinematics(model, chain.motor(), c.known.contact, c.known.t, c.known.y);
         c.guide = orbits::held_orbit_end(model, spec.from, c.known.contact.s_star, c.known.y, top.phi, spec.to);
