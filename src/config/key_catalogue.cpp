@@ -392,8 +392,9 @@ std::string key_reference_markdown() {
       out += fmt::format("\n## {}\n\n| key | type | unit | allowed | default | meaning |\n|---|---|---|---|---|---|\n",
                          title);
     }
-    auto cell = [](std::string s) {  // a table cell: no bare | inside
-      for (std::size_t i = 0; (i = s.find('|', i)) != std::string::npos; i += 2) s.replace(i, 1, "\\|");
+    auto cell = [](std::string s) {  // a table cell: no bare | inside, and * (as in s*) no emphasis
+      for (const char c : {'|', '*'})
+        for (std::size_t i = 0; (i = s.find(c, i)) != std::string::npos; i += 2) s.insert(i, 1, '\\');
       return s;
     };
     out += fmt::format("| `{}` | {} | {} | {} | {} | {} |\n", k.key, k.type, k.unit.empty() ? "" : k.unit,
