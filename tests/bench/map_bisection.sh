@@ -177,6 +177,45 @@ for r in rows(sys.argv[2]):
 print(f"  brackets that overlap the ladder's: {agree} of {n} points with both (history differs: the ladder "
       f"visits every level, a probe jumps from the known side)")
 PY
+# The guided brackets against the middles', per threshold (both from the same start, by other
+# histories), and the first guided chains more than a width away, with the levels they probed.
+/usr/bin/python3 - "$work/bisect.h5" "$work/guided.h5" <<'PY'
+import h5py, sys, numpy as np
+a, b = (h5py.File(p)["brackets"] for p in sys.argv[1:3])
+th = a["threshold"][:]
+ka, oa, kb, ob = a["known_omega"][:], a["other_omega"][:], b["known_omega"][:], b["other_omega"][:]
+both = (a["status"][:] == 1) & (b["status"][:] == 1)
+w = a["width"][:]
+same = both & np.isclose(ka, kb, rtol=0, atol=1e-9) & np.isclose(oa, ob, rtol=0, atol=1e-9)
+lo_a, hi_a, lo_b, hi_b = np.minimum(ka, oa), np.maximum(ka, oa), np.minimum(kb, ob), np.maximum(kb, ob)
+overlap = both & (np.maximum(lo_a, lo_b) <= np.minimum(hi_a, hi_b) + 1e-9)
+apart = np.abs(0.5 * (ka + oa) - 0.5 * (kb + ob))
+g = b["guide"][:]
+inside = both & np.isfinite(g) & (g >= lo_b - (hi_b - lo_b)) & (g <= hi_b + (hi_b - lo_b))
+def probes(f):  # probes run, per bracket row
+    p = f["probes"]
+    ran = np.bincount(p["chain"][:], weights=(p["ran"][:] == 1), minlength=int(f["chain"][:].max()) + 1)
+    return ran[f["chain"][:]]
+pa, pb = probes(a), probes(b)
+print("  guided brackets against the middles' (chains converged both ways):")
+for t, name in ((1, "ω_fall"), (2, "ω1")):
+    m = th == t
+    if not m.any():
+        continue
+    far = both & m & (apart > w)
+    print(f"    {name}: {int((both & m).sum())} chains; the same bracket {int(same[m].sum())}, overlapping or touching "
+          f"{int(overlap[m].sum())}, middles more than a width apart {int(far.sum())}"
+          + (f" (at most {apart[far].max() / np.pi:.3f}π)" if far.any() else "")
+          + f"; the prediction within its bracket ± a width {int(inside[m].sum())}; probes a chain {pb[m].mean():.2f}"
+          f" (middles {pa[m].mean():.2f}), closed in three {int((pb[m] == 3).sum())}")
+p = b["probes"]
+pc, po, pr = p["chain"][:], p["omega_m"][:], p["ran"][:]
+for i in np.flatnonzero(both & (apart > w))[:4]:
+    c = b["chain"][i]
+    levels = ", ".join(f"{x / np.pi:.3f}" for x, r in zip(po[pc == c], pr[pc == c]) if r == 1)
+    print(f"    chain {c}: guided {kb[i] / np.pi:.3f}π → {ob[i] / np.pi:.3f}π (predicted {g[i] / np.pi:.3f}π; probed "
+          f"{levels}π), middles {ka[i] / np.pi:.3f}π → {oa[i] / np.pi:.3f}π")
+PY
 echo "bisection map on the farm (mpirun --oversubscribe, --threads 0: rank 0 the master alone, timed on its own)"
 printf "  %6s %10s %14s %18s\n" "ranks" "wall [s]" "master CPU [s]" "master CPU / wall"
 for r in $ranks; do
