@@ -115,11 +115,12 @@ steps() { /usr/bin/python3 -c "import h5py, sys; print(int(h5py.File(sys.argv[1]
 sb=$(steps "$work/bisect.h5"); sf=$(steps "$work/full.h5"); sg=$(steps "$work/guided.h5"); sl=$(steps "$work/ladder.h5"); slf=$(steps "$work/ladder_full.h5")
 "$bin" thresholds "$work/bisect.h5" --csv "$work/b.csv" > /dev/null
 "$bin" thresholds "$work/ladder.h5" --no-hold --csv "$work/l.csv" > /dev/null
-probes=$(h5dump -d /brackets/probes/ran "$work/bisect.h5" | grep -o '\b1\b' | wc -l)
+ran() { /usr/bin/python3 -c "import h5py, sys; print(int((h5py.File(sys.argv[1])['brackets/probes/ran'][:] == 1).sum()))" "$1"; }
+probes=$(ran "$work/bisect.h5")
 pts=$((n * n))
 echo "map of ω_fall and ω1 over (R, d), $n × $n points, one process ($(nproc) cores, load $(cut -d' ' -f1 /proc/loadavg))"
-fprobes=$(h5dump -d /brackets/probes/ran "$work/full.h5" | grep -o '\b1\b' | wc -l)
-gprobes=$(h5dump -d /brackets/probes/ran "$work/guided.h5" | grep -o '\b1\b' | wc -l)
+fprobes=$(ran "$work/full.h5")
+gprobes=$(ran "$work/guided.h5")
 printf "  %-44s %9s %9s %10s %12s %12s\n" "" "CPU [s]" "wall [s]" "steps" "CPU a point" "16×16 (×$((256 / pts)))"
 row() { printf "  %-44s %9.2f %9.2f %10d %12.3f %12.1f\n" "$1" "$2" "$3" "$4" "$(python3 -c "print($2/$pts)")" "$(python3 -c "print($2*256/$pts)")"; }
 row "bisection to 0.05π, decided early ($probes probes)" "$cb" "$wb" "$sb"
