@@ -193,8 +193,11 @@ double held_orbit_end(const physics::Model& m, double omega0, double s_star, con
   const Vec3 q1 = z.head<3>(), q2 = z.segment<3>(3), W(0, 0, omega0), P(1, 1, 0);
   // The pulls from the balance of each ball at rest in the frame (steady_orbit.hpp):
   //   F2 u2 = m2 ω² P p2 − c_D Ω×p2 − m2 g ẑ,   F1 u1 = F2 u2 + m1 ω² P p1 − c_D Ω×p1 − m1 g ẑ.
-  const Vec3 f2 = p.ball_mass * omega0 * omega0 * P.cwiseProduct(q2) - p.drag * W.cross(q2) - p.ball_mass * p.gravity * Vec3::UnitZ();
-  const Vec3 f1 = f2 + p.bead_mass * omega0 * omega0 * P.cwiseProduct(q1) - p.drag * W.cross(q1) - p.bead_mass * p.gravity * Vec3::UnitZ();
+  const Vec3 z_hat = Vec3::UnitZ();
+  const Vec3 f2 =
+      p.ball_mass * omega0 * omega0 * P.cwiseProduct(q2) - p.drag * W.cross(q2) - p.ball_mass * p.gravity * z_hat;
+  const Vec3 f1 =
+      f2 + p.bead_mass * omega0 * omega0 * P.cwiseProduct(q1) - p.drag * W.cross(q1) - p.bead_mass * p.gravity * z_hat;
   Vec9 X0;
   X0 << q1, q2, f1.norm(), f2.norm(), s_star;
   const NewtonResult held = solve(pb, X0);
@@ -209,7 +212,7 @@ double held_orbit_end(const physics::Model& m, double omega0, double s_star, con
   copt.stop_at = [](const BranchPoint& q) { return !locked(q, true); };  // the interval's end is passed
   const Branch b = continue_branch(pb, held.X, "omega", copt);
   Walk w;
-  for (const BranchPoint& p : b.points) w.points.push_back(&p);
+  for (const BranchPoint& q : b.points) w.points.push_back(&q);
   for (const BranchEvent& e : b.events) w.events.push_back({e.after_point, &e});
   if (w.points.empty() || !locked(*w.points.front(), true)) return kNaN;
   for (int i = 0; i + 1 < int(w.points.size()); ++i) {

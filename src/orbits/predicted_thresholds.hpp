@@ -49,7 +49,7 @@ Predictions predict_thresholds(const physics::Model& m, const PredictionOptions&
 
 // The end of the locked interval through one held orbit: the stuck orbit at ω0 with the bead
 // at s*, found by Newton from a lab state y that settled there (its frame coordinates at the
-// top's azimuth φ, the pulls from the balance below), continued in ω_m towards `limit` until it
+// top's azimuth φ, the pulls from each ball's balance), continued in ω_m towards `limit` until it
 // is no longer admissible and stable (a cone exit, a fold, a loss of stability). What a held
 // orbit with its bead at s* predicts for ω_fall (limit below ω0) or ω1 (above): the
 // continuation's cone_down and cone_up points at that s*. NaN when Newton does not converge
