@@ -95,65 +95,17 @@ measure = 20.0
 step_rate = 0.1
 )";
 
-// The clutch of tests/data/flower_staircase.toml (c_a = 2e-6 N m s, lag Hopf point ω_H ≈ 15.36π):
-// the seed locked at 4π, the steps through ω1 that set the lag's stuck bead, then 15π (the lag,
-// just below ω_H, decaying ever more slowly) and 16π (0.65π past ω_H: the lag unstable, its
-// flower growing at about 0.1/s from far below ε l), one level a task.
-const char* kHopf = R"(
+// sweeps/paper.toml's tie clutch (τ_s = 1.5, τ_k = 1.35 mN m) from Table 1's orbit at 4π, held
+// level by level up through ω1 as the main job's chain `up` does: `model` adds to [model],
+// `tail` follows the two staircases.
+std::string clutch_through_omega1(const std::string& model, const std::string& tail) {
+  return R"(
 [model]
 drive_radius = 0.015
 contact_distance = 0.035
 tie_static_torque = 1.5e-3
 tie_kinetic_torque = 1.35e-3
-[layers]
-tie = "clutch"
-[integrator]
-method = "dop853"
-rtol = 1e-9
-atol = 1e-11
-[protocol]
-start_seed = "circular_high"
-start_omega = 12.566370614359172
-windows_per_task = 1
-sample_rate = 50.0
-[[protocol.segment]]
-kind = "steps"
-from = 12.566370614359172
-to = 12.566370614359172
-num = 1
-settle = 60.0
-measure = 10.0
-[[protocol.segment]]
-kind = "steps"
-from = 13.194689145077131
-to = 15.707963267948966
-num = 9
-settle = 100.0
-measure = 20.0
-step_rate = 0.1
-[[protocol.segment]]
-kind = "steps"
-from = 47.12388980384689
-to = 50.26548245743669
-num = 2
-settle = 100.0
-measure = 20.0
-step_rate = 0.1
-[grid]
-tie_damping = [2e-6]
-)";
-
-// The paper's tie clutch (sweeps/paper.toml's variant) from Table 1's orbit at 4π, held level by
-// level up through ω1 as the main job's chain `up` does. Past 4.8π the tie no longer holds: at
-// 5π it catches the rod and slips again some twenty times a second, a stick-slip cycle of the
-// tie that is a periodic orbit of the frame turning with χ.
-const char* kTieStickSlip = R"(
-[model]
-drive_radius = 0.015
-contact_distance = 0.035
-tie_static_torque = 1.5e-3
-tie_kinetic_torque = 1.35e-3
-tie_damping = 2e-6
+)" + model + R"(
 [layers]
 friction = "stick_slip"
 tie = "clutch"
@@ -181,7 +133,29 @@ num = 9
 settle = 100.0
 measure = 20.0
 step_rate = 0.1
-)";
+)" + tail;
+}
+
+// The clutch of tests/data/flower_staircase.toml (c_a = 2e-6 N m s, lag Hopf point ω_H ≈ 15.36π):
+// the seed locked at 4π, the steps through ω1 that set the lag's stuck bead, then 15π (the lag,
+// just below ω_H, decaying ever more slowly) and 16π (0.65π past ω_H: the lag unstable, its
+// flower growing at about 0.1/s from far below ε l), one level a task.
+const std::string kHopf = clutch_through_omega1("", R"(
+[[protocol.segment]]
+kind = "steps"
+from = 47.12388980384689
+to = 50.26548245743669
+num = 2
+settle = 100.0
+measure = 20.0
+step_rate = 0.1
+[grid]
+tie_damping = [2e-6]
+)");
+
+// Past 4.8π the tie no longer holds: at 5π it catches the rod and slips again some twenty times
+// a second, a stick-slip cycle of the tie that is a periodic orbit of the frame turning with χ.
+const std::string kTieStickSlip = clutch_through_omega1("tie_damping = 2e-6\n", "");
 
 // A staircase of one held level, for the keys of [protocol].
 const char* kSteps = R"(
