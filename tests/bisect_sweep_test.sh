@@ -9,20 +9,23 @@ bin=$1; mpiexec=$2; src=$3
 source "$(dirname "$0")/check.sh"
 map="$src/tests/data/bisect_map.toml"
 
+# same NAME A B: /chains, /brackets and /tasks of files A and B identical.
+same() {
+  for g in /chains /brackets /tasks; do
+    check "$1: $g identical" "h5diff '$2' '$3' $g > '$work/diff' 2>&1"
+  done
+}
+
 "$mpiexec" --oversubscribe -n 1 "$bin" sweep "$map" -o "$work/one.h5" -q > "$work/one.out" 2>&1
 check "1 rank: exit 0" "[ $? -eq 0 ]"
 "$mpiexec" --oversubscribe -n 3 "$bin" sweep "$map" -o "$work/three.h5" -q > "$work/three.out" 2>&1
 check "3 ranks: exit 0" "[ $? -eq 0 ]"
-for g in /chains /brackets /tasks; do
-  check "$g identical for 1 and 3 ranks" "h5diff '$work/one.h5' '$work/three.h5' $g > '$work/diff' 2>&1"
-done
+same "1 and 3 ranks" "$work/one.h5" "$work/three.h5"
 "$mpiexec" --oversubscribe -n 3 "$bin" sweep "$map" -o "$work/resumed.h5" -q --max-tasks 9 > "$work/part.out" 2>&1
 check "stopped after 9 probes: exit 4, a .part left" "[ $? -eq 4 ] && [ -s '$work/resumed.h5.part' ]"
 "$mpiexec" --oversubscribe -n 2 "$bin" sweep "$map" -o "$work/resumed.h5" -q --resume > "$work/resume.out" 2>&1
 check "resumed on 2 ranks: exit 0" "[ $? -eq 0 ] && [ -s '$work/resumed.h5' ]"
-for g in /chains /brackets /tasks; do
-  check "$g of the resumed map identical to the straight run" "h5diff '$work/one.h5' '$work/resumed.h5' $g > '$work/diff' 2>&1"
-done
+same "the resumed map and the straight run" "$work/one.h5" "$work/resumed.h5"
 "$bin" verify "$work/one.h5" > "$work/verify.out" 2>&1
 check "verify: ok" "[ $? -eq 0 ]"
 "$bin" thresholds "$work/one.h5" --csv "$work/th.csv" > "$work/th.out" 2>&1
@@ -43,9 +46,7 @@ check "thresholds: the table of bisections" "grep -q 'omega_fall' '$work/th.out'
 check "guided, 1 rank: exit 0" "[ $? -eq 0 ]"
 "$mpiexec" --oversubscribe -n 3 "$bin" sweep "$map" -o "$work/g3.h5" -q --set bisect.guide=held_orbit > "$work/g3.out" 2>&1
 check "guided, 3 ranks: exit 0" "[ $? -eq 0 ]"
-for g in /chains /brackets /tasks; do
-  check "guided: $g identical for 1 and 3 ranks" "h5diff '$work/g1.h5' '$work/g3.h5' $g > '$work/diff' 2>&1"
-done
+same "guided, 1 and 3 ranks" "$work/g1.h5" "$work/g3.h5"
 check "guided: /brackets/guide finite and every bracket converged within 0.1π" "/usr/bin/python3 - '$work/g1.h5' <<'PY'
 import sys, h5py, numpy as np
 b = h5py.File(sys.argv[1])['brackets']
@@ -57,9 +58,7 @@ PY"
 check "guided, stopped after 7 probes: exit 4" "[ $? -eq 4 ] && [ -s '$work/gr.h5.part' ]"
 "$mpiexec" --oversubscribe -n 2 "$bin" sweep "$map" -o "$work/gr.h5" -q --set bisect.guide=held_orbit --resume > "$work/gres.out" 2>&1
 check "guided, resumed on 2 ranks: exit 0" "[ $? -eq 0 ]"
-for g in /chains /brackets /tasks; do
-  check "guided: $g of the resumed map identical to the straight run" "h5diff '$work/g1.h5' '$work/gr.h5' $g > '$work/diff' 2>&1"
-done
+same "guided, the resumed map and the straight run" "$work/g1.h5" "$work/gr.h5"
 check "unguided files have no /brackets/guide" "! h5ls '$work/one.h5/brackets/guide' > /dev/null 2>&1"
 "$bin" thresholds "$work/g1.h5" > "$work/gth.out" 2>&1
 check "thresholds of a guided map: a guide column, each row's prediction in π rad/s" \

@@ -49,10 +49,9 @@ int probe_count(const BisectSpec& s) {
 std::int64_t guided_index(std::int64_t K, std::int64_t O, double g) {
   using I = std::int64_t;
   const I mid = K + (O - K) / 2;
+  if (std::isnan(g)) return mid;  // no prediction: the middle, K < mid < O
   I j = mid;
-  if (std::isnan(g)) {
-    j = mid;
-  } else if (g <= K) {  // the threshold lies further than predicted: gallop from the known side
+  if (g <= K) {  // the threshold lies further than predicted: gallop from the known side
     j = std::min(K + std::max<I>(1, I(std::ceil(K - g))), mid);
   } else if (g >= O) {  // nearer than predicted: gallop back from the other side
     j = std::max(O - std::max<I>(1, I(std::ceil(g - O))), mid);
